@@ -1,0 +1,40 @@
+// Built-in scenes: small, exact test geometry with known ambient occlusion, and a furnished demo room.
+#pragma once
+
+#include "obscura/camera.h"
+#include "obscura/scene.h"
+
+#include <string>
+#include <vector>
+
+namespace obscura {
+
+struct BuiltinScene {
+    std::string name;
+    std::string description;   // one line
+    Scene scene;
+    Camera camera;             // default view; width/height 1280x720
+};
+
+// Names in display order; "demo" is the default scene of the CLI.
+std::vector<std::string> builtinSceneNames();
+std::string builtinSceneDescription(const std::string& name);
+bool isBuiltinScene(const std::string& name);
+// Throws obscura::Error for an unknown name.
+BuiltinScene makeBuiltinScene(const std::string& name);
+
+// Dimensions of the closed-form scenes, shared by the builders and the tests.
+namespace builtin {
+constexpr float kWellRadius = 1.0f;      // `well`: radius a, m
+constexpr float kWellDepth = 2.0f;       // `well`: depth h, m
+constexpr int kWellSegments = 256;       // polygon sides of the well's wall
+constexpr float kCeilingHeight = 1.0f;   // `ceiling`: h, m
+constexpr float kPlaneHalfSize = 1000.0f;  // half extent of the "infinite" planes, m
+constexpr int kCabinetSlats = 30;
+} // namespace builtin
+
+// A deterministic large scene for scale tests: terrain, buildings with interiors and scattered props,
+// about `triangles` triangles in total (at least a few thousand).
+Scene generateLevel(std::size_t triangles, std::uint32_t seed = 1);
+
+} // namespace obscura

@@ -1,0 +1,21 @@
+// Errors that come from a user's input or machine.
+//
+// Two tiers, as everywhere in Obscura: programming errors are assert()s; everything that can fail on
+// input or environment (files, parsing, devices, memory) throws obscura::Error, whose message names the
+// file or resource and the problem on one line, ready to print as it is.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace obscura {
+
+class Error : public std::runtime_error {
+public:
+    explicit Error(const std::string& message) : std::runtime_error(message) {}
+};
+
+// Throws Error("<what>: <problem>"), the form every message takes (what = a file path or a flag name).
+[[noreturn]] void fail(const std::string& what, const std::string& problem);
+
+} // namespace obscura

@@ -1,0 +1,36 @@
+// The geometry buffer every screen-space method reads, as DESIGN.md fixes it.
+//
+// Per pixel: linear view depth (m, positive along -Z; +infinity where no surface is seen), the view-space
+// unit normal (zero where no surface), linear albedo, and optionally screen-space motion. Each is a
+// separate image (structure of arrays), all of the camera's size.
+#pragma once
+
+#include "obscura/camera.h"
+#include "obscura/image.h"
+
+namespace obscura {
+
+struct GBuffer {
+    Camera camera;   // the camera the buffers were made with; width/height are the buffers' size
+    Image depth;     // 1 channel: linear view depth, m; +inf for sky
+    Image normal;    // 3 channels: view-space unit normal; (0,0,0) for sky
+    Image albedo;    // 3 channels: linear base colour in [0,1]; (0,0,0) for sky
+    Image motion;    // optional, 2 channels: pixel offset to the previous frame; empty when absent
+
+    int width() const { return camera.width; }
+    int height() const { return camera.height; }
+    bool isSky(int x, int y) const { return !(depth.at(x, y) < 1e30f); }
+    // View-space position of pixel (x, y)'s centre. Sky pixels give a point at infinity.
+    Vec3 viewPosition(int x, int y) const {
+        return camera.viewFromPixel(float(x) + 0.5f, float(y) + 0.5f, depth.at(x, y));
+    }
+    Vec3 viewNormal(int x, int y) const {
+        return {normal.at(x, y, 0), normal.at(x, y, 1), normal.at(x, y, 2)};
+    }
+
+    // Checks that every buffer present matches the camera's size and channel count, and that depths
+    // are positive or +inf and normals finite; throws obscura::Error naming `what` (e.g. a file) if not.
+    void validate(const std::string& what) const;
+};
+
+} // namespace obscura

@@ -1,0 +1,39 @@
+// Reading and writing images: OpenEXR (float data), PNG (8-bit pictures), Radiance .hdr (read).
+//
+// Errors: every function throws obscura::Error naming the file and the problem (missing, unreadable,
+// truncated, corrupt, unsupported). Writers write to a temporary file beside the target and rename it,
+// so a failed write leaves no partial file and never replaces an existing file with a broken one.
+#pragma once
+
+#include "obscura/image.h"
+
+#include <functional>
+#include <string>
+
+namespace obscura {
+
+// Reads .exr, .png or .hdr by extension (case-insensitive). EXR channels come back in the file's order
+// with their names; PNG values are the 8-bit code values / 255 (no colour-space conversion); HDR gives
+// linear RGB.
+Image readImage(const std::string& path);
+
+Image readExr(const std::string& path);
+// Writes every channel as 32-bit float. Channel names come from image.channelNames when it has one per
+// channel, otherwise R,G,B,A (up to 4) or Y (1 channel).
+void writeExr(const std::string& path, const Image& image);
+
+Image readPng(const std::string& path);
+// Writes 1, 2, 3 or 4 channels; values are clamped to [0,1] and quantised to 8 bits as they are, so the
+// caller applies the sRGB transfer function first for a picture.
+void writePng(const std::string& path, const Image& image);
+
+Image readHdr(const std::string& path);
+
+// Lower-case extension with the dot (".exr"), or "" if none.
+std::string fileExtension(const std::string& path);
+
+// Runs write(tempPath), then renames tempPath to path. On any exception the temporary is removed and
+// the exception rethrown. Used by every writer in the library.
+void writeAtomically(const std::string& path, const std::function<void(const std::string& tempPath)>& write);
+
+} // namespace obscura

@@ -1,0 +1,94 @@
+// Perspective camera: the pixel <-> view-space mapping (conventions in camera.h).
+#include "obscura/camera.h"
+
+#include "obscura/error.h"
+
+#include <array>
+#include <string>
+
+namespace obscura {
+
+namespace {
+// The view axes in world space: x right, y up, z backwards (the camera looks down -z).
+std::array<Vec3, 3> viewAxes(const Camera& c) {
+    Vec3 back = normalize(c.position - c.target);
+    Vec3 right = normalize(cross(c.up, back));
+    return {right, cross(back, right), back};
+}
+} // namespace
+
+void Camera::validate() const {
+    if (!isFinite(position)) fail("camera", "position is not finite");
+    if (!isFinite(target)) fail("camera", "target is not finite");
+    if (!(length(target - position) > 0)) fail("camera", "position and target coincide");
+    if (!isFinite(up) || !(length(cross(normalize(target - position), normalize(up))) > 1e-6f))
+        fail("camera", "up is zero or parallel to the view direction");
+    if (!(fovY > 0.0f && fovY < 180.0f)) fail("camera", "fov must be in (0, 180) degrees, got " + std::to_string(fovY));
+    if (!(nearZ > 0.0f) || !(farZ > nearZ) || !std::isfinite(nearZ))
+        fail("camera", "near/far must satisfy 0 < near < far");
+    if (width < 1 || height < 1)
+        fail("camera", "image size must be at least 1x1, got " + std::to_string(width) + "x" + std::to_string(height));
+    if (width > 32768 || height > 32768)
+        fail("camera", "image size " + std::to_string(width) + "x" + std::to_string(height) + " exceeds 32768");
+}
+
+float Camera::tanHalfFovY() const { return std::tan(0.5f * fovY * kPi / 180.0f); }
+
+Mat4 Camera::viewFromWorld() const {
+    // Rows are the camera's axes in world space.
+    const std::array<Vec3, 3> axes = viewAxes(*this);
+    Mat4 r;
+    for (int i = 0; i < 3; ++i) {
+        r.m[i][0] = axes[i].x;
+        r.m[i][1] = axes[i].y;
+        r.m[i][2] = axes[i].z;
+        r.m[i][3] = -dot(axes[i], position);
+    }
+    return r;
+}
+
+Mat4 Camera::worldFromView() const {
+    const std::array<Vec3, 3> axes = viewAxes(*this);
+    Mat4 r;
+    for (int j = 0; j < 3; ++j) {
+        r.m[0][j] = axes[j].x;
+        r.m[1][j] = axes[j].y;
+        r.m[2][j] = axes[j].z;
+    }
+    r.m[0][3] = position.x;
+    r.m[1][3] = position.y;
+    r.m[2][3] = position.z;
+    return r;
+}
+
+Mat4 Camera::clipFromView() const {
+    float f = 1.0f / tanHalfFovY();
+    Mat4 r;
+    r.m[0][0] = f / aspect();
+    r.m[1][1] = f;
+    r.m[2][2] = (farZ + nearZ) / (nearZ - farZ);
+    r.m[2][3] = 2.0f * farZ * nearZ / (nearZ - farZ);
+    r.m[3][2] = -1.0f;
+    r.m[3][3] = 0.0f;
+    return r;
+}
+
+Vec3 Camera::viewFromPixel(float px, float py, float depth) const {
+    float t = tanHalfFovY();
+    float ndcX = 2.0f * px / float(width) - 1.0f;
+    float ndcY = 1.0f - 2.0f * py / float(height);
+    return {ndcX * t * aspect() * depth, ndcY * t * depth, -depth};
+}
+
+Vec3 Camera::viewRayDirection(float px, float py) const { return normalize(viewFromPixel(px, py, 1.0f)); }
+
+Vec2 Camera::pixelFromView(Vec3 p, float* depth) const {
+    float d = -p.z;
+    if (depth) *depth = d;
+    float t = tanHalfFovY();
+    float ndcX = p.x / (d * t * aspect());
+    float ndcY = p.y / (d * t);
+    return {(ndcX + 1.0f) * 0.5f * float(width), (1.0f - ndcY) * 0.5f * float(height)};
+}
+
+} // namespace obscura

@@ -1,0 +1,99 @@
+// Camera <-> JSON. Position/target/up/fov are the source of truth; the matrices are written as well so
+// other tools can use the file without reimplementing look-at.
+#include "obscura/camera_io.h"
+
+#include "obscura/error.h"
+#include "obscura/image_io.h"
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace obscura {
+
+namespace {
+
+nlohmann::json vec(Vec3 v) { return {v.x, v.y, v.z}; }
+
+nlohmann::json rows(const Mat4& m) {
+    nlohmann::json r = nlohmann::json::array();
+    for (const auto& row : m.m) r.push_back({row[0], row[1], row[2], row[3]});
+    return r;
+}
+
+Vec3 readVec(const nlohmann::json& j, const char* key, const std::string& what) {
+    if (!j.contains(key)) fail(what, std::string("missing \"") + key + "\"");
+    const auto& a = j.at(key);
+    if (!a.is_array() || a.size() != 3 || !a[0].is_number() || !a[1].is_number() || !a[2].is_number())
+        fail(what, std::string("\"") + key + "\" must be an array of 3 numbers");
+    return {a[0].get<float>(), a[1].get<float>(), a[2].get<float>()};
+}
+
+template <class T>
+T readNumber(const nlohmann::json& j, const char* key, const std::string& what, T fallback, bool required) {
+    if (!j.contains(key)) {
+        if (required) fail(what, std::string("missing \"") + key + "\"");
+        return fallback;
+    }
+    if (!j.at(key).is_number()) fail(what, std::string("\"") + key + "\" must be a number");
+    return j.at(key).get<T>();
+}
+
+} // namespace
+
+std::string cameraToJson(const Camera& c) {
+    nlohmann::json j;
+    j["position"] = vec(c.position);
+    j["target"] = vec(c.target);
+    j["up"] = vec(c.up);
+    j["fovY"] = c.fovY;
+    j["near"] = c.nearZ;
+    j["far"] = c.farZ;
+    j["width"] = c.width;
+    j["height"] = c.height;
+    j["viewFromWorld"] = rows(c.viewFromWorld());
+    j["clipFromView"] = rows(c.clipFromView());
+    return j.dump(2) + "\n";
+}
+
+Camera cameraFromJson(const std::string& text, const std::string& what) {
+    nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
+    if (j.is_discarded() || !j.is_object()) fail(what, "not a JSON object");
+    Camera c;
+    c.position = readVec(j, "position", what);
+    c.target = readVec(j, "target", what);
+    if (j.contains("up")) c.up = readVec(j, "up", what);
+    c.fovY = readNumber<float>(j, "fovY", what, c.fovY, true);
+    c.nearZ = readNumber<float>(j, "near", what, c.nearZ, false);
+    c.farZ = readNumber<float>(j, "far", what, c.farZ, false);
+    c.width = readNumber<int>(j, "width", what, 0, true);
+    c.height = readNumber<int>(j, "height", what, 0, true);
+    try {
+        c.validate();
+    } catch (const Error& e) {
+        fail(what, e.what());
+    }
+    return c;
+}
+
+Camera readCameraJson(const std::string& path) {
+    if (!std::filesystem::exists(path)) fail(path, "no such file");
+    std::ifstream in(path);
+    if (!in) fail(path, "cannot open");
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return cameraFromJson(ss.str(), path);
+}
+
+void writeCameraJson(const std::string& path, const Camera& camera) {
+    std::string text = cameraToJson(camera);
+    writeAtomically(path, [&](const std::string& tmp) {
+        std::ofstream out(tmp, std::ios::binary);
+        out << text;
+        if (!out.flush()) fail(path, "write failed");
+    });
+}
+
+} // namespace obscura

@@ -1,0 +1,157 @@
+// OpenEXR reading (any channel type, as float) and writing (32-bit float, ZIP), through OpenEXR 3.
+#include "obscura/error.h"
+#include "obscura/image_io.h"
+
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/ImfOutputFile.h>
+
+#include <algorithm>
+#include <cassert>
+#include <cstdint>
+#include <exception>
+#include <filesystem>
+#include <new>
+#include <set>
+#include <system_error>
+
+namespace obscura {
+
+namespace {
+
+// A corrupt header can claim any data window; refusing absurd sizes up front keeps a bad file from
+// turning into a multi-gigabyte allocation (8 GiB of floats is far beyond any image Obscura makes).
+constexpr std::int64_t kMaxValues = std::int64_t(1) << 31;
+constexpr int kBandRows = 256;
+
+// OpenEXR messages can run to several lines, and most repeat the path we already put in front
+// ('Cannot read image file "a.exr". Early end of file ...'); ours are one line that names it once.
+std::string openExrProblem(const std::string& path, const char* message) {
+    std::string line(message ? message : "");
+    line = line.substr(0, line.find('\n'));
+    for (const std::string& repeated : {" from image file \"" + path + "\".", " image file \"" + path + "\"."}) {
+        if (const std::size_t at = line.find(repeated); at != std::string::npos) {
+            line.replace(at, repeated.size(), ":");
+            break;
+        }
+    }
+    return line.empty() ? "unknown OpenEXR error" : line;
+}
+
+// Without this, OpenEXR's own "cannot open" message repeats the path we already put in front.
+void requireRegularFile(const std::string& path) {
+    std::error_code ec;
+    const auto status = std::filesystem::status(path, ec);
+    if (!std::filesystem::exists(status)) fail(path, "no such file");
+    if (std::filesystem::is_directory(status)) fail(path, "is a directory, not an image file");
+}
+
+std::vector<std::string> exrChannelNames(const std::string& path, const Image& image) {
+    if (image.channelNames.size() == std::size_t(image.channels)) {
+        std::set<std::string> seen;
+        for (const std::string& name : image.channelNames) {
+            if (name.empty()) fail(path, "cannot write an EXR channel with an empty name");
+            // OpenEXR keys channels by name, so a duplicate would silently drop data.
+            if (!seen.insert(name).second) fail(path, "duplicate channel name '" + name + "'");
+        }
+        return image.channelNames;
+    }
+    if (image.channels == 1) return {"Y"};
+    if (image.channels <= 4) {
+        const std::vector<std::string> rgba = {"R", "G", "B", "A"};
+        return {rgba.begin(), rgba.begin() + image.channels};
+    }
+    fail(path, std::to_string(image.channels) + " channels need channelNames (defaults cover 1 to 4)");
+}
+
+} // namespace
+
+Image readExr(const std::string& path) {
+    requireRegularFile(path);
+    try {
+        Imf::InputFile file(path.c_str());
+        const Imf::Header& header = file.header();
+        const Imath::Box2i window = header.dataWindow();
+        const std::int64_t width = std::int64_t(window.max.x) - window.min.x + 1;
+        const std::int64_t height = std::int64_t(window.max.y) - window.min.y + 1;
+
+        std::vector<std::string> names;
+        for (auto it = header.channels().begin(); it != header.channels().end(); ++it) {
+            // Subsampled (chroma) channels would need resampling to share one pixel grid.
+            if (it.channel().xSampling != 1 || it.channel().ySampling != 1)
+                fail(path, "channel '" + std::string(it.name()) + "' is subsampled, which is not supported");
+            names.emplace_back(it.name());
+        }
+        if (names.empty()) fail(path, "has no channels");
+        if (width <= 0 || height <= 0) fail(path, "has an empty data window");
+        if (width * height > kMaxValues / std::int64_t(names.size()))
+            fail(path, "data window " + std::to_string(width) + "x" + std::to_string(height) + " is too large");
+
+        // Decoding a band at a time means memory grows only with data that actually decodes: a corrupt
+        // header claiming a huge window fails on its first band instead of zero-filling gigabytes.
+        Image image;
+        image.width = int(width);
+        image.height = int(height);
+        image.channels = int(names.size());
+        image.channelNames = names;
+        const std::size_t xStride = sizeof(float) * names.size();
+        const std::size_t rowValues = std::size_t(width) * names.size();
+        for (int y = window.min.y; y <= window.max.y;) {
+            // A multiple of every compression's chunk height (1, 16, 32, 256), so no chunk decodes twice.
+            const int rows = int(std::min<std::int64_t>(kBandRows, std::int64_t(window.max.y) - y + 1));
+            const std::size_t done = image.pixels.size();
+            image.pixels.resize(done + rowValues * std::size_t(rows));
+            Imf::FrameBuffer frameBuffer;
+            for (std::size_t c = 0; c < names.size(); ++c) {
+                // Make() offsets the base pointer by the band's origin, so pixel (min.x, y) lands at done.
+                frameBuffer.insert(names[c], Imf::Slice::Make(Imf::FLOAT, image.pixels.data() + done + c,
+                                                              Imath::V2i(window.min.x, y), width, rows, xStride,
+                                                              xStride * std::size_t(width)));
+            }
+            file.setFrameBuffer(frameBuffer);
+            file.readPixels(y, y + rows - 1);
+            y += rows;
+        }
+        return image;
+    } catch (const Error&) {
+        throw;
+    } catch (const std::bad_alloc&) {
+        fail(path, "out of memory");
+    } catch (const std::exception& e) {
+        fail(path, openExrProblem(path, e.what()));
+    }
+}
+
+void writeExr(const std::string& path, const Image& image) {
+    if (image.empty()) fail(path, "image has zero size");
+    assert(image.pixels.size() == image.pixelCount() * std::size_t(image.channels));
+    const std::vector<std::string> names = exrChannelNames(path, image);
+
+    writeAtomically(path, [&](const std::string& tempPath) {
+        try {
+            Imf::Header header(image.width, image.height);
+            header.compression() = Imf::ZIP_COMPRESSION;
+            const std::size_t xStride = sizeof(float) * std::size_t(image.channels);
+            Imf::FrameBuffer frameBuffer;
+            for (std::size_t c = 0; c < names.size(); ++c) {
+                header.channels().insert(names[c], Imf::Channel(Imf::FLOAT));
+                // Slice takes a mutable pointer for reading and writing alike; OutputFile only reads it.
+                char* base = const_cast<char*>(reinterpret_cast<const char*>(image.pixels.data() + c));
+                frameBuffer.insert(names[c], Imf::Slice(Imf::FLOAT, base, xStride,
+                                                        xStride * std::size_t(image.width)));
+            }
+            Imf::OutputFile file(tempPath.c_str(), header);
+            file.setFrameBuffer(frameBuffer);
+            file.writePixels(image.height);
+        } catch (const Error&) {
+            throw;
+        } catch (const std::exception& e) {
+            // Name the target, not the temporary: the temporary is gone by the time anyone reads this.
+            fail(path, "cannot write: " + openExrProblem(tempPath, e.what()));
+        }
+    });
+}
+
+} // namespace obscura

@@ -1,0 +1,40 @@
+// G-buffer consistency checks at the boundary (files and user buffers).
+#include "obscura/gbuffer.h"
+
+#include "obscura/error.h"
+
+#include <cmath>
+#include <string>
+
+namespace obscura {
+
+namespace {
+void checkImage(const Image& image, const Camera& camera, int channels, const std::string& what,
+                const char* name) {
+    if (image.width != camera.width || image.height != camera.height)
+        fail(what, std::string(name) + " is " + std::to_string(image.width) + "x" + std::to_string(image.height) +
+                       " but the camera is " + std::to_string(camera.width) + "x" + std::to_string(camera.height));
+    if (image.channels != channels)
+        fail(what, std::string(name) + " has " + std::to_string(image.channels) + " channels, expected " +
+                       std::to_string(channels));
+}
+} // namespace
+
+void GBuffer::validate(const std::string& what) const {
+    if (camera.width < 1 || camera.height < 1) fail(what, "G-buffer has zero size");
+    checkImage(depth, camera, 1, what, "depth");
+    checkImage(normal, camera, 3, what, "normal");
+    if (!albedo.empty()) checkImage(albedo, camera, 3, what, "albedo");
+    if (!motion.empty()) checkImage(motion, camera, 2, what, "motion");
+    for (int y = 0; y < camera.height; ++y)
+        for (int x = 0; x < camera.width; ++x) {
+            float d = depth.at(x, y);
+            if (std::isnan(d) || d <= 0.0f || d == -INFINITY)
+                fail(what, "depth at pixel (" + std::to_string(x) + ", " + std::to_string(y) +
+                               ") is " + std::to_string(d) + " (must be positive or +inf)");
+            if (!isFinite(viewNormal(x, y)))
+                fail(what, "normal at pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") is not finite");
+        }
+}
+
+} // namespace obscura

@@ -1,0 +1,76 @@
+// Format dispatch, file extensions and the write-to-temporary-then-rename step every writer uses.
+#include "obscura/image_io.h"
+
+#include "obscura/error.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cctype>
+#include <cerrno>
+#include <cstdio>
+#include <filesystem>
+#include <system_error>
+
+namespace obscura {
+
+namespace fs = std::filesystem;
+
+std::string fileExtension(const std::string& path) {
+    std::string ext = fs::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return ext;
+}
+
+Image readImage(const std::string& path) {
+    const std::string ext = fileExtension(path);
+    if (ext == ".exr") return readExr(path);
+    if (ext == ".png") return readPng(path);
+    if (ext == ".hdr") return readHdr(path);
+    if (ext.empty()) fail(path, "no file extension to tell the image format (expected .exr, .png or .hdr)");
+    fail(path, "unknown image format '" + ext + "' (expected .exr, .png or .hdr)");
+}
+
+namespace {
+
+std::string temporaryPathFor(const std::string& path) {
+    // The pid keeps concurrent processes apart, the counter concurrent threads of this one.
+    static std::atomic<unsigned long> counter{0};
+    return path + ".tmp-" + std::to_string(getpid()) + "-" + std::to_string(counter++);
+}
+
+// Creating the temporary up front (exclusively, so a stale or foreign file is never reused) turns a
+// missing or read-only directory into one clear message before any format library gets involved.
+void createEmptyFile(const std::string& path, const std::string& tempPath) {
+    std::FILE* file = std::fopen(tempPath.c_str(), "wbx");
+    if (!file) {
+        const int err = errno;
+        const fs::path dir = fs::path(path).parent_path();
+        std::error_code ec;
+        if (!dir.empty() && !fs::is_directory(dir, ec))
+            fail(path, "cannot write: directory '" + dir.string() + "' does not exist");
+        fail(path, "cannot write: " + std::generic_category().message(err));
+    }
+    std::fclose(file);
+}
+
+} // namespace
+
+void writeAtomically(const std::string& path, const std::function<void(const std::string& tempPath)>& write) {
+    const std::string tempPath = temporaryPathFor(path);
+    createEmptyFile(path, tempPath);
+    try {
+        write(tempPath);
+        std::error_code ec;
+        fs::rename(tempPath, path, ec);
+        if (ec) fail(path, "cannot write: " + ec.message());
+    } catch (...) {
+        std::error_code ignored; // the original exception is the one worth reporting
+        fs::remove(tempPath, ignored);
+        throw;
+    }
+}
+
+} // namespace obscura

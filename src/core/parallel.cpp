@@ -1,0 +1,26 @@
+// parallelFor on oneTBB.
+#include "obscura/parallel.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+#include <tbb/parallel_for.h>
+
+namespace obscura {
+
+void parallelFor(std::size_t count, const std::function<void(std::size_t, std::size_t)>& body, std::size_t grain) {
+    if (count == 0) return;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, grain == 0 ? 1 : grain),
+                      [&](const tbb::blocked_range<std::size_t>& r) { body(r.begin(), r.end()); });
+}
+
+ThreadLimit::ThreadLimit(int threads) {
+    if (threads > 0)
+        control_ = new tbb::global_control(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+}
+
+ThreadLimit::~ThreadLimit() { delete static_cast<tbb::global_control*>(control_); }
+
+int hardwareThreads() { return tbb::info::default_concurrency(); }
+
+} // namespace obscura

@@ -1,0 +1,37 @@
+// Small pieces every scene loader shares.
+#pragma once
+
+#include "obscura/scene_io.h"
+
+#include <string>
+
+namespace obscura::loader {
+
+// The first non-blank line of a library's message: our messages are one line, theirs may be several.
+inline std::string firstLine(const std::string& s) {
+    std::size_t begin = s.find_first_not_of(" \t\r\n");
+    if (begin == std::string::npos) return {};
+    std::string line = s.substr(begin, s.find('\n', begin) - begin);
+    while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+    return line;
+}
+
+// The caller's LoadInfo, reset, or a local one when the caller passed none.
+class InfoSink {
+public:
+    explicit InfoSink(LoadInfo* info) : out_(info ? *info : local_) { out_ = LoadInfo{}; }
+    LoadInfo& operator*() { return out_; }
+    LoadInfo* operator->() { return &out_; }
+
+private:
+    LoadInfo local_;
+    LoadInfo& out_;
+};
+
+// The end of every load: checks and drops degenerate triangles, counting them in the caller's info.
+inline Scene finishLoad(Scene scene, const std::string& path, InfoSink& info) {
+    sanitizeScene(scene, path, &info->droppedTriangles);
+    return scene;
+}
+
+} // namespace obscura::loader

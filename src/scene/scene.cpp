@@ -1,0 +1,150 @@
+// Mesh and Scene data functions: bounds, counts, smooth normals, degenerate removal, sanitizeScene.
+#include "obscura/scene.h"
+
+#include "obscura/error.h"
+
+#include <cassert>
+#include <cmath>
+#include <string>
+
+namespace obscura {
+
+Bounds Mesh::bounds() const {
+    Bounds b;
+    for (Vec3 p : positions) b.extend(p);
+    return b;
+}
+
+std::uint32_t Scene::add(Mesh mesh, const Mat4& worldFromObject) {
+    auto index = std::uint32_t(meshes.size());
+    std::string name = mesh.name;
+    meshes.push_back(std::move(mesh));
+    instances.push_back(Instance{index, worldFromObject, std::move(name)});
+    return index;
+}
+
+Bounds Scene::bounds() const {
+    Bounds world;
+    for (const Instance& inst : instances) {
+        if (inst.mesh >= meshes.size()) continue;  // sanitizeScene reports these; bounds just skips them
+        Bounds b = meshes[inst.mesh].bounds();
+        if (b.empty()) continue;
+        // The 8 corners, not the transformed centre and size: rotations and shears move any corner outward.
+        for (int c = 0; c < 8; ++c) {
+            Vec3 corner{(c & 1) ? b.hi.x : b.lo.x, (c & 2) ? b.hi.y : b.lo.y, (c & 4) ? b.hi.z : b.lo.z};
+            world.extend(transformPoint(inst.worldFromObject, corner));
+        }
+    }
+    return world;
+}
+
+std::size_t Scene::triangleCount() const {
+    std::size_t n = 0;
+    for (const Instance& inst : instances)
+        if (inst.mesh < meshes.size()) n += meshes[inst.mesh].triangleCount();
+    return n;
+}
+
+void computeSmoothNormals(Mesh& mesh) {
+    if (mesh.normals.size() == mesh.positions.size()) return;
+    const std::size_t n = mesh.positions.size();
+    std::vector<Vec3> sum(n, Vec3{});
+    for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+        const std::uint32_t v[3] = {mesh.indices[t], mesh.indices[t + 1], mesh.indices[t + 2]};
+        if (v[0] >= n || v[1] >= n || v[2] >= n) continue;  // left for sanitizeScene to report
+        const Vec3 p[3] = {mesh.positions[v[0]], mesh.positions[v[1]], mesh.positions[v[2]]};
+        // |cross| is twice the area, so cross * angle weights by area and by the corner's angle: a vertex's
+        // normal then does not depend on how a flat region around it happens to be split into triangles.
+        Vec3 areaNormal = cross(p[1] - p[0], p[2] - p[0]);
+        float len = length(areaNormal);
+        if (!(len > 0) || !std::isfinite(len)) continue;
+        for (int k = 0; k < 3; ++k) {
+            Vec3 a = p[(k + 1) % 3] - p[k], b = p[(k + 2) % 3] - p[k];
+            // atan2 stays accurate for the tiny and near-straight angles where acos(dot) loses digits.
+            float angle = std::atan2(length(cross(a, b)), dot(a, b));
+            sum[v[k]] += areaNormal * angle;
+        }
+    }
+    mesh.normals.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        Vec3 nrm = normalize(sum[i]);
+        // Unreferenced vertices (or ones only on degenerate faces) still need some unit normal.
+        mesh.normals[i] = (nrm == Vec3{} || !isFinite(nrm)) ? Vec3{0, 1, 0} : nrm;
+    }
+}
+
+std::size_t removeDegenerateTriangles(Mesh& mesh) {
+    [[maybe_unused]] const std::size_t n = mesh.positions.size();
+    // Relative to the mesh's own size, so a millimetre part and a kilometre terrain are judged alike. Over
+    // finite positions only: one infinite vertex must not make every other triangle "small".
+    Bounds finite;
+    for (Vec3 p : mesh.positions)
+        if (isFinite(p)) finite.extend(p);
+    const Vec3 diag = finite.size();
+    const double minTwiceArea = 2.0 * 1e-12 * double(dot(diag, diag));
+    std::size_t kept = 0;
+    for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+        std::uint32_t a = mesh.indices[t], b = mesh.indices[t + 1], c = mesh.indices[t + 2];
+        assert(a < n && b < n && c < n);
+        if (a == b || b == c || a == c) continue;
+        // In double: float cross products of long thin triangles round to zero or worse.
+        const Vec3 pa = mesh.positions[a], pb = mesh.positions[b], pc = mesh.positions[c];
+        const double u[3] = {double(pb.x) - double(pa.x), double(pb.y) - double(pa.y), double(pb.z) - double(pa.z)};
+        const double v[3] = {double(pc.x) - double(pa.x), double(pc.y) - double(pa.y), double(pc.z) - double(pa.z)};
+        const double cx = u[1] * v[2] - u[2] * v[1], cy = u[2] * v[0] - u[0] * v[2], cz = u[0] * v[1] - u[1] * v[0];
+        const double twiceArea = std::sqrt(cx * cx + cy * cy + cz * cz);
+        if (!std::isfinite(twiceArea) || !(twiceArea > minTwiceArea)) continue;
+        mesh.indices[kept++] = a;
+        mesh.indices[kept++] = b;
+        mesh.indices[kept++] = c;
+    }
+    std::size_t removed = mesh.triangleCount() - kept / 3;
+    mesh.indices.resize(kept);
+    return removed;
+}
+
+namespace {
+
+void checkMesh(const Mesh& mesh, const std::string& what) {
+    const std::size_t n = mesh.positions.size();
+    if (mesh.indices.size() % 3 != 0)
+        fail(what, "mesh '" + mesh.name + "' has " + std::to_string(mesh.indices.size()) +
+                       " indices, not a multiple of 3");
+    for (std::uint32_t i : mesh.indices)
+        if (i >= n) fail(what, "index " + std::to_string(i) + " out of range (" + std::to_string(n) + " vertices)");
+    for (std::size_t i = 0; i < n; ++i)
+        if (!isFinite(mesh.positions[i])) fail(what, "vertex " + std::to_string(i) + " has a non-finite position");
+    if (!mesh.normals.empty() && mesh.normals.size() != n)
+        fail(what, "mesh '" + mesh.name + "' has " + std::to_string(mesh.normals.size()) + " normals for " +
+                       std::to_string(n) + " vertices");
+    for (std::size_t i = 0; i < mesh.normals.size(); ++i)
+        if (!isFinite(mesh.normals[i])) fail(what, "vertex " + std::to_string(i) + " has a non-finite normal");
+}
+
+bool isFinite(const Mat4& m) {
+    for (const auto& row : m.m)
+        for (float v : row)
+            if (!std::isfinite(v)) return false;
+    return true;
+}
+
+} // namespace
+
+void sanitizeScene(Scene& scene, const std::string& what, std::size_t* dropped) {
+    for (std::size_t i = 0; i < scene.instances.size(); ++i) {
+        const Instance& inst = scene.instances[i];
+        if (inst.mesh >= scene.meshes.size())
+            fail(what, "instance " + std::to_string(i) + " refers to mesh " + std::to_string(inst.mesh) + " (" +
+                           std::to_string(scene.meshes.size()) + " meshes)");
+        if (!isFinite(inst.worldFromObject)) fail(what, "instance " + std::to_string(i) + " has a non-finite transform");
+    }
+    // Every check before the removal: removeDegenerateTriangles may assume valid indices.
+    for (const Mesh& mesh : scene.meshes) checkMesh(mesh, what);
+    std::size_t removed = 0;
+    for (Mesh& mesh : scene.meshes) removed += removeDegenerateTriangles(mesh);
+    if (dropped) *dropped = removed;
+    // Counted over instances: triangles in meshes nothing places are not in the scene either.
+    if (scene.triangleCount() == 0) fail(what, "no triangles");
+}
+
+} // namespace obscura

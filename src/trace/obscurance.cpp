@@ -1,0 +1,96 @@
+// Monte Carlo ground truth of ambient occlusion and obscurance: A = 1 - (1/pi) Integral g(t(w)) cos dw,
+// estimated with cosine-weighted, stratified directions, so A ~ 1 - (1/N) sum g(t_i).
+// Falloffs: binary within r; Alchemy's g(t) = u t / max(u,t)^2 (McGuire et al. 2011, eq. 4-7); the
+// exponential kernel rho(t) = 1 - exp(a t), a = ln(0.5)/d (Sloan et al. 2013, eq. 1).
+#include "obscura/error.h"
+#include "obscura/parallel.h"
+#include "obscura/trace.h"
+#include "trace/primary_ray.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <string>
+
+namespace obscura::trace {
+
+void ObscuranceSettings::validate() const {
+    if (!(radius > 0.0f)) fail("ao-radius", "must be > 0 (or inf), got " + std::to_string(radius));
+    if (!(alchemyU > 0.0f) || !std::isfinite(alchemyU)) fail("alchemy-u", "must be a finite value > 0");
+    if (!(alchemyScale >= 0.0f) || !std::isfinite(alchemyScale)) fail("alchemy-scale", "must be a finite value >= 0");
+    if (!(halfDistance > 0.0f) || !std::isfinite(halfDistance)) fail("ao-distance", "must be a finite value > 0");
+    if (rays < 1 || rays > (1 << 20)) fail("ao-rays", "must be in [1, 1048576], got " + std::to_string(rays));
+}
+
+float ObscuranceSettings::weight(float t) const {
+    switch (falloff) {
+    case Falloff::Binary: return t < radius ? 1.0f : 0.0f;
+    case Falloff::Alchemy: {
+        if (!(t < radius)) return 0.0f;
+        float m = std::max(alchemyU, t);
+        return alchemyScale * alchemyU * t / (m * m);
+    }
+    case Falloff::Exponential:
+        return std::isfinite(t) ? std::exp(std::log(0.5f) / halfDistance * t) : 0.0f;
+    }
+    return 0.0f;
+}
+
+ObscuranceEstimator::ObscuranceEstimator(const Tracer& tracer, const ObscuranceSettings& settings)
+    : tracer_(tracer), settings_(settings), directions_((settings.validate(), settings.rays)),
+      // Beyond 24 d the exponential weight exp(a t) is below 2^-24, under float resolution of A.
+      tfar_(settings.falloff == Falloff::Exponential ? 24.0f * settings.halfDistance : settings.radius) {}
+
+ObscuranceEstimator::PointFrame ObscuranceEstimator::frame(Vec3 p, Vec3 n, Vec3 ng, std::uint32_t pointId) const {
+    PointFrame f;
+    if (dot(ng, n) < 0.0f) ng = -ng;
+    f.origin = p + ng * tracer_.selfHitOffset(p);
+    f.n = n;
+    orthonormalBasis(n, f.t, f.b);
+    f.shift = CosineHemisphereSet::shift(hashCombine(settings_.seed, pointId));
+    return f;
+}
+
+float ObscuranceEstimator::operator()(Vec3 p, Vec3 n, Vec3 ng, std::uint32_t pointId) const {
+    const PointFrame f = frame(p, n, ng, pointId);
+    const int rays = settings_.rays;
+    double occlusion = 0.0;
+    if (settings_.falloff == Falloff::Binary) {
+        int hits = 0;
+        for (int i = 0; i < rays; ++i) hits += tracer_.occluded(f.origin, direction(f, i), 0.0f, tfar_);
+        occlusion = hits;
+    } else {
+        for (int i = 0; i < rays; ++i)
+            occlusion += double(settings_.weight(tracer_.closestDistance(f.origin, direction(f, i), 0.0f, tfar_)));
+    }
+    // Alchemy's g may exceed 1 with a large scale; A is clamped as its eq. 10 clamps.
+    return float(std::clamp(1.0 - occlusion / double(rays), 0.0, 1.0));
+}
+
+float ambientObscurance(const Tracer& tracer, Vec3 p, Vec3 n, Vec3 ng, const ObscuranceSettings& settings,
+                        std::uint32_t pointId) {
+    return ObscuranceEstimator(tracer, settings)(p, n, ng, pointId);
+}
+
+Image ambientObscurance(const Tracer& tracer, const GBuffer& g, const ObscuranceSettings& s, const Progress& progress) {
+    const ObscuranceEstimator estimate(tracer, s);
+    const Camera& cam = g.camera;
+    const Mat4 worldFromView = cam.worldFromView();
+    Image ao(cam.width, cam.height, 1, 1.0f);
+    ao.channelNames = {"Y"};
+    std::atomic<int> rowsDone{0};
+    parallelFor(std::size_t(cam.height), [&](std::size_t y0, std::size_t y1) {
+        for (auto y = int(y0); y < int(y1); ++y) {
+            for (int x = 0; x < cam.width; ++x) {
+                Vec3 p, n, ng;
+                if (pixelSurface(tracer, g, worldFromView, x, y, p, n, ng))
+                    ao.at(x, y) = estimate(p, n, ng, std::uint32_t(y) * std::uint32_t(cam.width) + std::uint32_t(x));
+            }
+            int done = ++rowsDone;
+            if (progress) progress(double(done) / double(cam.height));
+        }
+    });
+    return ao;
+}
+
+} // namespace obscura::trace

@@ -1,0 +1,154 @@
+// The obscura command line: each bad-input class gives one line naming the file or flag, a non-zero exit
+// and no output file; good runs write what they promise.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <sys/wait.h>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Result {
+    int code = -1;
+    std::string out;  // stdout and stderr together
+};
+
+Result run(const std::string& args) {
+    std::string cmd = std::string(OBSCURA_CLI) + " " + args + " 2>&1";
+    Result r;
+    FILE* pipe = popen(cmd.c_str(), "r");
+    if (!pipe) return r;
+    std::array<char, 4096> buf{};
+    std::size_t n;
+    while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
+    int status = pclose(pipe);
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return r;
+}
+
+std::string data(const std::string& name) { return std::string(OBSCURA_TEST_DATA) + "/" + name; }
+
+class Cli : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir = fs::temp_directory_path() /
+              ("obscura_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+        fs::remove_all(dir);
+        fs::create_directories(dir);
+    }
+    void TearDown() override { fs::remove_all(dir); }
+    std::string path(const std::string& name) const { return (dir / name).string(); }
+    void write(const std::string& name, const std::string& bytes) const {
+        std::ofstream(path(name), std::ios::binary) << bytes;
+    }
+    // Runs a command that must fail: one line mentioning every `needles`, a non-zero exit, and nothing left
+    // in the scratch directory but the inputs that were put there.
+    void expectFailure(const std::string& args, const std::vector<std::string>& needles, int code = 1) {
+        std::size_t before = std::distance(fs::directory_iterator(dir), fs::directory_iterator{});
+        Result r = run(args);
+        EXPECT_EQ(r.code, code) << args << "\n" << r.out;
+        EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << "not one line: " << r.out;
+        EXPECT_EQ(r.out.rfind("obscura: error: ", 0), 0u) << r.out;
+        for (const std::string& n : needles) EXPECT_NE(r.out.find(n), std::string::npos) << "'" << n << "' not in: " << r.out;
+        std::size_t after = std::distance(fs::directory_iterator(dir), fs::directory_iterator{});
+        EXPECT_EQ(after, before) << "output or temporary left behind by: " << args;
+    }
+    fs::path dir;
+};
+
+const std::string kFast = " --size 32x18 --ao-rays 4 -q ";
+
+} // namespace
+
+TEST_F(Cli, MissingSceneFile) { expectFailure("render " + path("nope.glb") + kFast + "-o " + path("f.png"), {"nope.glb", "no such file"}); }
+
+TEST_F(Cli, UnknownSceneExtension) {
+    write("scene.xyz", "hello");
+    expectFailure("render " + path("scene.xyz") + kFast + "-o " + path("f.png"), {"scene.xyz", "unknown scene format"});
+}
+
+TEST_F(Cli, CorruptSceneFiles) {
+    for (const char* bad : {"bad_json.gltf", "truncated.glb", "accessor_out_of_range.gltf", "bad_index.obj",
+                            "truncated_binary.ply", "bad_header.ply"})
+        expectFailure("render " + data(bad) + kFast + "-o " + path("f.png"), {bad});
+}
+
+TEST_F(Cli, EmptyMeshAndNonFiniteVertices) {
+    expectFailure("render " + data("empty.obj") + kFast + "-o " + path("f.png"), {"empty.obj"});
+    expectFailure("render " + data("nan_vertex.obj") + kFast + "-o " + path("f.png"), {"nan_vertex.obj", "finite"});
+}
+
+TEST_F(Cli, CorruptEnvironmentImages) {
+    write("sky.exr", std::string("not an exr at all, just text"));
+    expectFailure("render plane --env " + path("sky.exr") + kFast + "-o " + path("f.png"), {"sky.exr"});
+    write("sky.hdr", std::string("#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 4 +X 4\n\x02\x02"));
+    expectFailure("render plane --env " + path("sky.hdr") + kFast + "-o " + path("f.png"), {"sky.hdr"});
+    expectFailure("render plane --env " + path("missing.hdr") + kFast + "-o " + path("f.png"), {"missing.hdr"});
+}
+
+TEST_F(Cli, ZeroImageSize) {
+    expectFailure("render plane --size 0x0 -q -o " + path("f.png"), {"--size", "at least 1x1"});
+    expectFailure("gbuffer plane --size 64x0 -q -o " + path("g.exr"), {"--size"});
+}
+
+TEST_F(Cli, BadFlagValues) {
+    expectFailure("render plane --size 32x18 -q --ao-rays 0 -o " + path("f.png"), {"ao-rays"});
+    expectFailure("render plane --size 32x18 -q --fov 200 -o " + path("f.png"), {"--fov"});
+    expectFailure("render plane" + kFast + "--ao-radius -1 -o " + path("f.png"), {"--ao-radius"});
+    expectFailure("render plane" + kFast + "--camera-from 1,2 -o " + path("f.png"), {"--camera-from"});
+    expectFailure("render plane" + kFast + "--ao bogus -o " + path("f.png"), {"--ao"}, 2);
+    expectFailure("render plane --ao-rays 4 -q --size 12xfoo -o " + path("f.png"), {"--size"});
+    expectFailure("render plane" + kFast + "-o " + path("f.jpg"), {"f.jpg", "unsupported output format"});
+    expectFailure("render plane" + kFast + "-o " + path("nodir/f.png"), {"does not exist"});
+    expectFailure("render nosuchscene" + kFast + "-o " + path("f.png"), {"nosuchscene"});
+}
+
+TEST_F(Cli, RenderWritesFrameAndAovs) {
+    Result r = run("render demo" + kFast + "-o " + path("f.png") + " --aov-dir " + path("aov"));
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_TRUE(fs::is_regular_file(path("f.png")));
+    for (const char* f : {"ao.exr", "depth.exr", "normal.exr", "albedo.exr", "lighting.exr", "camera.json"})
+        EXPECT_TRUE(fs::is_regular_file(path("aov/") + f)) << f;
+    for (const auto& e : fs::recursive_directory_iterator(dir))
+        EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << e.path();
+}
+
+TEST_F(Cli, DegenerateTrianglesAreAWarning) {
+    Result r = run("render " + data("degenerate.obj") + kFast + "-o " + path("f.png"));
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_NE(r.out.find("warning"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("dropped 1 degenerate triangle"), std::string::npos) << r.out;
+    EXPECT_TRUE(fs::is_regular_file(path("f.png")));
+}
+
+TEST_F(Cli, GBufferFileAndDirectory) {
+    Result r = run("gbuffer corner --size 40x30 -q -o " + path("g.exr"));
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_TRUE(fs::is_regular_file(path("g.exr")));
+    EXPECT_TRUE(fs::is_regular_file(path("g.camera.json")));
+    r = run("gbuffer " + data("quad.gltf") + " --size 40x30 -q -o " + path("split"));
+    ASSERT_EQ(r.code, 0) << r.out;
+    for (const char* f : {"depth.exr", "normal.exr", "albedo.exr", "camera.json"})
+        EXPECT_TRUE(fs::is_regular_file(path("split/") + f)) << f;
+}
+
+TEST_F(Cli, ScenesListsEveryBuiltin) {
+    Result r = run("scenes");
+    ASSERT_EQ(r.code, 0);
+    for (const char* name : {"plane", "corner", "well", "stairs", "spheres", "cabinet", "ceiling", "demo"})
+        EXPECT_NE(("\n" + r.out).find(std::string("\n") + name + " "), std::string::npos) << name << " missing in\n" << r.out;
+    EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 8);
+}
+
+TEST_F(Cli, HelpExplains) {
+    Result r = run("render --help");
+    EXPECT_EQ(r.code, 0);
+    for (const char* flag : {"--ao", "--ao-radius", "--ao-rays", "--size", "--camera-from", "--camera-to", "--fov",
+                             "--env", "--aov-dir"})
+        EXPECT_NE(r.out.find(flag), std::string::npos) << flag;
+}

@@ -1,0 +1,75 @@
+// Camera: pixel <-> view-space round trips and agreement with the projection matrix.
+#include "obscura/camera.h"
+#include "obscura/error.h"
+
+#include <gtest/gtest.h>
+
+using namespace obscura;
+
+namespace {
+Camera testCamera() {
+    Camera c;
+    c.position = {1, 2, 3};
+    c.target = {-0.5f, 0.2f, -1};
+    c.fovY = 50;
+    c.width = 333;
+    c.height = 197;
+    return c;
+}
+} // namespace
+
+TEST(Camera, PixelViewRoundTrip) {
+    Camera c = testCamera();
+    for (float py : {0.5f, 10.25f, 98.5f, 196.5f})
+        for (float px : {0.5f, 100.75f, 332.5f})
+            for (float d : {0.1f, 2.0f, 500.0f}) {
+                Vec3 p = c.viewFromPixel(px, py, d);
+                EXPECT_FLOAT_EQ(-p.z, d);
+                float depth = 0;
+                Vec2 back = c.pixelFromView(p, &depth);
+                EXPECT_NEAR(back.x, px, 1e-3);
+                EXPECT_NEAR(back.y, py, 1e-3);
+                EXPECT_NEAR(depth, d, 1e-5f * d);
+            }
+}
+
+TEST(Camera, MatricesAreInverse) {
+    Camera c = testCamera();
+    Mat4 m = c.viewFromWorld() * c.worldFromView();
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) EXPECT_NEAR(m.m[i][j], i == j ? 1.0f : 0.0f, 1e-5);
+    // The camera sits at the view origin and looks down -Z at its target.
+    Vec3 o = transformPoint(c.viewFromWorld(), c.position);
+    EXPECT_NEAR(length(o), 0.0f, 1e-5);
+    Vec3 t = transformPoint(c.viewFromWorld(), c.target);
+    EXPECT_NEAR(t.x, 0.0f, 1e-5);
+    EXPECT_NEAR(t.y, 0.0f, 1e-5);
+    EXPECT_NEAR(t.z, -length(c.target - c.position), 1e-5);
+}
+
+TEST(Camera, ProjectionMatrixAgreesWithPixelMapping) {
+    Camera c = testCamera();
+    Vec3 p = c.viewFromPixel(40.5f, 150.5f, 3.0f);
+    Mat4 clip = c.clipFromView();
+    float x = clip.m[0][0] * p.x + clip.m[0][2] * p.z, y = clip.m[1][1] * p.y + clip.m[1][2] * p.z;
+    float w = -p.z;
+    EXPECT_NEAR((x / w + 1) * 0.5f * float(c.width), 40.5f, 1e-3);
+    EXPECT_NEAR((1 - y / w) * 0.5f * float(c.height), 150.5f, 1e-3);
+}
+
+TEST(Camera, ValidateNamesTheProblem) {
+    Camera c = testCamera();
+    c.width = 0;
+    try {
+        c.validate();
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("image size"), std::string::npos) << e.what();
+    }
+    c = testCamera();
+    c.fovY = 180;
+    EXPECT_THROW(c.validate(), Error);
+    c = testCamera();
+    c.target = c.position;
+    EXPECT_THROW(c.validate(), Error);
+}

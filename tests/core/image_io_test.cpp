@@ -1,0 +1,510 @@
+// Tests for image_io.h: EXR/PNG/HDR round trips, files written by other writers, errors and atomic writes.
+#include "obscura/error.h"
+#include "obscura/image_io.h"
+
+#include <gtest/gtest.h>
+
+// The test target gets neither stb's nor Imath's include path, so stb comes in by its full name and
+// EXR inputs are built byte by byte below (which also keeps them independent of the code under test).
+#include <stb/stb_image_write.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iterator>
+#include <limits>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace fs = std::filesystem;
+using obscura::Image;
+
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+// Each test gets its own directory, so listing it shows exactly what the code under test left behind.
+class ImageIoTest : public ::testing::Test {
+protected:
+    void SetUp() override {
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        dir_ = fs::temp_directory_path() /
+               ("obscura_image_io_" + std::to_string(getpid()) + "_" + info->test_suite_name() + "_" + info->name());
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+    }
+    void TearDown() override {
+        std::error_code ignored;
+        fs::remove_all(dir_, ignored);
+    }
+
+    std::string file(const std::string& name) const { return (dir_ / name).string(); }
+
+    std::vector<std::string> listDirectory() const {
+        std::vector<std::string> names;
+        for (const auto& entry : fs::directory_iterator(dir_)) names.push_back(entry.path().filename().string());
+        std::sort(names.begin(), names.end());
+        return names;
+    }
+
+    void writeBytes(const std::string& path, const std::string& bytes) const {
+        std::ofstream out(path, std::ios::binary);
+        out << bytes;
+        ASSERT_TRUE(out.good()) << path;
+    }
+
+    static std::string readBytes(const std::string& path) {
+        std::ifstream in(path, std::ios::binary);
+        return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    }
+
+    fs::path dir_;
+};
+
+// EXPECT_THROW of obscura::Error that also hands back the message for content checks.
+std::string thrownMessage(const std::function<void()>& action) {
+    std::string message;
+    EXPECT_THROW(
+        {
+            try {
+                action();
+            } catch (const obscura::Error& e) {
+                message = e.what();
+                throw;
+            }
+        },
+        obscura::Error);
+    return message;
+}
+
+void expectMessage(const std::string& message, const std::string& path, const std::string& problem) {
+    EXPECT_NE(message.find(path), std::string::npos) << "message does not name the file: " << message;
+    EXPECT_NE(message.find(problem), std::string::npos) << "message does not say '" << problem << "': " << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << "message is not one line: " << message;
+}
+
+// OpenEXR stores channels sorted by name, so a round trip is compared channel by channel, by name.
+int channelIndex(const Image& image, const std::string& name) {
+    const auto it = std::find(image.channelNames.begin(), image.channelNames.end(), name);
+    return it == image.channelNames.end() ? -1 : int(it - image.channelNames.begin());
+}
+
+void expectSameByName(const Image& expected, const Image& actual) {
+    ASSERT_EQ(actual.width, expected.width);
+    ASSERT_EQ(actual.height, expected.height);
+    ASSERT_EQ(actual.channels, expected.channels);
+    ASSERT_EQ(actual.channelNames.size(), std::size_t(actual.channels));
+    for (int c = 0; c < expected.channels; ++c) {
+        const int a = channelIndex(actual, expected.channelNames[std::size_t(c)]);
+        ASSERT_GE(a, 0) << "missing channel " << expected.channelNames[std::size_t(c)];
+        for (int y = 0; y < expected.height; ++y)
+            for (int x = 0; x < expected.width; ++x)
+                EXPECT_EQ(actual.at(x, y, a), expected.at(x, y, c)) << "x=" << x << " y=" << y << " c=" << c;
+    }
+}
+
+// Values that a lossy or half-precision path would change: non-dyadic fractions, a denormal, a huge
+// value, negatives and infinities (sky depth is +inf).
+float awkwardValue(int x, int y, int c) {
+    const float table[] = {0.1f, -1.0f / 3.0f, 1e-40f, 3.0e38f, -0.0f, kInf, -kInf, 123456.789f};
+    return table[(x + 3 * y + 5 * c) % 8] + float(x * 1000 + y * 10 + c) * 1e-3f;
+}
+
+// ---- hand-made EXR files ------------------------------------------------------------------------
+// Just enough of the OpenEXR file layout (openexr.com "OpenEXR File Layout") to write an uncompressed
+// single-part scanline file and to read back the header attributes of one.
+
+static_assert(std::endian::native == std::endian::little, "EXR files are little-endian; so is this writer");
+
+template <typename T>
+void appendRaw(std::string& out, const T& value) {
+    out.append(reinterpret_cast<const char*>(&value), sizeof(T));
+}
+
+void appendAttribute(std::string& out, const std::string& name, const std::string& type, const std::string& value) {
+    out += name + '\0' + type + '\0';
+    appendRaw(out, std::int32_t(value.size()));
+    out += value;
+}
+
+struct HandChannel {
+    std::string name;
+    std::int32_t pixelType; // 0 UINT, 1 HALF, 2 FLOAT
+    std::string rows;       // per row: width samples, little-endian; rows back to back
+};
+
+// Channels must be given in alphabetical order, as OpenEXR keeps them; no compression, one row a chunk.
+std::string handMadeExr(int x0, int y0, int width, int height, const std::vector<HandChannel>& channels) {
+    std::string header;
+    appendRaw(header, std::int32_t(20000630)); // magic
+    appendRaw(header, std::int32_t(2));        // version 2, single-part scanline
+    std::string chlist;
+    for (const HandChannel& c : channels) {
+        chlist += c.name + '\0';
+        appendRaw(chlist, c.pixelType);
+        appendRaw(chlist, std::int32_t(0)); // pLinear and three reserved bytes
+        appendRaw(chlist, std::int32_t(1)); // xSampling
+        appendRaw(chlist, std::int32_t(1)); // ySampling
+    }
+    chlist += '\0';
+    std::string box;
+    for (std::int32_t v : {x0, y0, x0 + width - 1, y0 + height - 1}) appendRaw(box, v);
+    std::string one, zeroPair;
+    appendRaw(one, 1.0f);
+    appendRaw(zeroPair, 0.0f);
+    appendRaw(zeroPair, 0.0f);
+    appendAttribute(header, "channels", "chlist", chlist);
+    appendAttribute(header, "compression", "compression", std::string(1, '\0'));
+    appendAttribute(header, "dataWindow", "box2i", box);
+    appendAttribute(header, "displayWindow", "box2i", box);
+    appendAttribute(header, "lineOrder", "lineOrder", std::string(1, '\0'));
+    appendAttribute(header, "pixelAspectRatio", "float", one);
+    appendAttribute(header, "screenWindowCenter", "v2f", zeroPair);
+    appendAttribute(header, "screenWindowWidth", "float", one);
+    header += '\0';
+
+    std::string chunks, offsets;
+    const std::uint64_t chunksStart = header.size() + sizeof(std::uint64_t) * std::size_t(height);
+    for (int row = 0; row < height; ++row) {
+        std::string data;
+        for (const HandChannel& c : channels) {
+            const std::size_t rowBytes = c.rows.size() / std::size_t(height);
+            data += c.rows.substr(rowBytes * std::size_t(row), rowBytes);
+        }
+        appendRaw(offsets, std::uint64_t(chunksStart + chunks.size()));
+        appendRaw(chunks, std::int32_t(y0 + row));
+        appendRaw(chunks, std::int32_t(data.size()));
+        chunks += data;
+    }
+    return header + offsets + chunks;
+}
+
+// Header attributes of an EXR file: name -> (type, value bytes).
+std::map<std::string, std::pair<std::string, std::string>> exrAttributes(const std::string& file) {
+    std::map<std::string, std::pair<std::string, std::string>> attributes;
+    std::size_t at = 8; // after magic and version
+    auto readString = [&] {
+        const std::size_t end = file.find('\0', at);
+        std::string s = file.substr(at, end - at);
+        at = end + 1;
+        return s;
+    };
+    while (at < file.size() && file[at] != '\0') {
+        const std::string name = readString();
+        const std::string type = readString();
+        std::int32_t size = 0;
+        std::memcpy(&size, file.data() + at, sizeof(size));
+        at += sizeof(size);
+        attributes[name] = {type, file.substr(at, std::size_t(size))};
+        at += std::size_t(size);
+    }
+    return attributes;
+}
+
+// ---- EXR ----------------------------------------------------------------------------------------
+
+TEST_F(ImageIoTest, ExrRoundTripThreeChannelsIsExactAndKeepsNames) {
+    Image image(7, 5, 3);
+    image.channelNames = {"R", "G", "B"};
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x)
+            for (int c = 0; c < 3; ++c) image.at(x, y, c) = awkwardValue(x, y, c);
+    const std::string path = file("rgb.exr");
+    obscura::writeExr(path, image);
+
+    const Image back = obscura::readExr(path);
+    // The file's order is OpenEXR's: alphabetical, whatever order they were written in.
+    EXPECT_EQ(back.channelNames, (std::vector<std::string>{"B", "G", "R"}));
+    expectSameByName(image, back);
+}
+
+TEST_F(ImageIoTest, ExrRoundTripOneChannelDepthKeepsInfinity) {
+    Image depth(4, 3, 1);
+    depth.channelNames = {"Z"};
+    for (int y = 0; y < depth.height; ++y)
+        for (int x = 0; x < depth.width; ++x) depth.at(x, y) = 0.25f + float(x) * 1.7f + float(y) * 0.013f;
+    depth.at(0, 0) = kInf;
+    depth.at(3, 2) = kInf;
+    const std::string path = file("depth.exr");
+    obscura::writeExr(path, depth);
+
+    const Image back = obscura::readImage(path);
+    EXPECT_EQ(back.channelNames, (std::vector<std::string>{"Z"}));
+    expectSameByName(depth, back);
+    EXPECT_EQ(back.at(0, 0), kInf);
+}
+
+// Taller than one read band (256 rows) and not a multiple of it, so band joins and the short last band
+// are both crossed.
+TEST_F(ImageIoTest, ExrRoundTripTallImageAcrossReadBands) {
+    Image image(3, 600, 2);
+    image.channelNames = {"U", "V"};
+    for (std::size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] = float(i) * 0.37f - 100.0f;
+    const std::string path = file("tall.exr");
+    obscura::writeExr(path, image);
+    expectSameByName(image, obscura::readExr(path));
+}
+
+TEST_F(ImageIoTest, ExrDefaultChannelNames) {
+    Image gray(2, 2, 1, 0.5f);
+    obscura::writeExr(file("y.exr"), gray);
+    EXPECT_EQ(obscura::readExr(file("y.exr")).channelNames, (std::vector<std::string>{"Y"}));
+
+    Image rgba(2, 2, 4, 0.5f);
+    rgba.channelNames = {"only", "two"}; // not one per channel, so the defaults apply
+    obscura::writeExr(file("rgba.exr"), rgba);
+    EXPECT_EQ(obscura::readExr(file("rgba.exr")).channelNames, (std::vector<std::string>{"A", "B", "G", "R"}));
+}
+
+TEST_F(ImageIoTest, ExrIsWrittenAsZipCompressedFloat) {
+    Image image(3, 2, 2, 1.0f);
+    image.channelNames = {"U", "V"};
+    obscura::writeExr(file("zip.exr"), image);
+
+    const auto attributes = exrAttributes(readBytes(file("zip.exr")));
+    ASSERT_EQ(attributes.count("compression"), 1u);
+    EXPECT_EQ(attributes.at("compression").second, std::string(1, '\3')); // ZIP_COMPRESSION
+    ASSERT_EQ(attributes.count("channels"), 1u);
+    std::string expectedChannels;
+    for (const char* name : {"U", "V"}) {
+        expectedChannels += std::string(name) + '\0';
+        for (std::int32_t v : {2, 0, 1, 1}) appendRaw(expectedChannels, v); // FLOAT, pLinear 0, sampling 1x1
+    }
+    EXPECT_EQ(attributes.at("channels").second, expectedChannels + '\0');
+}
+
+// A 3x2 file whose data window starts at (10, 20), with two HALF channels and one UINT channel,
+// uncompressed and made by hand, so the expected floats are known bit for bit.
+TEST_F(ImageIoTest, ExrReadsHalfAndUintChannelsAndHonoursDataWindow) {
+    constexpr int width = 3, height = 2, x0 = 10, y0 = 20;
+    // {half bits, value}: 1, 0.5, -2, 65504 (largest half), 2^-24 (smallest denormal), +inf.
+    const std::uint16_t gBits[height][width] = {{0x3C00, 0x3800, 0xC000}, {0x7BFF, 0x0001, 0x7C00}};
+    const float gValues[height][width] = {{1.0f, 0.5f, -2.0f}, {65504.0f, std::ldexp(1.0f, -24), kInf}};
+    const std::uint16_t rBits[height][width] = {{0x3555, 0x0000, 0x8000}, {0x6400, 0xBC00, 0x3400}};
+    const float rValues[height][width] = {{0.333251953125f, 0.0f, -0.0f}, {1024.0f, -1.0f, 0.25f}};
+    // UINT converts to float; these are exact in float (4e9 = 15625000 * 2^8).
+    const std::uint32_t idValues[height][width] = {{0, 7, 4000000000u}, {123, 16777216u, 1}};
+
+    auto raw = [](const auto& table) { return std::string(reinterpret_cast<const char*>(table), sizeof(table)); };
+    const std::string path = file("half.exr");
+    writeBytes(path, handMadeExr(x0, y0, width, height,
+                                 {{"G", 1, raw(gBits)}, {"R", 1, raw(rBits)}, {"id", 0, raw(idValues)}}));
+
+    const Image image = obscura::readExr(path);
+    ASSERT_EQ(image.width, width);
+    ASSERT_EQ(image.height, height);
+    ASSERT_EQ(image.channelNames, (std::vector<std::string>{"G", "R", "id"}));
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            EXPECT_EQ(image.at(x, y, 0), gValues[y][x]) << x << "," << y;
+            EXPECT_EQ(image.at(x, y, 1), rValues[y][x]) << x << "," << y;
+            EXPECT_EQ(image.at(x, y, 2), float(idValues[y][x])) << x << "," << y;
+        }
+    }
+    EXPECT_TRUE(std::signbit(image.at(2, 0, 1))); // -0 survives
+}
+
+// ---- PNG and HDR --------------------------------------------------------------------------------
+
+TEST_F(ImageIoTest, PngRoundTripIsExactForEightBitValues) {
+    for (int channels = 1; channels <= 4; ++channels) {
+        Image image(16, 17, channels);
+        for (std::size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] = float((i * 37 + 11) % 256) / 255.0f;
+        image.pixels[0] = 0.0f;
+        image.pixels[1] = 1.0f;
+        const std::string path = file("rt" + std::to_string(channels) + ".png");
+        obscura::writePng(path, image);
+
+        const Image back = obscura::readPng(path);
+        ASSERT_EQ(back.width, image.width);
+        ASSERT_EQ(back.height, image.height);
+        ASSERT_EQ(back.channels, channels);
+        for (std::size_t i = 0; i < image.pixels.size(); ++i)
+            ASSERT_EQ(back.pixels[i], image.pixels[i]) << "channels=" << channels << " i=" << i;
+    }
+}
+
+TEST_F(ImageIoTest, PngWriteClampsAndRoundsToNearest) {
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    // in -> expected 8-bit code: clamped below and above, NaN to 0, nearest code either side of a half.
+    const std::vector<std::pair<float, int>> cases = {
+        {-1.0f, 0}, {2.0f, 255}, {kInf, 255}, {-kInf, 0}, {nan, 0}, {100.4f / 255.0f, 100}, {100.6f / 255.0f, 101}};
+    Image image(int(cases.size()), 1, 1);
+    for (std::size_t i = 0; i < cases.size(); ++i) image.pixels[i] = cases[i].first;
+    obscura::writePng(file("clamp.png"), image);
+    const Image back = obscura::readImage(file("clamp.png"));
+    for (std::size_t i = 0; i < cases.size(); ++i)
+        EXPECT_EQ(back.pixels[i], float(cases[i].second) / 255.0f) << "input " << cases[i].first;
+}
+
+TEST_F(ImageIoTest, HdrReadsFileWrittenByStb) {
+    constexpr int width = 5, height = 4;
+    // RGBE shares one exponent per pixel and stb truncates the mantissas, so a component v of a pixel
+    // whose largest is m comes back within (m / v) / 128 relative: components stay within 15% of each
+    // other (error under 0.92%) while pixels span 0.01 to about 2000.
+    std::vector<float> rgb;
+    for (int p = 0; p < width * height; ++p) {
+        const float base = 0.01f * std::pow(1.9f, float(p));
+        for (float ratio : {1.0f, 0.95f, 0.85f}) rgb.push_back(base * ratio);
+    }
+    const std::string path = file("sky.hdr");
+    ASSERT_NE(stbi_write_hdr(path.c_str(), width, height, 3, rgb.data()), 0);
+
+    const Image image = obscura::readImage(path);
+    ASSERT_EQ(image.width, width);
+    ASSERT_EQ(image.height, height);
+    ASSERT_EQ(image.channels, 3);
+    for (std::size_t i = 0; i < rgb.size(); ++i) EXPECT_NEAR(image.pixels[i], rgb[i], 0.01f * rgb[i]) << i;
+}
+
+TEST_F(ImageIoTest, ExtensionDispatchIsCaseInsensitive) {
+    EXPECT_EQ(obscura::fileExtension("a/b.EXR"), ".exr");
+    EXPECT_EQ(obscura::fileExtension("a.tar.Gz"), ".gz");
+    EXPECT_EQ(obscura::fileExtension("dir.d/noext"), "");
+
+    Image image(2, 2, 3, 0.2f);
+    obscura::writePng(file("UPPER.PNG"), image);
+    EXPECT_EQ(obscura::readImage(file("UPPER.PNG")).channels, 3);
+}
+
+// ---- errors -------------------------------------------------------------------------------------
+
+TEST_F(ImageIoTest, MissingFileSaysNoSuchFile) {
+    for (const char* name : {"missing.exr", "missing.png", "missing.hdr"}) {
+        const std::string path = file(name);
+        expectMessage(thrownMessage([&] { obscura::readImage(path); }), path, "no such file");
+    }
+}
+
+TEST_F(ImageIoTest, TruncatedExrIsAnErrorNotACrash) {
+    Image image(64, 64, 3);
+    for (std::size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] = float((i * 2654435761u) % 1000) * 0.001f;
+    const std::string path = file("truncated.exr");
+    obscura::writeExr(path, image);
+    fs::resize_file(path, fs::file_size(path) / 2);
+
+    // OpenEXR's words for a file that stops short; the path appears once, at the front.
+    const std::string message = thrownMessage([&] { obscura::readExr(path); });
+    expectMessage(message, path, "end of file");
+    EXPECT_EQ(message.find(path, 1), std::string::npos) << message;
+}
+
+TEST_F(ImageIoTest, GarbageBytesAreRejectedPerFormat) {
+    const std::string garbage = "this is not an image, just some text that is long enough to parse\n";
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {"garbage.exr", "not an image file"}, {"garbage.png", "not a PNG file"}, {"garbage.hdr", "not a Radiance HDR"}};
+    for (const auto& [name, problem] : cases) {
+        const std::string path = file(name);
+        writeBytes(path, garbage);
+        expectMessage(thrownMessage([&] { obscura::readImage(path); }), path, problem);
+    }
+}
+
+TEST_F(ImageIoTest, CorruptPngAfterAGoodSignatureReportsStbReason) {
+    const std::string path = file("corrupt.png");
+    obscura::writePng(path, Image(8, 8, 3, 0.5f));
+    std::string bytes = readBytes(path);
+    bytes.resize(40); // signature and part of IHDR survive, the rest is gone
+    writeBytes(path, bytes);
+    expectMessage(thrownMessage([&] { obscura::readPng(path); }), path, "cannot read PNG");
+}
+
+TEST_F(ImageIoTest, PngDataNamedHdrIsNotMistakenForHdr) {
+    const std::string path = file("picture.hdr");
+    obscura::writePng(file("picture.png"), Image(2, 2, 3, 0.5f));
+    fs::rename(file("picture.png"), path);
+    expectMessage(thrownMessage([&] { obscura::readHdr(path); }), path, "not a Radiance HDR");
+}
+
+TEST_F(ImageIoTest, UnknownExtensionNamesItAndTheChoices) {
+    const std::string path = file("picture.xyz");
+    writeBytes(path, "whatever");
+    expectMessage(thrownMessage([&] { obscura::readImage(path); }), path,
+                  "unknown image format '.xyz' (expected .exr, .png or .hdr)");
+}
+
+TEST_F(ImageIoTest, ZeroSizeImageIsNotWritten) {
+    for (const Image& empty : {Image(), Image(0, 4, 3), Image(4, 0, 3), Image(4, 4, 0)}) {
+        expectMessage(thrownMessage([&] { obscura::writeExr(file("empty.exr"), empty); }), file("empty.exr"),
+                      "image has zero size");
+        expectMessage(thrownMessage([&] { obscura::writePng(file("empty.png"), empty); }), file("empty.png"),
+                      "image has zero size");
+    }
+    EXPECT_TRUE(listDirectory().empty());
+}
+
+TEST_F(ImageIoTest, UnwritableChannelLayoutsAreRejected) {
+    Image five(2, 2, 5);
+    expectMessage(thrownMessage([&] { obscura::writePng(file("five.png"), five); }), file("five.png"), "1 to 4");
+    expectMessage(thrownMessage([&] { obscura::writeExr(file("five.exr"), five); }), file("five.exr"),
+                  "need channelNames");
+    Image twins(2, 2, 2);
+    twins.channelNames = {"Z", "Z"};
+    expectMessage(thrownMessage([&] { obscura::writeExr(file("twins.exr"), twins); }), file("twins.exr"),
+                  "duplicate channel name 'Z'");
+    EXPECT_TRUE(listDirectory().empty());
+}
+
+// ---- atomic writes ------------------------------------------------------------------------------
+
+TEST_F(ImageIoTest, AtomicWriteIntoMissingDirectoryThrowsAndLeavesNothing) {
+    const std::string path = file("no/such/dir/out.exr");
+    expectMessage(thrownMessage([&] { obscura::writeExr(path, Image(2, 2, 1)); }), path, "cannot write");
+    expectMessage(thrownMessage([&] { obscura::writePng(path, Image(2, 2, 1)); }), path, "cannot write");
+    EXPECT_TRUE(listDirectory().empty());
+}
+
+TEST_F(ImageIoTest, AtomicWriteUsesTemporaryBesideTargetThenRenames) {
+    const std::string path = file("out.bin");
+    std::string seenTemp;
+    obscura::writeAtomically(path, [&](const std::string& tempPath) {
+        seenTemp = tempPath;
+        EXPECT_TRUE(fs::exists(tempPath));
+        std::ofstream(tempPath, std::ios::binary) << "payload";
+    });
+    EXPECT_EQ(seenTemp.rfind(path + ".tmp-" + std::to_string(getpid()) + "-", 0), 0u) << seenTemp;
+    EXPECT_EQ(readBytes(path), "payload");
+    EXPECT_EQ(listDirectory(), (std::vector<std::string>{"out.bin"}));
+}
+
+TEST_F(ImageIoTest, AtomicWriteThatThrowsMidwayLeavesNoFiles) {
+    const std::string path = file("out.bin");
+    EXPECT_THROW(obscura::writeAtomically(path,
+                                          [](const std::string& tempPath) {
+                                              std::ofstream(tempPath, std::ios::binary) << "half a file";
+                                              throw std::runtime_error("writer failed midway");
+                                          }),
+                 std::runtime_error);
+    EXPECT_TRUE(listDirectory().empty());
+}
+
+TEST_F(ImageIoTest, AtomicWriteFailureLeavesExistingTargetUntouched) {
+    const std::string path = file("keep.png");
+    const Image original(3, 3, 3, 0.25f);
+    obscura::writePng(path, original);
+    const std::string before = readBytes(path);
+
+    EXPECT_THROW(obscura::writeAtomically(path,
+                                          [](const std::string& tempPath) {
+                                              std::ofstream(tempPath, std::ios::binary) << "broken";
+                                              obscura::fail(tempPath, "simulated encoder failure");
+                                          }),
+                 obscura::Error);
+    EXPECT_EQ(readBytes(path), before);
+    EXPECT_EQ(listDirectory(), (std::vector<std::string>{"keep.png"}));
+
+    // A successful write replaces it and still leaves no temporary behind.
+    obscura::writePng(path, Image(3, 3, 3, 0.75f));
+    EXPECT_EQ(obscura::readPng(path).pixels[0], 191.0f / 255.0f);
+    EXPECT_EQ(listDirectory(), (std::vector<std::string>{"keep.png"}));
+}
+
+} // namespace

@@ -1,0 +1,233 @@
+// Tests for the Mesh and Scene data functions: bounds, counts, smooth normals, degenerate removal, sanitizeScene.
+#include "obscura/error.h"
+#include "obscura/scene.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace obscura {
+namespace {
+
+Mesh quadXY() {  // unit square in z = 0, counter-clockwise seen from +z
+    Mesh m;
+    m.name = "quad";
+    m.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+    m.indices = {0, 1, 2, 0, 2, 3};
+    return m;
+}
+
+void expectNear(Vec3 a, Vec3 b, float tol = 1e-6f) {
+    EXPECT_NEAR(a.x, b.x, tol);
+    EXPECT_NEAR(a.y, b.y, tol);
+    EXPECT_NEAR(a.z, b.z, tol);
+}
+
+std::string messageOf(Scene& scene, const std::string& what, std::size_t* dropped = nullptr) {
+    try {
+        sanitizeScene(scene, what, dropped);
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "(no error)";
+}
+
+TEST(SceneMesh, BoundsCoverAllPositions) {
+    Mesh m;
+    m.positions = {{1, -2, 3}, {-4, 5, 0.5f}, {0, 0, -6}};
+    Bounds b = m.bounds();
+    EXPECT_EQ(b.lo, (Vec3{-4, -2, -6}));
+    EXPECT_EQ(b.hi, (Vec3{1, 5, 3}));
+    EXPECT_TRUE(Mesh{}.bounds().empty());
+}
+
+TEST(SceneScene, AddReturnsTheMeshIndexAndOneNamedInstance) {
+    Scene s;
+    EXPECT_EQ(s.add(quadXY()), 0u);
+    EXPECT_EQ(s.add(quadXY(), Mat4::translation({1, 2, 3})), 1u);
+    ASSERT_EQ(s.meshes.size(), 2u);
+    ASSERT_EQ(s.instances.size(), 2u);
+    EXPECT_EQ(s.instances[1].mesh, 1u);
+    EXPECT_EQ(s.instances[1].name, "quad");
+    EXPECT_EQ(s.instances[1].worldFromObject.m[1][3], 2.0f);
+}
+
+// A unit cube rotated 45 degrees about z: the corners reach x = +-sqrt(2)/2, which transforming only the
+// box's centre and extent along the axes would miss.
+TEST(SceneScene, BoundsTransformAllEightCorners) {
+    Mesh cube;
+    cube.positions = {{0, 0, 0}, {1, 1, 1}};
+    Scene s;
+    s.add(cube, Mat4::translation({10, 0, 0}) * Mat4::rotation({0, 0, 1}, kPi / 4));
+    s.add(cube, Mat4::translation({0, 0, -5}));
+    const float h = std::sqrt(2.0f) / 2;
+    Bounds b = s.bounds();
+    expectNear(b.lo, {0, 0, -5});
+    expectNear(b.hi, {10 + h, 2 * h, 1});
+    Scene single;
+    single.add(cube, Mat4::translation({10, 0, 0}) * Mat4::rotation({0, 0, 1}, kPi / 4));
+    expectNear(single.bounds().lo, {10 - h, 0, 0});
+    EXPECT_TRUE(Scene{}.bounds().empty());
+}
+
+TEST(SceneScene, TriangleCountIsOverInstances) {
+    Scene s;
+    std::uint32_t q = s.add(quadXY());
+    s.instances.push_back({q, Mat4::translation({2, 0, 0}), "copy"});
+    s.instances.push_back({q, Mat4::translation({4, 0, 0}), "copy2"});
+    s.meshes.push_back(quadXY());  // not placed: not in the scene's count
+    EXPECT_EQ(s.triangleCount(), 6u);
+}
+
+TEST(SceneNormals, FlatQuadGetsTheExactFaceNormal) {
+    Mesh m = quadXY();
+    computeSmoothNormals(m);
+    ASSERT_EQ(m.normals.size(), 4u);
+    for (Vec3 n : m.normals) EXPECT_EQ(n, (Vec3{0, 0, 1}));
+}
+
+// Three faces of a cube meet at the origin, split so the corner lies in 2, 1 and 2 triangles. Weighting by
+// area alone would tilt the normal towards the faces split twice; area times corner angle gives each face
+// pi/2, so the normal is the symmetric -(1,1,1)/sqrt(3).
+TEST(SceneNormals, CornerIsWeightedByAngleNotByTriangleCount) {
+    Mesh m;
+    //             O          A          B          C          D          E          F
+    m.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {1, 0, 1}, {0, 0, 1}, {0, 1, 1}};
+    m.indices = {0, 3, 2, 0, 2, 1,   // z = 0, facing -z: O in two triangles
+                 0, 1, 5, 1, 4, 5,   // y = 0, facing -y: O in one triangle
+                 0, 5, 6, 0, 6, 3};  // x = 0, facing -x: O in two triangles
+    computeSmoothNormals(m);
+    const float k = 1 / std::sqrt(3.0f);
+    expectNear(m.normals[0], {-k, -k, -k});
+}
+
+TEST(SceneNormals, VertexWithoutValidFaceGetsUp) {
+    Mesh m = quadXY();
+    m.positions.push_back({5, 5, 5});        // in no triangle
+    m.positions.push_back({6, 6, 6});        // only in a zero-area one
+    m.indices.insert(m.indices.end(), {5, 5, 0});
+    computeSmoothNormals(m);
+    EXPECT_EQ(m.normals[4], (Vec3{0, 1, 0}));
+    EXPECT_EQ(m.normals[5], (Vec3{0, 1, 0}));
+    EXPECT_EQ(m.normals[0], (Vec3{0, 0, 1}));
+}
+
+TEST(SceneNormals, NormalsOfTheRightSizeAreKept) {
+    Mesh m = quadXY();
+    m.normals.assign(4, Vec3{1, 0, 0});
+    computeSmoothNormals(m);
+    for (Vec3 n : m.normals) EXPECT_EQ(n, (Vec3{1, 0, 0}));
+}
+
+TEST(SceneDegenerate, RepeatedIndexZeroAndTinyAreaAreRemoved) {
+    Mesh m;
+    // Bounds 2 x 1 x 0: the threshold is 1e-12 * diag^2 = 5e-12.
+    m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {2, 0, 0}, {0.5f, 1e-7f, 0}, {0.5f, 1e-12f, 0}};
+    m.indices = {0, 1, 2,    // good
+                 0, 0, 2,    // repeated index
+                 0, 1, 3,    // collinear: zero area
+                 0, 3, 4,    // thin but real: area 1e-7, kept
+                 0, 1, 5,    // area 5e-13, below the threshold
+                 1, 2, 1};   // repeated index
+    EXPECT_EQ(removeDegenerateTriangles(m), 4u);
+    EXPECT_EQ(m.indices, (std::vector<std::uint32_t>{0, 1, 2, 0, 3, 4}));
+}
+
+TEST(SceneDegenerate, ThresholdIsRelativeToTheMeshSize) {
+    // A 1 km mesh: a 1 mm^2 sliver (area 1e-6) is below 1e-12 * diag^2 = 2e-6 and goes; the same sliver
+    // in a 1 m mesh would stay.
+    Mesh m;
+    m.positions = {{0, 0, 0}, {1000, 0, 0}, {0, 1000, 0}, {0.002f, 0, 0}, {0, 0.001f, 0}};
+    m.indices = {0, 1, 2, 0, 3, 4};
+    EXPECT_EQ(removeDegenerateTriangles(m), 1u);
+    EXPECT_EQ(m.triangleCount(), 1u);
+    Mesh small = m;
+    small.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.002f, 0, 0}, {0, 0.001f, 0}};
+    small.indices = {0, 1, 2, 0, 3, 4};
+    EXPECT_EQ(removeDegenerateTriangles(small), 0u);
+}
+
+TEST(SceneDegenerate, NonFiniteAreaIsRemoved) {
+    Mesh m = quadXY();
+    m.positions.push_back({std::numeric_limits<float>::infinity(), 0, 0});
+    m.indices.insert(m.indices.end(), {0, 4, 2});
+    EXPECT_EQ(removeDegenerateTriangles(m), 1u);
+    EXPECT_EQ(m.triangleCount(), 2u);
+}
+
+TEST(SceneSanitize, DropsDegenerateTrianglesAndCountsThem) {
+    Scene s;
+    Mesh m = quadXY();
+    m.indices.insert(m.indices.end(), {1, 1, 2});
+    s.add(m);
+    std::size_t dropped = 99;
+    sanitizeScene(s, "x.obj", &dropped);
+    EXPECT_EQ(dropped, 1u);
+    EXPECT_EQ(s.triangleCount(), 2u);
+}
+
+TEST(SceneSanitize, NoTriangles) {
+    Scene empty;
+    EXPECT_EQ(messageOf(empty, "scene.ply"), "scene.ply: no triangles");
+    Scene onlyDegenerate;
+    Mesh m = quadXY();
+    m.indices = {0, 1, 1};
+    onlyDegenerate.add(m);
+    EXPECT_EQ(messageOf(onlyDegenerate, "scene.ply"), "scene.ply: no triangles");
+    Scene unplaced;  // triangles, but no instance puts them in the world
+    unplaced.meshes.push_back(quadXY());
+    EXPECT_EQ(messageOf(unplaced, "scene.ply"), "scene.ply: no triangles");
+}
+
+TEST(SceneSanitize, IndexOutOfRange) {
+    Scene s;
+    Mesh m;
+    m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    m.indices = {0, 1, 7};
+    s.add(m);
+    EXPECT_EQ(messageOf(s, "x.gltf"), "x.gltf: index 7 out of range (3 vertices)");
+}
+
+TEST(SceneSanitize, NonFinitePositionAndNormal) {
+    Scene s;
+    Mesh m = quadXY();
+    m.positions[2].y = std::nanf("");
+    s.add(m);
+    EXPECT_EQ(messageOf(s, "scene.obj"), "scene.obj: vertex 2 has a non-finite position");
+    Scene t;
+    Mesh n = quadXY();
+    computeSmoothNormals(n);
+    n.normals[3].z = std::numeric_limits<float>::infinity();
+    t.add(n);
+    EXPECT_EQ(messageOf(t, "scene.obj"), "scene.obj: vertex 3 has a non-finite normal");
+}
+
+TEST(SceneSanitize, IndexCountAndNormalCountMustFit) {
+    Scene s;
+    Mesh m = quadXY();
+    m.indices.push_back(0);
+    s.add(m);
+    EXPECT_EQ(messageOf(s, "a.ply"), "a.ply: mesh 'quad' has 7 indices, not a multiple of 3");
+    Scene t;
+    Mesh n = quadXY();
+    n.normals.assign(3, Vec3{0, 0, 1});
+    t.add(n);
+    EXPECT_EQ(messageOf(t, "a.ply"), "a.ply: mesh 'quad' has 3 normals for 4 vertices");
+}
+
+TEST(SceneSanitize, InstancesMustPointAtMeshesAndBeFinite) {
+    Scene s;
+    s.add(quadXY());
+    s.instances.push_back({4, Mat4::identity(), "stray"});
+    EXPECT_EQ(messageOf(s, "a.glb"), "a.glb: instance 1 refers to mesh 4 (1 meshes)");
+    Scene t;
+    Mat4 bad;
+    bad.m[0][3] = std::numeric_limits<float>::infinity();
+    t.add(quadXY(), bad);
+    EXPECT_EQ(messageOf(t, "a.glb"), "a.glb: instance 0 has a non-finite transform");
+}
+
+} // namespace
+} // namespace obscura

@@ -1,0 +1,162 @@
+// Argument helpers shared by the subcommands.
+#include "cli_common.h"
+
+#include "obscura/error.h"
+#include "obscura/image_io.h"
+#include "obscura/scene_io.h"
+
+#include <CLI/CLI.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+#include <unistd.h>
+
+namespace obscura::cli {
+
+namespace fs = std::filesystem;
+
+LoadedScene loadSceneArgument(const std::string& argument) {
+    LoadedScene out;
+    if (isBuiltinScene(argument) && !fs::exists(argument)) {
+        BuiltinScene b = makeBuiltinScene(argument);
+        out.name = b.name;
+        out.scene = std::move(b.scene);
+        out.camera = b.camera;
+        return out;
+    }
+    if (fileExtension(argument).empty() && !fs::exists(argument))
+        fail(argument, "no such built-in scene or file (run `obscura scenes` for the list)");
+    LoadInfo info;
+    out.scene = loadScene(argument, &info);
+    out.name = argument;
+    if (info.droppedTriangles > 0)
+        std::fprintf(stderr, "obscura: warning: %s: dropped %zu degenerate triangle%s\n", argument.c_str(),
+                     info.droppedTriangles, info.droppedTriangles == 1 ? "" : "s");
+    if (info.skippedPrimitives > 0)
+        std::fprintf(stderr, "obscura: warning: %s: skipped %zu non-triangle primitive%s\n", argument.c_str(),
+                     info.skippedPrimitives, info.skippedPrimitives == 1 ? "" : "s");
+    // Frame the bounds from the front, a little above, the whole scene in view.
+    Bounds b = out.scene.bounds();
+    Vec3 c = b.center();
+    float radius = 0.5f * length(b.size());
+    float distance = radius / std::sin(0.5f * 60.0f * kPi / 180.0f);
+    out.camera.position = c + normalize(Vec3{0.5f, 0.45f, 1.0f}) * distance;
+    out.camera.target = c;
+    out.camera.nearZ = std::max(1e-4f, distance * 1e-4f);
+    out.camera.farZ = distance * 10.0f + radius * 10.0f;
+    return out;
+}
+
+Vec3 parseVec3(const std::string& flag, const std::string& text) {
+    Vec3 v;
+    char c1 = 0, c2 = 0;
+    std::istringstream in(text);
+    if (!(in >> v.x >> c1 >> v.y >> c2 >> v.z) || c1 != ',' || c2 != ',' || !(in >> std::ws).eof() || !isFinite(v))
+        fail(flag, "expected three finite numbers \"x,y,z\", got \"" + text + "\"");
+    return v;
+}
+
+void parseSize(const std::string& flag, const std::string& text, int& width, int& height) {
+    long w = 0, h = 0;
+    char x = 0;
+    std::istringstream in(text);
+    if (!(in >> w >> x >> h) || (x != 'x' && x != 'X') || !(in >> std::ws).eof())
+        fail(flag, "expected WIDTHxHEIGHT, e.g. 1920x1080, got \"" + text + "\"");
+    if (w < 1 || h < 1) fail(flag, "image size must be at least 1x1, got " + text);
+    if (w > 32768 || h > 32768) fail(flag, "image size " + text + " exceeds 32768 on a side");
+    width = int(w);
+    height = int(h);
+}
+
+float parseRadius(const std::string& flag, const std::string& text) {
+    if (text == "inf" || text == "infinity") return INFINITY;
+    char* end = nullptr;
+    float r = std::strtof(text.c_str(), &end);
+    if (end == text.c_str() || *end != '\0' || !(r > 0.0f) || !std::isfinite(r))
+        fail(flag, "expected a distance > 0 in meters or \"inf\", got \"" + text + "\"");
+    return r;
+}
+
+void CameraOptions::add(CLI::App& app) {
+    app.add_option("--size", size, "Image size WIDTHxHEIGHT in pixels")->capture_default_str();
+    app.add_option("--camera-from", from, "Camera position \"x,y,z\" in world meters (default: the scene's)");
+    app.add_option("--camera-to", to, "Point the camera looks at, \"x,y,z\" (default: the scene's)");
+    app.add_option("--camera-up", up, "Up direction \"x,y,z\" (default 0,1,0)");
+    app.add_option("--fov", fov, "Vertical field of view in degrees, (0, 180) (default: the scene's, usually 60)");
+    app.add_option("--near", nearZ, "Near plane distance in meters (default: the scene's)");
+    app.add_option("--far", farZ, "Far plane distance in meters (default: the scene's)");
+}
+
+Camera CameraOptions::apply(Camera c) const {
+    parseSize("--size", size, c.width, c.height);
+    if (!from.empty()) c.position = parseVec3("--camera-from", from);
+    if (!to.empty()) c.target = parseVec3("--camera-to", to);
+    if (!up.empty()) c.up = parseVec3("--camera-up", up);
+    if (fov != 0.0f) {
+        if (!(fov > 0.0f && fov < 180.0f)) fail("--fov", "must be in (0, 180) degrees, got " + std::to_string(fov));
+        c.fovY = fov;
+    }
+    if (nearZ != 0.0f) c.nearZ = nearZ;
+    if (farZ != 0.0f) c.farZ = farZ;
+    try {
+        c.validate();
+    } catch (const Error& e) {
+        fail("camera flags", std::string(e.what()).substr(8));  // drop the "camera: " prefix
+    }
+    return c;
+}
+
+void checkOutputPath(const std::string& flag, const std::string& path, const std::vector<std::string>& extensions) {
+    if (path.empty()) fail(flag, "output path is empty");
+    std::string ext = fileExtension(path);
+    bool ok = false;
+    std::string list;
+    for (const auto& e : extensions) {
+        ok = ok || ext == e;
+        list += (list.empty() ? "" : ", ") + e;
+    }
+    if (!ok) fail(path, "unsupported output format '" + ext + "' (expected " + list + ")");
+    fs::path parent = fs::path(path).parent_path();
+    if (!parent.empty() && !fs::is_directory(parent)) fail(path, "directory " + parent.string() + " does not exist");
+}
+
+void checkOutputDirectory(const std::string& flag, const std::string& dir, bool create) {
+    if (dir.empty()) fail(flag, "directory is empty");
+    if (fs::exists(dir) && !fs::is_directory(dir)) fail(dir, "exists and is not a directory");
+    if (!fs::exists(dir)) {
+        if (!create) fail(dir, "no such directory");
+        std::error_code ec;
+        fs::create_directories(dir, ec);
+        if (ec) fail(dir, "cannot create directory: " + ec.message());
+    }
+}
+
+bool progressWanted(bool quiet) { return !quiet && isatty(STDERR_FILENO); }
+
+Progress::Progress(std::string stage, bool enabled)
+    : stage_(std::move(stage)), enabled_(enabled), start_(std::chrono::steady_clock::now()) {}
+
+Progress::~Progress() {
+    if (enabled_ && lastPercent_ >= 0)
+        std::fprintf(stderr, "\r%-24s 100%%  %6.1f s\n", stage_.c_str(), secondsSince(start_));
+}
+
+void Progress::operator()(double fraction) {
+    if (!enabled_) return;
+    std::lock_guard<std::mutex> lock(mutex_);
+    int percent = int(fraction * 100.0);
+    if (percent == lastPercent_) return;
+    lastPercent_ = percent;
+    int filled = percent / 5;
+    std::fprintf(stderr, "\r%-24s %3d%% [%.*s%*s] %6.1f s", stage_.c_str(), percent, filled, "####################",
+                 20 - filled, "", secondsSince(start_));
+    std::fflush(stderr);
+}
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+} // namespace obscura::cli

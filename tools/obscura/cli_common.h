@@ -1,0 +1,65 @@
+// Helpers shared by the obscura subcommands: scene and camera arguments, value parsing, progress.
+#pragma once
+
+#include "obscura/builtin_scenes.h"
+#include "obscura/camera.h"
+#include "obscura/scene.h"
+
+#include <chrono>
+#include <mutex>
+#include <string>
+#include <vector>
+
+namespace CLI {
+class App;
+}
+
+namespace obscura::cli {
+
+// A scene argument: a built-in scene name, or a .gltf/.glb/.obj/.ply file.
+struct LoadedScene {
+    std::string name;
+    Scene scene;
+    Camera camera;  // the built-in default, or one framing a file's bounds
+};
+LoadedScene loadSceneArgument(const std::string& argument);
+
+// "x,y,z" -> Vec3; throws obscura::Error naming the flag.
+Vec3 parseVec3(const std::string& flag, const std::string& text);
+// "WxH" -> width, height (each in [1, 32768]); throws obscura::Error naming the flag.
+void parseSize(const std::string& flag, const std::string& text, int& width, int& height);
+// A float that may be "inf".
+float parseRadius(const std::string& flag, const std::string& text);
+
+// Camera flags common to render and gbuffer.
+struct CameraOptions {
+    std::string from, to, up, size = "1280x720";
+    float fov = 0.0f;  // 0: the scene's
+    float nearZ = 0.0f, farZ = 0.0f;
+    void add(CLI::App& app);
+    Camera apply(Camera base) const;
+};
+
+// Fails early, before any work, if the output cannot be written: wrong extension or missing directory.
+void checkOutputPath(const std::string& flag, const std::string& path, const std::vector<std::string>& extensions);
+void checkOutputDirectory(const std::string& flag, const std::string& dir, bool create);
+
+// A one-line progress bar on stderr when it is a terminal; silent otherwise. Thread-safe.
+class Progress {
+public:
+    Progress(std::string stage, bool enabled);
+    ~Progress();
+    void operator()(double fraction);
+
+private:
+    std::string stage_;
+    bool enabled_;
+    int lastPercent_ = -1;
+    std::mutex mutex_;
+    std::chrono::steady_clock::time_point start_;
+};
+bool progressWanted(bool quiet);
+
+double secondsSince(std::chrono::steady_clock::time_point start);
+
+} // namespace obscura::cli

@@ -1,0 +1,164 @@
+// `obscura render`: a scene lit by an environment, modulated by ambient occlusion, tonemapped to PNG.
+#include "cli_common.h"
+#include "commands.h"
+
+#include "obscura/camera_io.h"
+#include "obscura/error.h"
+#include "obscura/image_io.h"
+#include "obscura/parallel.h"
+#include "obscura/render.h"
+#include "obscura/trace.h"
+
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <memory>
+
+namespace obscura::cli {
+
+namespace {
+
+struct RenderOptions {
+    std::string scene = "demo";
+    std::string output = "frame.png";
+    std::string ao = "raytraced";
+    std::string radius = "1";
+    int rays = 64;
+    std::string falloff = "binary";
+    float distance = 2.0f;
+    float alchemyU = 0.05f;
+    std::string env;
+    float exposure = 0.0f;
+    std::string tonemap = "aces";
+    int supersample = 1;
+    std::string aovDir;
+    unsigned seed = 0;
+    int threads = 0;
+    bool quiet = false;
+    CameraOptions camera;
+};
+
+const std::map<std::string, trace::Falloff> kFalloffs = {
+    {"binary", trace::Falloff::Binary}, {"alchemy", trace::Falloff::Alchemy}, {"exponential", trace::Falloff::Exponential}};
+const std::map<std::string, render::Tonemap> kTonemaps = {
+    {"aces", render::Tonemap::Aces}, {"reinhard", render::Tonemap::Reinhard}, {"none", render::Tonemap::None}};
+
+void run(const RenderOptions& o) {
+    auto start = std::chrono::steady_clock::now();
+    // Everything that can be checked before the work is checked first.
+    checkOutputPath("-o", o.output, {".png", ".exr"});
+    if (!o.aovDir.empty()) checkOutputDirectory("--aov-dir", o.aovDir, true);
+    trace::ObscuranceSettings aoSettings;
+    aoSettings.falloff = kFalloffs.at(o.falloff);
+    aoSettings.radius = parseRadius("--ao-radius", o.radius);
+    aoSettings.rays = o.rays;
+    aoSettings.halfDistance = o.distance;
+    aoSettings.alchemyU = o.alchemyU;
+    aoSettings.seed = o.seed;
+    try {
+        aoSettings.validate();
+    } catch (const Error& e) {
+        throw Error("--" + std::string(e.what()));
+    }
+    if (!(o.exposure >= -20.0f && o.exposure <= 20.0f)) fail("--exposure", "must be in [-20, 20] EV");
+
+    ThreadLimit limit(o.threads);
+    LoadedScene loaded = loadSceneArgument(o.scene);
+    Camera camera = o.camera.apply(loaded.camera);
+
+    Image environment = o.env.empty() ? render::proceduralSky() : readImage(o.env);
+    if (environment.channels < 3) fail(o.env, "environment needs 3 colour channels, has " + std::to_string(environment.channels));
+    render::SH9 sh;
+    try {
+        sh = render::projectEnvironment(environment);
+    } catch (const Error& e) {
+        fail(o.env.empty() ? "sky" : o.env, std::string(e.what()));
+    }
+
+    const bool showProgress = progressWanted(o.quiet);
+    std::unique_ptr<trace::Tracer> tracer;
+    {
+        Progress p("building BVH", showProgress);
+        tracer = std::make_unique<trace::Tracer>(loaded.scene);
+        p(1.0);
+    }
+    GBuffer gbuffer;
+    {
+        Progress p("primary rays", showProgress);
+        trace::GBufferSettings gs;
+        gs.supersample = o.supersample;
+        gbuffer = trace::renderGBuffer(*tracer, camera, gs, [&](double f) { p(f); });
+    }
+    Image ao;
+    if (o.ao == "raytraced") {
+        Progress p("ambient occlusion", showProgress);
+        ao = trace::ambientObscurance(*tracer, gbuffer, aoSettings, [&](double f) { p(f); });
+    }
+
+    render::Frame frame = render::shade(gbuffer, sh, ao, environment);
+    render::ShadeSettings shading;
+    shading.exposure = o.exposure;
+    shading.tonemap = kTonemaps.at(o.tonemap);
+
+    if (!o.aovDir.empty()) {
+        namespace fs = std::filesystem;
+        auto path = [&](const char* name) { return (fs::path(o.aovDir) / name).string(); };
+        writeExr(path("ao.exr"), ao.empty() ? Image(camera.width, camera.height, 1, 1.0f) : ao);
+        writeExr(path("depth.exr"), gbuffer.depth);
+        writeExr(path("normal.exr"), gbuffer.normal);
+        writeExr(path("albedo.exr"), gbuffer.albedo);
+        writeExr(path("lighting.exr"), frame.lighting);
+        writeCameraJson(path("camera.json"), camera);
+    }
+    if (fileExtension(o.output) == ".exr")
+        writeExr(o.output, frame.color);
+    else
+        writePng(o.output, render::toDisplay(frame.color, shading));
+
+    std::printf("wrote %s: %dx%d, scene %s, AO %s", o.output.c_str(), camera.width, camera.height, loaded.name.c_str(),
+                o.ao.c_str());
+    if (o.ao == "raytraced") std::printf(" (%s, r = %s m, %d rays)", o.falloff.c_str(), o.radius.c_str(), o.rays);
+    std::printf(", %.2f s\n", secondsSince(start));
+}
+
+} // namespace
+
+void addRenderCommand(CLI::App& app) {
+    auto o = std::make_shared<RenderOptions>();
+    CLI::App* cmd = app.add_subcommand("render", "Render a scene lit by an environment and modulated by ambient occlusion");
+    cmd->add_option("scene", o->scene, "Built-in scene name (see `obscura scenes`) or a .gltf/.glb/.obj/.ply file")
+        ->capture_default_str();
+    cmd->add_option("-o,--output", o->output, "Output image: .png (tonemapped sRGB) or .exr (linear radiance)")
+        ->capture_default_str();
+    cmd->add_option("--ao", o->ao, "Ambient occlusion: none, or raytraced (Monte Carlo ground truth)")
+        ->check(CLI::IsMember({"none", "raytraced"}))
+        ->capture_default_str();
+    cmd->add_option("--ao-radius", o->radius, "Occlusion radius r in meters, or inf")->capture_default_str();
+    cmd->add_option("--ao-rays", o->rays, "Rays per pixel, [1, 1048576]")->capture_default_str();
+    cmd->add_option("--ao-falloff", o->falloff,
+                    "binary (occlusion within r), alchemy (g = u t / max(u,t)^2 within r), "
+                    "exponential (rho = 1 - exp(ln(0.5) t / d))")
+        ->check(CLI::IsMember({"binary", "alchemy", "exponential"}))
+        ->capture_default_str();
+    cmd->add_option("--ao-distance", o->distance, "Half-visibility distance d of the exponential falloff, meters")
+        ->capture_default_str();
+    cmd->add_option("--ao-u", o->alchemyU, "Falloff constant u of the alchemy falloff, meters")->capture_default_str();
+    cmd->add_option("--env", o->env, "Equirectangular environment (.hdr or .exr); default: a built-in procedural sky");
+    cmd->add_option("--exposure", o->exposure, "Exposure in EV stops, [-20, 20]")->capture_default_str();
+    cmd->add_option("--tonemap", o->tonemap, "aces, reinhard or none")
+        ->check(CLI::IsMember({"aces", "reinhard", "none"}))
+        ->capture_default_str();
+    cmd->add_option("--supersample", o->supersample, "N x N albedo samples per pixel for antialiasing, [1, 16]")
+        ->capture_default_str();
+    cmd->add_option("--aov-dir", o->aovDir,
+                    "Also write ao.exr, depth.exr, normal.exr, albedo.exr, lighting.exr and camera.json here");
+    cmd->add_option("--seed", o->seed, "Seed of the ray directions")->capture_default_str();
+    cmd->add_option("--threads", o->threads, "Worker threads (0 = all cores)")->capture_default_str();
+    cmd->add_flag("-q,--quiet", o->quiet, "No progress bars");
+    o->camera.add(*cmd);
+    cmd->callback([o] { run(*o); });
+}
+
+} // namespace obscura::cli

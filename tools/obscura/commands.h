@@ -1,0 +1,15 @@
+// The subcommands of `obscura`; each registers itself on the app with its options and callback.
+#pragma once
+
+namespace CLI {
+class App;
+}
+
+namespace obscura::cli {
+
+void addRenderCommand(CLI::App& app);
+void addGBufferCommand(CLI::App& app);
+void addScenesCommand(CLI::App& app);
+void addBenchCommand(CLI::App& app);
+
+} // namespace obscura::cli
