@@ -1,4 +1,5 @@
-// PNG reading and writing and Radiance .hdr reading, both through stb_image / stb_image_write.
+// PNG reading and writing through stb_image / stb_image_write, and Radiance .hdr reading (own RGBE
+// decoder, see HdrReader).
 #include "obscura/error.h"
 #include "obscura/image_io.h"
 
@@ -10,6 +11,7 @@
 #include <cassert>
 #include <cerrno>
 #include <climits>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -79,20 +81,101 @@ Image readPng(const std::string& path) {
     return image;
 }
 
+namespace {
+
+// Radiance RGBE decoding, written out here because stb_image pads a truncated file with zeros and
+// reports success: a cut-off environment map would light a frame black without a word.
+class HdrReader {
+public:
+    HdrReader(const std::string& path, const std::vector<unsigned char>& bytes) : path_(path), bytes_(bytes) {}
+
+    Image read() {
+        const std::string magic = line();
+        if (magic != "#?RADIANCE" && magic != "#?RGBE") fail(path_, "not a Radiance HDR file (missing #?RADIANCE header)");
+        for (std::string header = line(); !header.empty(); header = line()) {
+            if (header.rfind("FORMAT=", 0) == 0 && header != "FORMAT=32-bit_rle_rgbe")
+                fail(path_, "unsupported Radiance HDR pixel format '" + header.substr(7) + "' (only 32-bit_rle_rgbe)");
+        }
+        const std::string resolution = line();
+        int height = 0, width = 0;
+        char tail = 0;
+        if (std::sscanf(resolution.c_str(), "-Y %d +X %d%c", &height, &width, &tail) != 2)
+            fail(path_, "unsupported Radiance HDR resolution line '" + resolution + "' (only '-Y H +X W')");
+        if (width <= 0 || height <= 0 || width > (1 << 20) || height > (1 << 20) ||
+            std::size_t(width) * std::size_t(height) > (std::size_t(1) << 28))
+            fail(path_, "Radiance HDR size " + std::to_string(width) + "x" + std::to_string(height) + " is not plausible");
+
+        Image image(width, height, 3);
+        std::vector<unsigned char> scanline(std::size_t(width) * 4);
+        for (int y = 0; y < height; ++y) {
+            readScanline(scanline, width, y);
+            float* out = image.pixels.data() + std::size_t(y) * std::size_t(width) * 3;
+            for (int x = 0; x < width; ++x) {
+                const unsigned char* rgbe = &scanline[std::size_t(x) * 4];
+                const float scale = rgbe[3] ? std::ldexp(1.0f, int(rgbe[3]) - (128 + 8)) : 0.0f;
+                for (int c = 0; c < 3; ++c) out[x * 3 + c] = float(rgbe[c]) * scale;
+            }
+        }
+        return image;
+    }
+
+private:
+    std::string line() {
+        std::string text;
+        while (true) {
+            if (pos_ >= bytes_.size()) fail(path_, "truncated Radiance HDR header");
+            const char c = char(bytes_[pos_++]);
+            if (c == '\n') return text;
+            if (text.size() > 4096) fail(path_, "Radiance HDR header line too long");
+            text.push_back(c);
+        }
+    }
+
+    unsigned char byte(int y) {
+        if (pos_ >= bytes_.size()) fail(path_, "truncated Radiance HDR pixel data at scanline " + std::to_string(y));
+        return bytes_[pos_++];
+    }
+
+    void readScanline(std::vector<unsigned char>& scanline, int width, int y) {
+        const bool runLength = width >= 8 && width < 32768 && pos_ + 4 <= bytes_.size() && bytes_[pos_] == 2 &&
+                               bytes_[pos_ + 1] == 2 && (bytes_[pos_ + 2] & 0x80) == 0;
+        if (!runLength) {
+            for (auto& b : scanline) b = byte(y);
+            return;
+        }
+        const int encodedWidth = (bytes_[pos_ + 2] << 8) | bytes_[pos_ + 3];
+        if (encodedWidth != width)
+            fail(path_, "corrupt Radiance HDR scanline " + std::to_string(y) + " (length " +
+                            std::to_string(encodedWidth) + ", expected " + std::to_string(width) + ")");
+        pos_ += 4;
+        // Each of the four components is stored separately as runs and literal spans.
+        for (int c = 0; c < 4; ++c) {
+            for (int x = 0; x < width;) {
+                int count = byte(y);
+                const bool run = count > 128;
+                if (run) count -= 128;
+                if (count == 0 || x + count > width)
+                    fail(path_, "corrupt Radiance HDR run-length data at scanline " + std::to_string(y));
+                if (run) {
+                    const unsigned char value = byte(y);
+                    for (int i = 0; i < count; ++i) scanline[std::size_t(x++) * 4 + std::size_t(c)] = value;
+                } else {
+                    for (int i = 0; i < count; ++i) scanline[std::size_t(x++) * 4 + std::size_t(c)] = byte(y);
+                }
+            }
+        }
+    }
+
+    const std::string& path_;
+    const std::vector<unsigned char>& bytes_;
+    std::size_t pos_ = 0;
+};
+
+} // namespace
+
 Image readHdr(const std::string& path) {
     const std::vector<unsigned char> bytes = readFileBytes(path);
-    // stbi_loadf would otherwise accept an 8-bit image and invent linear values through a gamma curve.
-    if (!stbi_is_hdr_from_memory(bytes.data(), int(bytes.size())))
-        fail(path, "not a Radiance HDR file (missing #?RADIANCE header)");
-
-    int width = 0, height = 0, channels = 0;
-    std::unique_ptr<float, StbFree> data(
-        stbi_loadf_from_memory(bytes.data(), int(bytes.size()), &width, &height, &channels, 0));
-    if (!data) fail(path, "cannot read HDR: " + stbReason());
-
-    Image image(width, height, channels);
-    std::copy(data.get(), data.get() + image.pixels.size(), image.pixels.begin());
-    return image;
+    return HdrReader(path, bytes).read();
 }
 
 void writePng(const std::string& path, const Image& image) {

@@ -6,6 +6,7 @@
 
 // The test target gets neither stb's nor Imath's include path, so stb comes in by its full name and
 // EXR inputs are built byte by byte below (which also keeps them independent of the code under test).
+#include <stb/stb_image.h>
 #include <stb/stb_image_write.h>
 #include <unistd.h>
 
@@ -363,6 +364,46 @@ TEST_F(ImageIoTest, HdrReadsFileWrittenByStb) {
     ASSERT_EQ(image.height, height);
     ASSERT_EQ(image.channels, 3);
     for (std::size_t i = 0; i < rgb.size(); ++i) EXPECT_NEAR(image.pixels[i], rgb[i], 0.01f * rgb[i]) << i;
+}
+
+// Our RGBE decoder against stb's on a file stb wrote with run-length scanlines (width >= 8): the two
+// implementations must agree bit for bit.
+TEST_F(ImageIoTest, HdrRunLengthScanlinesMatchStbDecoder) {
+    constexpr int width = 37, height = 6;
+    std::vector<float> rgb;
+    for (int p = 0; p < width * height; ++p) {
+        // Runs of equal pixels and literal spans both occur, so both RLE branches are exercised.
+        const float v = (p / 5) % 2 ? 0.25f : 0.001f * float(p * p % 997);
+        for (float ratio : {1.0f, 0.5f, 2.0f}) rgb.push_back(v * ratio);
+    }
+    const std::string path = file("wide.hdr");
+    ASSERT_NE(stbi_write_hdr(path.c_str(), width, height, 3, rgb.data()), 0);
+
+    int w = 0, h = 0, c = 0;
+    float* reference = stbi_loadf(path.c_str(), &w, &h, &c, 3);
+    ASSERT_NE(reference, nullptr);
+    const Image image = obscura::readHdr(path);
+    ASSERT_EQ(image.width, width);
+    ASSERT_EQ(image.height, height);
+    ASSERT_EQ(image.channels, 3);
+    for (std::size_t i = 0; i < image.pixels.size(); ++i) EXPECT_EQ(image.pixels[i], reference[i]) << i;
+    stbi_image_free(reference);
+}
+
+// Every cut of a flat and of a run-length file is an error naming the file, never a silently black map.
+TEST_F(ImageIoTest, TruncatedHdrIsAnErrorAtEveryLength) {
+    for (int width : {4, 16}) {
+        std::vector<float> rgb(std::size_t(width) * 3 * 3, 0.5f);
+        for (std::size_t i = 0; i < rgb.size(); ++i) rgb[i] = 0.01f * float(i % 17);
+        const std::string path = file("cut.hdr");
+        ASSERT_NE(stbi_write_hdr(path.c_str(), width, 3, 3, rgb.data()), 0);
+        const std::string bytes = readBytes(path);
+        for (std::size_t size = 0; size < bytes.size(); ++size) {
+            writeBytes(path, bytes.substr(0, size));
+            const std::string message = thrownMessage([&] { obscura::readHdr(path); });
+            EXPECT_EQ(message.rfind(path, 0), 0u) << "width " << width << ", " << size << " bytes: " << message;
+        }
+    }
 }
 
 TEST_F(ImageIoTest, ExtensionDispatchIsCaseInsensitive) {
