@@ -2,6 +2,8 @@
 // and no output file; good runs write what they promise.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -37,7 +39,7 @@ class Cli : public ::testing::Test {
 protected:
     void SetUp() override {
         dir = fs::temp_directory_path() /
-              ("obscura_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+              ("obscura_cli_" + std::to_string(getpid()) + "_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
         fs::remove_all(dir);
         fs::create_directories(dir);
     }

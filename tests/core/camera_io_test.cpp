@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <filesystem>
 #include <fstream>
 
@@ -19,7 +21,7 @@ TEST(CameraIo, RoundTrip) {
     c.farZ = 250;
     c.width = 333;
     c.height = 197;
-    auto path = (std::filesystem::temp_directory_path() / "obscura_camera_io.json").string();
+    auto path = (std::filesystem::temp_directory_path() / ("obscura_camera_io_" + std::to_string(getpid()) + ".json")).string();
     writeCameraJson(path, c);
     Camera r = readCameraJson(path);
     std::filesystem::remove(path);
