@@ -1,0 +1,82 @@
+// Ground-Truth Ambient Occlusion, CPU reference (Jimenez, Wu, Pesce and Jarabo 2016, "Practical
+// Realtime Strategies for Accurate Indirect Occlusion", §4 and App. A).
+//
+// Per pixel and per slice direction phi, the maximum horizon on each side is searched in the depth buffer
+// (eq. 6, horizon angles measured from the view vector), and the visible arc between the two horizons is
+// integrated in closed form against the normal projected into the slice (eq. 7-8; App. A for the uniformly
+// weighted variant). Visibility is binary within the radius r, so on scenes that are height fields seen
+// from the camera it converges to ray-traced ambient occlusion with the same r.
+//
+// Errors: GtaoSettings::validate() and computeGtao() throw obscura::Error naming the bad setting or buffer.
+// gtaoPixel() is the kernel: a hot path that checks nothing.
+#pragma once
+
+#include "obscura/gbuffer.h"
+#include "obscura/gtao_constants.h"
+#include "obscura/image.h"
+
+#include <string>
+
+namespace obscura::ssao {
+
+enum class GtaoWeighting { Cosine, Uniform };
+enum class GtaoThickness { None, Heuristic, Bitmask };
+enum class GtaoQuality { Low, Medium, High, Ultra };
+
+struct GtaoSettings {
+    float radius = 1.0f;            // r: m, (0, 1e4]; occluders farther than r from the point do not count
+    float falloffStart = 1.0f;      // fraction of r where the conservative linear fade to 0 at r starts,
+                                    // [0, 1]; 1 = hard cut at r, which is what binary AO of radius r means
+    int sliceCount = 3;             // slice directions per pixel, [1, 64] (the `high` preset)
+    int stepsPerSide = 3;           // horizon samples on each side of a slice, [1, 256]
+    float maxRadiusPixels = 512.0f; // screen-space search radius clamp, pixels, [1, 8192]; bounds the cost
+                                    // of points close to the camera (§4: "clamped to a maximum radius")
+    float stepPower = 2.0f;         // sample distance s_k = ((k + jitter) / steps)^power, [1, 4]; 2 puts
+                                    // more samples near the centre, where occluders matter most
+    GtaoWeighting weighting = GtaoWeighting::Cosine;  // App. A's uniform weighting is an option
+    GtaoThickness thickness = GtaoThickness::None;
+    float thicknessBlend = 0.3f;    // eq. 9 blend towards a lower sample horizon, [0, 1): 0 = plain maximum
+    float bitmaskThickness = 0.5f;  // assumed thickness of every occluder for the bitmask, m, (0, 1e4]
+    bool jitter = false;            // per-pixel hashed slice rotation and step offsets (noise for a filter
+                                    // to remove); false: the same regular slices everywhere
+
+    void validate() const;          // throws obscura::Error("gtao <field>: ...")
+};
+
+// Slices x steps per side of each preset: low 1x2, medium 2x2, high 3x3, ultra 9x3 (as XeGTAO's).
+void applyQuality(GtaoSettings& settings, GtaoQuality quality);
+// "low", "medium", "high", "ultra"; throws obscura::Error for another name.
+GtaoQuality parseQuality(const std::string& name);
+const char* qualityName(GtaoQuality quality);
+
+// The pure function between settings and kernel: camera projection, radius and falloff, slice and step
+// counts. `interleaved` selects one slice per pixel from the 4x4 pattern rotated by frameIndex (§4.1).
+// Assumes validated settings and camera.
+GtaoConstants gtaoConstants(const GtaoSettings& settings, const Camera& camera, int frameIndex = 0,
+                            bool interleaved = false);
+
+struct GtaoPixel {
+    float visibility = 1.0f;  // A in [0, 1]: 1 = unoccluded
+    Vec3 bentNormal;          // view space, unit: mean unoccluded direction (cosine-weighted); 0 for sky
+};
+
+// The kernel for one pixel of a G-buffer of the constants' size. Sky pixels give visibility 1 and a zero
+// bent normal. Hot path: no checks.
+GtaoPixel gtaoPixel(const GtaoConstants& constants, const GBuffer& gbuffer, int x, int y);
+
+struct GtaoResult {
+    Image visibility;  // 1 channel, [0, 1]; sky 1
+    Image bentNormal;  // 3 channels, view-space unit vectors; sky (0, 0, 0)
+};
+
+// Every pixel. Throws obscura::Error if the G-buffer does not match the constants' size.
+GtaoResult computeGtao(const GBuffer& gbuffer, const GtaoConstants& constants);
+// Validates the settings, then computeGtao(gbuffer, gtaoConstants(settings, gbuffer.camera)).
+GtaoResult computeGtao(const GBuffer& gbuffer, const GtaoSettings& settings);
+
+// The 4x4 interleave of §4.1: which of the 16 slice directions pixel (x, y) takes, a permutation of
+// 0..15 that puts far-apart directions next to each other.
+int interleaveIndex(int x, int y);
+constexpr int kGtaoRotations = 6;  // temporal rotations: 16 x 6 = 96 directions per pixel
+
+} // namespace obscura::ssao

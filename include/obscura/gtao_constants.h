@@ -1,0 +1,57 @@
+// Constants the GTAO kernel reads (Jimenez et al. 2016, "Practical Realtime Strategies for Accurate
+// Indirect Occlusion"), shared by the C++ reference and the GLSL compute pass: plain 32-bit ints and
+// floats only, no vectors, so std140/std430 and C++ lay it out identically.
+//
+// One pure function, obscura::ssao::gtaoConstants() (obscura/gtao.h), fills it from the user's settings,
+// the camera and the image size; the kernels read nothing else besides the G-buffer.
+#ifndef OBSCURA_GTAO_CONSTANTS_H
+#define OBSCURA_GTAO_CONSTANTS_H
+
+#ifdef __cplusplus
+#include <cstdint>
+namespace obscura::ssao {
+using uint = std::uint32_t;
+#endif
+
+// Integer codes shared with GLSL (no enums there).
+#define GTAO_WEIGHTING_COSINE 0   // eq. 5: cosine-weighted, radiometrically correct
+#define GTAO_WEIGHTING_UNIFORM 1  // App. A, eq. 22-23: uniformly weighted hemisphere
+#define GTAO_THICKNESS_NONE 0     // plain maximum horizon (eq. 6)
+#define GTAO_THICKNESS_HEURISTIC 1  // eq. 9: exponential decay of the horizon past thin occluders
+#define GTAO_THICKNESS_BITMASK 2  // 32 sectors per slice, occluders of constant thickness
+#define GTAO_BITMASK_SECTORS 32
+
+struct GtaoConstants {
+    int width;                 // image size, pixels
+    int height;
+    float viewFromPixelMulX;   // view x / depth = px * mulX + addX (px continuous, centre at +0.5)
+    float viewFromPixelMulY;
+    float viewFromPixelAddX;
+    float viewFromPixelAddY;
+    float focalPixels;         // pixels spanned by 1 m at 1 m depth
+    float radius;              // r: m; occluders beyond r do not count
+    float falloffFrom;         // m; the linear fade of a sample's weight starts here and ends at r
+    float falloffInvRange;     // 1 / (r - falloffFrom), 1/m (huge for a hard cut at r)
+    float maxRadiusPixels;     // the search radius on screen is clamped to this, pixels
+    float minStepPixels;       // the first sample is at least this far, pixels (skips the centre pixel)
+    float stepPower;           // step distribution: s_k = ((k + jitter) / steps)^power, power >= 1
+    float thicknessBlend;      // eq. 9 blend factor in [0, 1): 0 = plain maximum
+    float bitmaskThickness;    // assumed occluder thickness for the bitmask, m
+    int sliceCount;            // slice directions per pixel, >= 1
+    int stepsPerSide;          // samples on each side of the slice, >= 1
+    int weighting;             // GTAO_WEIGHTING_*
+    int thicknessMode;         // GTAO_THICKNESS_*
+    int interleaved;           // 1: one slice per pixel, direction from the 4x4 pattern and frame rotation
+    int noiseMode;             // 0: fixed slice angles and step offsets; 1: per-pixel hashed jitter
+    int frameIndex;            // selects the temporal rotation (of 6) and the jitter
+    int pad0;                  // keeps the size a multiple of 16 bytes
+    int pad1;
+};
+
+#ifdef __cplusplus
+static_assert(sizeof(GtaoConstants) == 24 * 4, "GtaoConstants must stay 24 scalars (std430 layout)");
+static_assert(alignof(GtaoConstants) == 4, "GtaoConstants holds 32-bit scalars only");
+} // namespace obscura::ssao
+#endif
+
+#endif

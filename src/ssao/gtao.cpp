@@ -1,0 +1,335 @@
+// GTAO CPU reference: Jimenez et al. 2016, "Practical Realtime Strategies for Accurate Indirect
+// Occlusion", §4 (eq. 5-9) and App. A (eq. 22-23); the visibility bitmask follows Therrien et al. 2023,
+// "Screen Space Indirect Lighting with Visibility Bitmask".
+//
+// Angles in a slice are measured from the view vector V, positive towards the slice's in-plane direction
+// T (V, T orthonormal), so a direction in the slice is cos(t) V + sin(t) T and the slice's share of the
+// sphere carries the Jacobian |sin t| (eq. 3). The hemisphere of the normal is [n - pi/2, n + pi/2],
+// n the signed angle of the normal projected into the slice.
+#include "obscura/gtao.h"
+
+#include "obscura/error.h"
+#include "obscura/parallel.h"
+#include "obscura/sampling.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace obscura::ssao {
+
+namespace {
+
+constexpr float kHalfPi = 0.5f * kPi;
+
+float saturate(float v) { return std::clamp(v, 0.0f, 1.0f); }
+float mix(float a, float b, float t) { return a + (b - a) * t; }
+float signOf(float v) { return v < 0.0f ? -1.0f : 1.0f; }
+
+// Integral from 0 to t of cos(s - n) |sin s| ds: eq. 7's inner integral is arcIntegral(h1) - arcIntegral(h0).
+float arcIntegral(float t, float n) {
+    return signOf(t) * (0.5f * t * std::sin(n) - 0.25f * std::cos(2.0f * t - n) + 0.25f * std::cos(n));
+}
+// Integral from 0 to t of |sin s| ds, App. A's uniformly weighted arc.
+float uniformArcIntegral(float t) { return signOf(t) * (1.0f - std::cos(t)); }
+
+// Integrals from 0 to t of (cos s, sin s) cos(s - n) |sin s| ds: the V and T components of the
+// cosine-weighted mean direction of an arc, for the bent normal.
+void bentIntegrals(float t, float n, float& alongV, float& alongT) {
+    float cn = std::cos(n), sn = std::sin(n), c = std::cos(t), s = std::sin(t);
+    float a = cn * (-c * c * c / 3.0f) + sn * (s * s * s / 3.0f) + cn / 3.0f;
+    float b = cn * (s * s * s / 3.0f) + sn * (-c + c * c * c / 3.0f) + sn * (2.0f / 3.0f);
+    alongV = signOf(t) * a;
+    alongT = signOf(t) * b;
+}
+
+Vec3 viewPosition(const GtaoConstants& c, float px, float py, float depth) {
+    return {(px * c.viewFromPixelMulX + c.viewFromPixelAddX) * depth,
+            (py * c.viewFromPixelMulY + c.viewFromPixelAddY) * depth, -depth};
+}
+
+float fract(float v) { return v - std::floor(v); }
+
+// View-space point of the depth buffer at continuous image position (sx, sy). Inverse depth is affine in
+// the image over a plane, so where the four nearest pixels agree with one plane (their bilinear cross term
+// vanishes) it is interpolated, and the point lies on the slice line exactly; at grazing angles snapping
+// to a pixel centre would move the point off the slice by many metres of depth and find false horizons.
+// Across an edge or a silhouette the nearest pixel's own point is used instead. False for sky or for
+// (sx, sy) in the centre pixel (cx, cy).
+bool samplePosition(const GtaoConstants& c, const GBuffer& g, float sx, float sy, int cx, int cy, Vec3& out) {
+    const int ix = int(sx), iy = int(sy);
+    if (ix == cx && iy == cy) return false;
+    const float nearest = g.depth.at(ix, iy);
+    if (!(nearest < 1e30f)) return false;
+    const float gx = sx - 0.5f, gy = sy - 0.5f;
+    // At the border the quad is shifted inwards: extrapolating an affine function is still exact.
+    const int x0 = std::clamp(int(std::floor(gx)), 0, c.width - 2), y0 = std::clamp(int(std::floor(gy)), 0, c.height - 2);
+    if (c.width > 1 && c.height > 1) {
+        const float d00 = g.depth.at(x0, y0), d10 = g.depth.at(x0 + 1, y0);
+        const float d01 = g.depth.at(x0, y0 + 1), d11 = g.depth.at(x0 + 1, y0 + 1);
+        if (d00 < 1e30f && d10 < 1e30f && d01 < 1e30f && d11 < 1e30f) {
+            const float w00 = 1.0f / d00, w10 = 1.0f / d10, w01 = 1.0f / d01, w11 = 1.0f / d11;
+            const float cross = std::fabs(w00 + w11 - w10 - w01);
+            if (cross <= 1e-4f * std::max(std::max(w00, w10), std::max(w01, w11))) {
+                const float fx = gx - float(x0), fy = gy - float(y0);
+                const float w = (w00 * (1.0f - fx) + w10 * fx) * (1.0f - fy) + (w01 * (1.0f - fx) + w11 * fx) * fy;
+                out = viewPosition(c, sx, sy, 1.0f / w);
+                return true;
+            }
+        }
+    }
+    out = viewPosition(c, float(ix) + 0.5f, float(iy) + 0.5f, nearest);
+    return true;
+}
+
+// Arc [t0, t1] (t0 <= t1) of a slice as a share of the visibility and of the bent-normal vector.
+struct ArcWeights {
+    float visibility;
+    float alongV, alongT;
+};
+ArcWeights arc(const GtaoConstants& c, float t0, float t1, float n) {
+    ArcWeights w{};
+    if (c.weighting == GTAO_WEIGHTING_UNIFORM)
+        w.visibility = 0.5f * (uniformArcIntegral(t1) - uniformArcIntegral(t0));
+    else
+        w.visibility = arcIntegral(t1, n) - arcIntegral(t0, n);
+    float v0, v1, s0, s1;
+    bentIntegrals(t0, n, v0, s0);
+    bentIntegrals(t1, n, v1, s1);
+    w.alongV = v1 - v0;
+    w.alongT = s1 - s0;
+    return w;
+}
+
+} // namespace
+
+void GtaoSettings::validate() const {
+    auto check = [](bool ok, const char* field, const char* range) {
+        if (!ok) fail(std::string("gtao ") + field, std::string("must be in ") + range);
+    };
+    check(radius > 0.0f && radius <= 1e4f, "radius", "(0, 1e4] m");
+    check(falloffStart >= 0.0f && falloffStart <= 1.0f, "falloff-start", "[0, 1] (a fraction of the radius)");
+    check(sliceCount >= 1 && sliceCount <= 64, "slices", "[1, 64]");
+    check(stepsPerSide >= 1 && stepsPerSide <= 256, "steps", "[1, 256]");
+    check(maxRadiusPixels >= 1.0f && maxRadiusPixels <= 8192.0f, "max-radius-pixels", "[1, 8192]");
+    check(stepPower >= 1.0f && stepPower <= 4.0f, "step-power", "[1, 4]");
+    check(thicknessBlend >= 0.0f && thicknessBlend < 1.0f, "thickness-blend", "[0, 1)");
+    check(bitmaskThickness > 0.0f && bitmaskThickness <= 1e4f, "bitmask-thickness", "(0, 1e4] m");
+}
+
+void applyQuality(GtaoSettings& settings, GtaoQuality quality) {
+    static constexpr int kTable[4][2] = {{1, 2}, {2, 2}, {3, 3}, {9, 3}};
+    settings.sliceCount = kTable[int(quality)][0];
+    settings.stepsPerSide = kTable[int(quality)][1];
+}
+
+GtaoQuality parseQuality(const std::string& name) {
+    if (name == "low") return GtaoQuality::Low;
+    if (name == "medium") return GtaoQuality::Medium;
+    if (name == "high") return GtaoQuality::High;
+    if (name == "ultra") return GtaoQuality::Ultra;
+    fail("gtao quality", "'" + name + "' is not one of low, medium, high, ultra");
+}
+
+const char* qualityName(GtaoQuality quality) {
+    static const char* kNames[] = {"low", "medium", "high", "ultra"};
+    return kNames[int(quality)];
+}
+
+int interleaveIndex(int x, int y) {
+    // 4x4 Bayer order: neighbours take directions half the pattern apart.
+    static constexpr int kBayer[16] = {0, 8, 2, 10, 12, 4, 14, 6, 3, 11, 1, 9, 15, 7, 13, 5};
+    return kBayer[(y & 3) * 4 + (x & 3)];
+}
+
+GtaoConstants gtaoConstants(const GtaoSettings& s, const Camera& camera, int frameIndex, bool interleaved) {
+    GtaoConstants c{};
+    c.width = camera.width;
+    c.height = camera.height;
+    // viewFromPixel: x = (2 px / w - 1) tanX depth, y = (1 - 2 py / h) tanY depth.
+    const float tanY = camera.tanHalfFovY(), tanX = camera.tanHalfFovX();
+    c.viewFromPixelMulX = 2.0f * tanX / float(camera.width);
+    c.viewFromPixelAddX = -tanX;
+    c.viewFromPixelMulY = -2.0f * tanY / float(camera.height);
+    c.viewFromPixelAddY = tanY;
+    c.focalPixels = camera.focalPixels();
+    c.radius = s.radius;
+    c.falloffFrom = s.radius * s.falloffStart;
+    // A hard cut still needs a finite slope: 1e-5 r wide is far below any depth's precision.
+    c.falloffInvRange = 1.0f / std::max(s.radius - c.falloffFrom, 1e-5f * s.radius);
+    c.maxRadiusPixels = s.maxRadiusPixels;
+    // The first sample must leave the centre pixel, or it would find the point itself.
+    c.minStepPixels = 1.0f;
+    c.stepPower = s.stepPower;
+    c.thicknessBlend = s.thickness == GtaoThickness::Heuristic ? s.thicknessBlend : 0.0f;
+    c.bitmaskThickness = s.bitmaskThickness;
+    c.sliceCount = interleaved ? 1 : s.sliceCount;
+    c.stepsPerSide = s.stepsPerSide;
+    c.weighting = s.weighting == GtaoWeighting::Uniform ? GTAO_WEIGHTING_UNIFORM : GTAO_WEIGHTING_COSINE;
+    c.thicknessMode = s.thickness == GtaoThickness::Bitmask    ? GTAO_THICKNESS_BITMASK
+                      : s.thickness == GtaoThickness::Heuristic ? GTAO_THICKNESS_HEURISTIC
+                                                                : GTAO_THICKNESS_NONE;
+    c.interleaved = interleaved ? 1 : 0;
+    c.noiseMode = s.jitter ? 1 : 0;
+    c.frameIndex = frameIndex;
+    return c;
+}
+
+GtaoPixel gtaoPixel(const GtaoConstants& c, const GBuffer& g, int x, int y) {
+    GtaoPixel out;
+    const float depth = g.depth.at(x, y);
+    if (!(depth < 1e30f)) return out;
+    const Vec3 p = viewPosition(c, float(x) + 0.5f, float(y) + 0.5f, depth);
+    const Vec3 v = normalize(-p);
+    const Vec3 normal = g.viewNormal(x, y);
+    out.bentNormal = normal;
+
+    const float screenRadius = std::min(c.radius * c.focalPixels / depth, c.maxRadiusPixels);
+    // Nothing but the pixel itself lies within reach.
+    if (screenRadius < c.minStepPixels) return out;
+
+    float sliceJitter = 0.5f, stepJitter = 0.5f;
+    int interleave = 0;
+    if (c.interleaved) {
+        interleave = interleaveIndex(x, y);
+        const int rotation = ((c.frameIndex % kGtaoRotations) + kGtaoRotations) % kGtaoRotations;
+        // 16 pattern directions, each rotation shifts them by 1/6 of their spacing: 96 in all.
+        sliceJitter = (float(interleave) + (float(rotation) + 0.5f) / float(kGtaoRotations)) / 16.0f;
+        stepJitter = fract(0.5f + 0.6180340f * float(interleave) + 0.3819660f * float(rotation));
+    } else if (c.noiseMode) {
+        std::uint32_t h = hashCombine(hashCombine(std::uint32_t(x), std::uint32_t(y)), std::uint32_t(c.frameIndex));
+        sliceJitter = toUnitFloat(h);
+        stepJitter = toUnitFloat(hash32(h));
+    }
+
+    float visibility = 0.0f, unoccluded = 0.0f;
+    Vec3 bent{};
+    const float minS = c.minStepPixels / screenRadius;
+    for (int slice = 0; slice < c.sliceCount; ++slice) {
+        const float phi = c.interleaved ? sliceJitter * kPi : (float(slice) + sliceJitter) / float(c.sliceCount) * kPi;
+        const float cosPhi = std::cos(phi), sinPhi = std::sin(phi);
+        // Screen y grows downwards, view y upwards.
+        const Vec3 direction{cosPhi, sinPhi, 0.0f};
+        const Vec3 t = normalize(direction - v * dot(direction, v));
+        const Vec3 axis = cross(t, v);
+        const Vec3 projectedNormal = normal - axis * dot(normal, axis);
+        const float projectedLength = length(projectedNormal);
+        if (!(projectedLength > 1e-6f)) continue;  // normal along the slice axis: the slice has no weight
+        const float cosN = saturate(dot(projectedNormal, v) / projectedLength);
+        const float n = signOf(dot(projectedNormal, t)) * std::acos(cosN);
+
+        // Horizon cosines on the +T side (0) and the -T side (1), starting at the normal's horizon.
+        const float lowCos0 = std::cos(n + kHalfPi), lowCos1 = std::cos(n - kHalfPi);
+        float horizonCos0 = lowCos0, horizonCos1 = lowCos1;
+        std::uint32_t occluded = 0;  // bitmask mode: sector k covers [n - pi/2 + k pi/32, + pi/32)
+
+        for (int step = 0; step < c.stepsPerSide; ++step) {
+            float s = (float(step) + stepJitter) / float(c.stepsPerSide);
+            s = std::pow(s, c.stepPower) + minS;
+            const float offset = s * screenRadius;
+            for (int side = 0; side < 2; ++side) {
+                const float sign = side == 0 ? 1.0f : -1.0f;
+                const float sx = float(x) + 0.5f + sign * offset * cosPhi;
+                const float sy = float(y) + 0.5f - sign * offset * sinPhi;
+                if (!(sx >= 0.0f && sy >= 0.0f && sx < float(c.width) && sy < float(c.height))) continue;
+                Vec3 sp;
+                if (!samplePosition(c, g, sx, sy, x, y, sp)) continue;
+                const Vec3 delta = sp - p;
+                const float distance = length(delta);
+                if (!(distance > 0.0f)) continue;
+                const float weight = saturate((c.radius - distance) * c.falloffInvRange);
+
+                if (c.thicknessMode == GTAO_THICKNESS_BITMASK) {
+                    if (weight <= 0.0f) continue;
+                    // The occluder spans from its front face to `thickness` farther along its view ray.
+                    const Vec3 back = sp + normalize(sp) * c.bitmaskThickness - p;
+                    const float tFront = std::atan2(dot(delta, t), dot(delta, v));
+                    const float tBack = std::atan2(dot(back, t), dot(back, v));
+                    float a = (std::min(tFront, tBack) - (n - kHalfPi)) / kPi;
+                    float b = (std::max(tFront, tBack) - (n - kHalfPi)) / kPi;
+                    // A back point wrapping past -pi lands on the far end; a front point is never behind P.
+                    if (std::fabs(tFront - tBack) > kPi) continue;
+                    const int first = int(std::lround(saturate(a) * GTAO_BITMASK_SECTORS));
+                    const int last = int(std::lround(saturate(b) * GTAO_BITMASK_SECTORS));
+                    for (int k = first; k < last; ++k) occluded |= 1u << k;
+                    continue;
+                }
+                const float sampleCos = mix(side == 0 ? lowCos0 : lowCos1, dot(delta, v) / distance, weight);
+                float& horizonCos = side == 0 ? horizonCos0 : horizonCos1;
+                if (sampleCos >= horizonCos)
+                    horizonCos = sampleCos;
+                else  // eq. 9: past a thin occluder the horizon decays towards the lower samples
+                    horizonCos = mix(horizonCos, sampleCos, c.thicknessBlend);
+            }
+        }
+
+        float sliceVisibility = 0.0f, alongV = 0.0f, alongT = 0.0f;
+        if (c.thicknessMode == GTAO_THICKNESS_BITMASK) {
+            for (int k = 0; k < GTAO_BITMASK_SECTORS; ++k) {
+                if (occluded & (1u << k)) continue;
+                const float t0 = n - kHalfPi + kPi * float(k) / GTAO_BITMASK_SECTORS;
+                ArcWeights w = arc(c, t0, t0 + kPi / GTAO_BITMASK_SECTORS, n);
+                sliceVisibility += w.visibility;
+                alongV += w.alongV;
+                alongT += w.alongT;
+            }
+        } else {
+            float h0 = -std::acos(std::clamp(horizonCos1, -1.0f, 1.0f));
+            float h1 = std::acos(std::clamp(horizonCos0, -1.0f, 1.0f));
+            h0 = n + std::clamp(h0 - n, -kHalfPi, kHalfPi);
+            h1 = n + std::clamp(h1 - n, -kHalfPi, kHalfPi);
+            ArcWeights w = arc(c, h0, h1, n);
+            sliceVisibility = w.visibility;
+            alongV = w.alongV;
+            alongT = w.alongT;
+        }
+        // eq. 8: the projected normal's length restores the cosine against the true normal.
+        const float normalScale = c.weighting == GTAO_WEIGHTING_UNIFORM ? 1.0f : projectedLength;
+        visibility += normalScale * sliceVisibility;
+        // The slice's value with nothing in the way: n sin n + cos n (cosine), 1 (uniform).
+        unoccluded += normalScale * (c.weighting == GTAO_WEIGHTING_UNIFORM ? 1.0f : n * std::sin(n) + std::cos(n));
+        // Control variate for the bent normal: subtract the slice's unoccluded mean direction, whose
+        // average over phi is known, (2/3) N, and add that back after the loop.
+        const ArcWeights open = arc(c, n - kHalfPi, n + kHalfPi, n);
+        bent += (v * (alongV - open.alongV) + t * (alongT - open.alongT)) * projectedLength;
+    }
+    // Eq. 8 averages over phi, where the unoccluded values average to exactly 1; dividing by their sum
+    // over the slices actually taken (a ratio estimator) keeps an open surface at 1 for any slice count and
+    // any view angle, and tends to eq. 8 as the slice count grows.
+    if (unoccluded > 0.0f) out.visibility = saturate(visibility / unoccluded);
+    const Vec3 b = normalize(bent / float(c.sliceCount) + normal * (2.0f / 3.0f));
+    if (dot(b, b) > 0.0f) out.bentNormal = b;
+    return out;
+}
+
+GtaoResult computeGtao(const GBuffer& gbuffer, const GtaoConstants& constants) {
+    if (gbuffer.width() != constants.width || gbuffer.height() != constants.height ||
+        gbuffer.depth.width != constants.width || gbuffer.depth.height != constants.height ||
+        gbuffer.normal.width != constants.width || gbuffer.normal.height != constants.height ||
+        gbuffer.normal.channels != 3)
+        fail("gtao", "G-buffer is " + std::to_string(gbuffer.depth.width) + "x" + std::to_string(gbuffer.depth.height) +
+                         " but the constants are for " + std::to_string(constants.width) + "x" +
+                         std::to_string(constants.height) + " (or its normal image is not 3 channels)");
+    GtaoResult r;
+    r.visibility = Image(constants.width, constants.height, 1, 1.0f);
+    r.bentNormal = Image(constants.width, constants.height, 3, 0.0f);
+    parallelFor(std::size_t(constants.height), [&](std::size_t begin, std::size_t end) {
+        for (std::size_t yy = begin; yy < end; ++yy) {
+            const int y = int(yy);
+            for (int x = 0; x < constants.width; ++x) {
+                GtaoPixel px = gtaoPixel(constants, gbuffer, x, y);
+                r.visibility.at(x, y) = px.visibility;
+                r.bentNormal.at(x, y, 0) = px.bentNormal.x;
+                r.bentNormal.at(x, y, 1) = px.bentNormal.y;
+                r.bentNormal.at(x, y, 2) = px.bentNormal.z;
+            }
+        }
+    });
+    return r;
+}
+
+GtaoResult computeGtao(const GBuffer& gbuffer, const GtaoSettings& settings) {
+    settings.validate();
+    return computeGtao(gbuffer, gtaoConstants(settings, gbuffer.camera));
+}
+
+} // namespace obscura::ssao
