@@ -1,0 +1,159 @@
+// Per-vertex ambient obscurance baking (Sloan, Tranchida, Chen, Kavan 2013, "Ambient Obscurance Baking on
+// the GPU", §2-2.1) with least-squares vertex baking (Kavan, Bargteil, Sloan 2011).
+//
+// The bake is a chain of stages that exchange plain arrays, so later work (decorators, dynamic regions,
+// LOD resampling, GPU or multi-machine tracing) can replace or split any one of them:
+//   weldScene -> generateSamples -> traceSamples -> solveVertexValues
+// Every random number is a pure function of the settings' seed and an id (a triangle's or a sample's), so
+// any split of the work over threads or machines gives the same bits.
+//
+// Errors: BakeSettings::validate() and bakeScene() throw obscura::Error naming the bad field or problem;
+// the stage functions assume valid settings and a sanitized scene (sanitizeScene) and check nothing else.
+#pragma once
+
+#include "obscura/math.h"
+#include "obscura/scene.h"
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace obscura::trace {
+class Tracer;
+}
+
+namespace obscura::bake {
+
+enum class Mode {
+    // Sloan et al. eq. 1: A = (1/pi) Integral rho(t(w)) cos dw, rho(t) = 1 - exp(a t), a = ln(0.5)/d; a miss
+    // counts as rho = 1.
+    Obscurance,
+    // Binary visibility within d: A = (1/pi) Integral [t(w) >= d] cos dw (what Blender and MeshLab bake).
+    Occlusion,
+};
+
+struct BakeSettings {
+    Mode mode = Mode::Obscurance;
+    std::vector<float> distances{2.0f, 300.0f};  // d per channel: m, (0, 1e6]; 1 or 2 (short, long); the seed's 2 and 300
+    int rays = 256;                   // directions per sample: [1, 65536]; the seed traces 256
+    float alpha = 1.0f;               // regulariser weight: unitless, [0, 1e6]; the seed found 1 works
+    int minSamplesPerFace = 3;        // [1, maxSamplesPerFace]; 3 so every face constrains its plane
+    int maxSamplesPerFace = 32;       // [minSamplesPerFace, 4096]; caps huge distant faces (§2.1)
+    float sampleDensity = 4.0f;       // samples per m^2 between the two caps: (0, 1e6]; ~3.7 per face on the seed's level
+    float backFaceLimit = 0.25f;      // a sample whose back-facing hit fraction exceeds this is invalid: [0, 1]; §2.1
+    float weldTolerance = 1e-6f;      // weld distance relative to the scene's bounding-box diagonal: [0, 1e-2]
+    std::uint32_t seed = 0;           // any value; the same seed gives the same bits on any thread count
+
+    void validate() const;  // throws obscura::Error naming the flag-style field ("--rays: ...")
+    int channels() const { return int(distances.size()); }
+};
+
+// ---- stage 1: weld -----------------------------------------------------------------------------
+
+// The scene flattened to world space and welded by position, for the solve. Each instance is baked on its
+// own (instanced meshes get per-instance values). Vertex and triangle order follow the scene's instance
+// order, then the mesh's order, so the result does not depend on threads.
+struct WeldedMesh {
+    std::vector<Vec3> positions;            // world space, m; one per welded vertex
+    std::vector<std::uint32_t> indices;     // 3 per kept triangle, into positions, the file's winding
+    std::vector<std::size_t> instanceFirst; // per instance + 1: offset of its vertices in vertexMap
+    std::vector<std::uint32_t> vertexMap;   // per (instance, mesh vertex): its welded vertex
+    std::size_t inputTriangles = 0;
+    std::size_t droppedTriangles = 0;       // degenerate after welding (repeated vertex or zero area)
+
+    std::size_t triangleCount() const { return indices.size() / 3; }
+};
+
+// Welds vertices closer than `tolerance` (m) to an earlier one. A vertex joins the first welded vertex
+// found within tolerance in its own or a neighbouring grid cell, so chains do not collapse.
+WeldedMesh weldScene(const Scene& scene, float tolerance);
+
+// ---- stage 2: samples --------------------------------------------------------------------------
+
+// Stratified points on each face. A sample's index is its id; triangleFirst[t] .. triangleFirst[t+1] are
+// the samples of welded triangle t.
+struct SampleSet {
+    std::vector<Vec3> positions;            // world, m
+    std::vector<Vec3> normals;              // unit geometric normal of the face's front (counter-clockwise) side
+    std::vector<std::uint32_t> triangles;   // welded triangle of each sample
+    std::vector<Vec2> barycentrics;         // (lambda1, lambda2); lambda0 = 1 - both
+    std::vector<std::uint32_t> triangleFirst;  // per triangle + 1
+
+    std::size_t size() const { return positions.size(); }
+};
+
+// Samples per face: clamp(ceil(area * density), min, max) (§2.1); points are Owen-scrambled Sobol points,
+// seeded by the triangle id, mapped to the triangle with the area-preserving square-to-triangle warp.
+SampleSet generateSamples(const WeldedMesh& mesh, const BakeSettings& settings);
+
+// ---- stage 3: rays -----------------------------------------------------------------------------
+
+struct RayResults {
+    int channels = 0;
+    std::vector<float> values;              // samples x channels, A in [0, 1] per distance
+    std::vector<std::uint8_t> valid;        // per sample: 0 when back-facing hits exceeded the limit
+    std::uint64_t rays = 0;
+    std::size_t invalidSamples = 0;
+};
+
+using Progress = std::function<void(double fraction)>;
+
+// settings.rays cosine-weighted, stratified directions per sample about its face normal, the origin moved
+// off the surface along that normal. One closest-hit ray per direction serves every distance and the
+// back-face test. The direction set's shift is seeded by (seed, sample id). Thread-safe and deterministic.
+RayResults traceSamples(const trace::Tracer& tracer, const SampleSet& samples, const BakeSettings& settings,
+                        const Progress& progress = {});
+
+// ---- stage 4: least squares --------------------------------------------------------------------
+
+struct SolveStats {
+    std::size_t unknowns = 0;    // welded vertices used by a triangle
+    std::size_t edges = 0;       // interior edges in the regulariser
+    std::size_t nonZeros = 0;    // in the lower triangle of M + alpha R
+};
+
+// Minimises  sum_k w_k (f_k - g(p_k))^2 + alpha x^T R x  over per-vertex x, one solve per channel with a
+// single factorisation (Kavan et al. 2011; Sloan et al. 2013 §2.1):
+//   w_k = A_T / N_T for the N_T samples of triangle T, invalid samples left out;
+//   M = sum_k w_k lambda(p_k) lambda(p_k)^T, the mass matrix of the very quadrature that gives
+//       b = sum_k w_k f_k lambda(p_k); for points that integrate quadratics exactly it is the linear
+//       element's (A/12)[[2,1,1],[1,2,1],[1,1,2]], and otherwise it keeps constants constant and linear
+//       signals linear, which the exact matrix with sampled b would not;
+//   R = sum_e D_e^T D_e, D_e x = (A_1 + A_2) n_e . (grad g_1 - grad g_2) over each edge shared by exactly
+//       two triangles, unfolded into one plane (the along-edge component of the jump is zero).
+// A vertex with no valid sample takes its value through R; one reached by neither (an isolated, fully
+// invalid part) takes the mean of all valid samples, through a 1e-9 relative diagonal term that also
+// keeps the factorisation definite. Returns welded vertices x channels (unused vertices get 1).
+std::vector<float> solveVertexValues(const WeldedMesh& mesh, const SampleSet& samples, const RayResults& results,
+                                     float alpha, SolveStats* stats = nullptr);
+
+// ---- the whole bake ----------------------------------------------------------------------------
+
+struct StageTimes {
+    double processGeometry = 0, sample = 0, bvhBuild = 0, trace = 0, solve = 0, write = 0;  // seconds
+    double total() const { return processGeometry + sample + bvhBuild + trace + solve + write; }
+};
+
+struct BakeResult {
+    int channels = 0;
+    // Per scene instance, one entry per vertex of its mesh in the file's order (offsets instanceFirst),
+    // channels values each, clamped to [0, 1].
+    std::vector<std::size_t> instanceFirst;
+    std::vector<float> values;
+    std::size_t inputTriangles = 0, droppedTriangles = 0, weldedVertices = 0, inputVertices = 0;
+    std::size_t samples = 0, invalidSamples = 0;
+    std::uint64_t rays = 0;
+    SolveStats solve;
+    StageTimes times;
+    double mraysPerSecond() const { return times.trace > 0 ? double(rays) / times.trace * 1e-6 : 0.0; }
+};
+
+// Reports (stage name, fraction done) as the stages run.
+using StageProgress = std::function<void(const std::string& stage, double fraction)>;
+
+// Runs every stage on the scene (validated settings; throws obscura::Error on bad settings or an Embree
+// failure). Times every stage but "write", which is the caller's.
+BakeResult bakeScene(const Scene& scene, const BakeSettings& settings, const StageProgress& progress = {});
+
+} // namespace obscura::bake

@@ -1,0 +1,56 @@
+// Surface samples for the least-squares bake (Sloan et al. 2013 §2.1): a minimum and a maximum number per
+// face, area-proportional in between, so coarse distant geometry does not take the budget from the
+// playable area; the finite-element weights (A_T / N_T in the solve) make up for the uneven density.
+#include "obscura/bake.h"
+
+#include "obscura/parallel.h"
+#include "obscura/sampling.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace obscura::bake {
+
+SampleSet generateSamples(const WeldedMesh& mesh, const BakeSettings& settings) {
+    SampleSet s;
+    const std::size_t triangles = mesh.triangleCount();
+    s.triangleFirst.resize(triangles + 1);
+    std::uint32_t total = 0;
+    for (std::size_t t = 0; t < triangles; ++t) {
+        s.triangleFirst[t] = total;
+        const Vec3 p0 = mesh.positions[mesh.indices[3 * t]], p1 = mesh.positions[mesh.indices[3 * t + 1]],
+                   p2 = mesh.positions[mesh.indices[3 * t + 2]];
+        const double area = 0.5 * double(length(cross(p1 - p0, p2 - p0)));
+        const double wanted = std::ceil(area * double(settings.sampleDensity));
+        const auto n = std::uint32_t(std::clamp(wanted, double(settings.minSamplesPerFace), double(settings.maxSamplesPerFace)));
+        total += n;
+    }
+    s.triangleFirst[triangles] = total;
+    s.positions.resize(total);
+    s.normals.resize(total);
+    s.triangles.resize(total);
+    s.barycentrics.resize(total);
+
+    parallelFor(triangles, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t t = begin; t < end; ++t) {
+            const Vec3 p0 = mesh.positions[mesh.indices[3 * t]], p1 = mesh.positions[mesh.indices[3 * t + 1]],
+                       p2 = mesh.positions[mesh.indices[3 * t + 2]];
+            const Vec3 n = normalize(cross(p1 - p0, p2 - p0));
+            // The first N points of a scrambled Sobol sequence are stratified for any N; the warp
+            // (1 - sqrt u, sqrt u (1 - v), sqrt u v) maps equal areas of the square to equal areas of the face.
+            const OwenSobol2D sequence(hashCombine(settings.seed, std::uint32_t(t)));
+            for (std::uint32_t i = s.triangleFirst[t], k = 0; i < s.triangleFirst[t + 1]; ++i, ++k) {
+                const Vec2 u = sequence(k);
+                const float r = std::sqrt(u.x);
+                const float l1 = r * (1.0f - u.y), l2 = r * u.y;
+                s.positions[i] = p0 * (1.0f - l1 - l2) + p1 * l1 + p2 * l2;
+                s.normals[i] = n;
+                s.triangles[i] = std::uint32_t(t);
+                s.barycentrics[i] = {l1, l2};
+            }
+        }
+    }, 256);
+    return s;
+}
+
+} // namespace obscura::bake

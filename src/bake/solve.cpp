@@ -1,0 +1,212 @@
+// Least-squares vertex baking (Kavan, Bargteil, Sloan 2011, as used by Sloan et al. 2013 §2.1): the
+// per-vertex values x of a piecewise-linear g that best fit the sampled signal f over the surface, with an
+// edge regulariser that penalises jumps of the gradient across edges and leaves linear signals alone.
+// One sparse LDL^T factorisation of (M + alpha R) serves every channel (both distances).
+#include "obscura/bake.h"
+
+#include "obscura/error.h"
+
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+
+#include <algorithm>
+#include <cmath>
+
+namespace obscura::bake {
+
+namespace {
+
+constexpr std::uint32_t kUnused = 0xffffffffu;
+
+std::uint64_t pairKey(std::uint32_t i, std::uint32_t j) {
+    // Lower triangle: row >= column; packed column-major so sorting groups a column's rows together.
+    if (i < j) std::swap(i, j);
+    return (std::uint64_t(j) << 32) | i;
+}
+
+struct Vec3d {
+    double x, y, z;
+};
+Vec3d toD(Vec3 v) { return {v.x, v.y, v.z}; }
+Vec3d sub(Vec3d a, Vec3d b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+double dotD(Vec3d a, Vec3d b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+Vec3d crossD(Vec3d a, Vec3d b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
+double lengthD(Vec3d a) { return std::sqrt(dotD(a, a)); }
+
+// The compressed lower triangle of a symmetric matrix whose pattern is known before its values.
+class LowerMatrix {
+public:
+    LowerMatrix(std::size_t n, std::vector<std::uint64_t>& keys) : n_(n) {
+        for (std::size_t i = 0; i < n; ++i) keys.push_back(pairKey(std::uint32_t(i), std::uint32_t(i)));
+        std::sort(keys.begin(), keys.end());
+        keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+        outer_.assign(n + 1, 0);
+        inner_.resize(keys.size());
+        for (std::size_t k = 0; k < keys.size(); ++k) {
+            ++outer_[std::size_t(keys[k] >> 32) + 1];
+            inner_[k] = int(keys[k] & 0xffffffffu);
+        }
+        for (std::size_t c = 0; c < n; ++c) outer_[c + 1] += outer_[c];
+        values_.assign(keys.size(), 0.0);
+    }
+    void add(std::uint32_t i, std::uint32_t j, double v) {
+        if (i < j) std::swap(i, j);
+        const int* begin = inner_.data() + outer_[j];
+        const int* end = inner_.data() + outer_[j + 1];
+        const int* at = std::lower_bound(begin, end, int(i));
+        values_[std::size_t(at - inner_.data())] += v;
+    }
+    Eigen::SparseMatrix<double> matrix() const {
+        const auto size = static_cast<Eigen::Index>(n_);
+        Eigen::SparseMatrix<double> a(size, size);
+        a.resizeNonZeros(Eigen::Index(values_.size()));
+        std::copy(outer_.begin(), outer_.end(), a.outerIndexPtr());
+        std::copy(inner_.begin(), inner_.end(), a.innerIndexPtr());
+        std::copy(values_.begin(), values_.end(), a.valuePtr());
+        return a;
+    }
+    std::size_t nonZeros() const { return values_.size(); }
+
+private:
+    std::size_t n_;
+    std::vector<int> outer_, inner_;
+    std::vector<double> values_;
+};
+
+} // namespace
+
+std::vector<float> solveVertexValues(const WeldedMesh& mesh, const SampleSet& samples, const RayResults& results,
+                                     float alpha, SolveStats* stats) {
+    const std::size_t triangles = mesh.triangleCount();
+    const auto channels = std::size_t(results.channels);
+    std::vector<float> out(mesh.positions.size() * channels, 1.0f);
+
+    // Unknowns: welded vertices some kept triangle uses.
+    std::vector<std::uint32_t> unknown(mesh.positions.size(), kUnused);
+    std::uint32_t n = 0;
+    for (std::uint32_t v : mesh.indices)
+        if (unknown[v] == kUnused) unknown[v] = n++;
+    if (n == 0) return out;
+
+    // Half-edges sorted by their undirected edge: (edge key, triangle * 3 + opposite corner).
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> halfEdges;
+    halfEdges.reserve(3 * triangles);
+    for (std::size_t t = 0; t < triangles; ++t)
+        for (std::uint32_t k = 0; k < 3; ++k) {
+            const std::uint32_t a = unknown[mesh.indices[3 * t + (k + 1) % 3]], b = unknown[mesh.indices[3 * t + (k + 2) % 3]];
+            halfEdges.emplace_back(pairKey(a, b), std::uint32_t(3 * t + k));
+        }
+    std::sort(halfEdges.begin(), halfEdges.end());
+
+    // Pattern: every mesh edge, plus (c, d) across each interior edge, plus the diagonal.
+    std::vector<std::uint64_t> keys;
+    keys.reserve(halfEdges.size() + halfEdges.size() / 2 + n);
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> interior;  // the two half-edges of each interior edge
+    for (std::size_t i = 0; i < halfEdges.size();) {
+        std::size_t j = i;
+        while (j < halfEdges.size() && halfEdges[j].first == halfEdges[i].first) ++j;
+        keys.push_back(halfEdges[i].first);
+        // Exactly two faces: a manifold interior edge. Boundary and non-manifold edges are not regularised.
+        if (j - i == 2) {
+            const std::uint32_t c = unknown[mesh.indices[halfEdges[i].second]], d = unknown[mesh.indices[halfEdges[i + 1].second]];
+            if (c != d) {
+                interior.emplace_back(halfEdges[i].second, halfEdges[i + 1].second);
+                keys.push_back(pairKey(c, d));
+            }
+        }
+        i = j;
+    }
+    halfEdges = {};
+    LowerMatrix system(n, keys);
+    keys = {};
+
+    Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(Eigen::Index(n), Eigen::Index(channels));
+    std::vector<double> lumped(n, 0.0);
+    std::vector<double> validSum(channels, 0.0);
+    std::size_t validCount = 0;
+
+    // Data term: the quadrature of the samples, w = A_T / N_T.
+    for (std::size_t t = 0; t < triangles; ++t) {
+        const std::uint32_t v[3] = {unknown[mesh.indices[3 * t]], unknown[mesh.indices[3 * t + 1]], unknown[mesh.indices[3 * t + 2]]};
+        const Vec3d p0 = toD(mesh.positions[mesh.indices[3 * t]]), p1 = toD(mesh.positions[mesh.indices[3 * t + 1]]),
+                    p2 = toD(mesh.positions[mesh.indices[3 * t + 2]]);
+        const double area = 0.5 * lengthD(crossD(sub(p1, p0), sub(p2, p0)));
+        for (std::uint32_t k : v) lumped[k] += area / 3.0;
+        const std::uint32_t first = samples.triangleFirst[t], last = samples.triangleFirst[t + 1];
+        if (last == first) continue;
+        const double w = area / double(last - first);
+        double m[3][3] = {};
+        for (std::uint32_t s = first; s < last; ++s) {
+            if (!results.valid[s]) continue;
+            const double l1 = samples.barycentrics[s].x, l2 = samples.barycentrics[s].y;
+            const double l[3] = {1.0 - l1 - l2, l1, l2};
+            for (int i = 0; i < 3; ++i)
+                for (int j = 0; j < 3; ++j) m[i][j] += w * l[i] * l[j];
+            for (std::size_t c = 0; c < channels; ++c) {
+                const double f = results.values[s * channels + c];
+                for (int i = 0; i < 3; ++i) rhs(Eigen::Index(v[i]), Eigen::Index(c)) += w * f * l[i];
+                validSum[c] += f;
+            }
+            ++validCount;
+        }
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j <= i; ++j) system.add(v[i], v[j], m[i][j]);
+    }
+
+    // Regulariser: D_e x = (A1 + A2) * (normal derivative on face 1 - on face 2), faces unfolded about the edge.
+    for (auto [h1, h2] : interior) {
+        const std::size_t t1 = h1 / 3;
+        const std::uint32_t k1 = h1 % 3;
+        const std::uint32_t ga = mesh.indices[3 * t1 + (k1 + 1) % 3], gb = mesh.indices[3 * t1 + (k1 + 2) % 3];
+        const std::uint32_t gc = mesh.indices[h1], gd = mesh.indices[h2];
+        const Vec3d a = toD(mesh.positions[ga]), e = sub(toD(mesh.positions[gb]), a);
+        const double len = lengthD(e);
+        const Vec3d u{e.x / len, e.y / len, e.z / len};
+        auto unfold = [&](std::uint32_t g, double& x, double& h) {
+            const Vec3d q = sub(toD(mesh.positions[g]), a);
+            x = dotD(q, u);
+            h = lengthD(Vec3d{q.x - x * u.x, q.y - x * u.y, q.z - x * u.z});
+        };
+        double xc, hc, xd, hd;
+        unfold(gc, xc, hc);
+        unfold(gd, xd, hd);
+        if (!(hc > 0.0) || !(hd > 0.0)) continue;
+        // a = (0,0), b = (len,0), c = (xc, hc) and d = (xd, -hd): the y-derivatives of the hat functions.
+        const double areas = 0.5 * len * (hc + hd);
+        const double coef[4] = {areas * ((xc - len) / (len * hc) - (len - xd) / (len * hd)),
+                                areas * (-xc / (len * hc) - xd / (len * hd)), areas / hc, areas / hd};
+        const std::uint32_t idx[4] = {unknown[ga], unknown[gb], unknown[gc], unknown[gd]};
+        for (int i = 0; i < 4; ++i)
+            for (int j = 0; j < 4; ++j)
+                if (idx[i] >= idx[j]) system.add(idx[i], idx[j], double(alpha) * coef[i] * coef[j]);
+    }
+
+    // A vanishing pull towards the mean of the valid samples: it fixes parts no sample and no edge reaches,
+    // and keeps the matrix definite, at a relative weight far below the 1e-6 any caller can notice.
+    constexpr double kPull = 1e-9;
+    for (std::uint32_t i = 0; i < n; ++i) {
+        system.add(i, i, kPull * lumped[i]);
+        for (std::size_t c = 0; c < channels; ++c) {
+            const double mean = validCount ? validSum[c] / double(validCount) : 1.0;
+            rhs(Eigen::Index(i), Eigen::Index(c)) += kPull * lumped[i] * mean;
+        }
+    }
+
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower> solver;
+    solver.compute(system.matrix());
+    if (solver.info() != Eigen::Success) fail("least-squares solve", "factorisation failed (" + std::to_string(n) + " unknowns)");
+    const Eigen::MatrixXd x = solver.solve(rhs);
+    if (solver.info() != Eigen::Success) fail("least-squares solve", "back-substitution failed");
+
+    for (std::size_t v = 0; v < mesh.positions.size(); ++v)
+        if (unknown[v] != kUnused)
+            for (std::size_t c = 0; c < channels; ++c) out[v * channels + c] = float(x(Eigen::Index(unknown[v]), Eigen::Index(c)));
+    if (stats) {
+        stats->unknowns = n;
+        stats->edges = interior.size();
+        stats->nonZeros = system.nonZeros();
+    }
+    return out;
+}
+
+} // namespace obscura::bake

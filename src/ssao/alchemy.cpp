@@ -1,0 +1,301 @@
+// Alchemy screen-space ambient obscurance: McGuire et al. 2011, "The Alchemy Screen-Space Ambient
+// Obscurance Algorithm", eq. 10, with the spiral sampling and the alternative formulation of "Where Corners
+// Stay Dark" (Alchemy SSAO in an IBL renderer). Contract in include/obscura/alchemy.h.
+#include "obscura/alchemy.h"
+
+#include "obscura/error.h"
+#include "obscura/parallel.h"
+#include "obscura/sampling.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace obscura::ssao {
+
+namespace {
+
+// A sky pixel's view point: far outside any radius, yet v.v (~1e36) stays finite in float.
+constexpr float kSkyZ = 1e18f;
+
+bool isSkyDepth(float d) { return !(d < 1e30f); }
+
+// 4 x 4 Bayer order: neighbouring pixels get rotations far apart, so a small blur sees all of them.
+constexpr int kBayer4[16] = {0, 8, 2, 10, 12, 4, 14, 6, 3, 11, 1, 9, 15, 7, 13, 5};
+
+void checkRange(bool ok, const char* field, const std::string& range, double value) {
+    if (!ok) fail(field, "must be in " + range + ", is " + std::to_string(value));
+}
+
+} // namespace
+
+void AlchemySettings::validate() const {
+    checkRange(radius > 0.0f && radius <= 1e4f, "radius", "(0, 1e4] m", double(radius));
+    checkRange(intensity >= 0.0f && intensity <= 1000.0f, "intensity", "[0, 1000]", double(intensity));
+    checkRange(contrast >= 0.01f && contrast <= 100.0f, "contrast", "[0.01, 100]", double(contrast));
+    checkRange(bias >= 0.0f && bias <= 1.0f, "bias", "[0, 1] m", double(bias));
+    checkRange(epsilon > 0.0f && epsilon <= 1.0f, "epsilon", "(0, 1] m^2", double(epsilon));
+    checkRange(samples >= 1 && samples <= kAlchemyMaxSamples, "samples", "[1, 1024]", samples);
+    checkRange(maxRadiusPixels >= 1.0f && maxRadiusPixels <= 4096.0f, "max radius", "[1, 4096] px",
+               double(maxRadiusPixels));
+    checkRange(lodRadiusPixels >= 0.0f && lodRadiusPixels <= 4096.0f, "lod radius", "[0, 4096] px",
+               double(lodRadiusPixels));
+    // The level of detail keeps one offset table per sample count; 256 counts x 16 classes is 4 MB.
+    if (lodRadiusPixels > 0.0f && samples > 256) fail("samples", "at most 256 with the level of detail on");
+    checkRange(guardBand >= 0 && guardBand <= 1024, "guard band", "[0, 1024] px", guardBand);
+}
+
+AlchemySettings alchemyPreset(const std::string& name) {
+    AlchemySettings s;
+    s.formulation = AlchemyFormulation::Chapter;
+    if (name == "scene") {
+        s.radius = 0.05f;
+        s.intensity = 2.0f;
+        s.contrast = 3.0f;
+    } else if (name == "closeup") {
+        s.radius = 0.08f;
+        s.intensity = 1.7f;
+        s.contrast = 2.2f;
+    } else {
+        fail("preset", "unknown alchemy preset '" + name + "' (scene, closeup)");
+    }
+    return s;
+}
+
+AlchemyConstants alchemyConstants(const AlchemySettings& s, const Camera& camera) {
+    s.validate();
+    camera.validate();
+    if (camera.width <= 2 * s.guardBand || camera.height <= 2 * s.guardBand)
+        fail("guard band", std::to_string(s.guardBand) + " px leaves nothing of a " + std::to_string(camera.width) +
+                               "x" + std::to_string(camera.height) + " buffer");
+    AlchemyConstants k{};
+    k.width = camera.width;
+    k.height = camera.height;
+    k.guardBand = s.guardBand;
+    k.formulation = s.formulation == AlchemyFormulation::Paper ? kAlchemyPaper : kAlchemyChapter;
+    k.samples = s.samples;
+    k.minSamples = s.lodRadiusPixels > 0.0f ? std::max(1, s.samples / 4) : s.samples;
+    k.seed = s.seed;
+    const float ty = camera.tanHalfFovY(), tx = ty * camera.aspect();
+    k.viewScaleX = 2.0f * tx / float(camera.width);
+    k.viewOffsetX = -tx;
+    k.viewScaleY = -2.0f * ty / float(camera.height);
+    k.viewOffsetY = ty;
+    k.focalPixels = camera.focalPixels();
+    k.radius = s.radius;
+    k.radius2 = s.radius * s.radius;
+    k.maxRadiusPixels = s.maxRadiusPixels;
+    k.lodRadiusPixels = s.lodRadiusPixels;
+    k.bias = s.bias;
+    k.contrast = s.contrast;
+    if (s.formulation == AlchemyFormulation::Paper) {
+        k.denominator = s.epsilon;
+        k.intensity = 2.0f * s.intensity;
+    } else {
+        const float c = 0.1f * s.radius;  // the chapter's near clamp
+        k.denominator = c * c;
+        k.intensity = 2.0f * kPi * c * s.intensity;
+    }
+    return k;
+}
+
+Camera guardBandCamera(const Camera& camera, int guardBand) {
+    Camera c = camera;
+    c.width = camera.width + 2 * guardBand;
+    c.height = camera.height + 2 * guardBand;
+    // Same focal length in pixels: tan(fov'/2) grows with the height.
+    const float t = camera.tanHalfFovY() * float(c.height) / float(camera.height);
+    c.fovY = 2.0f * std::atan(t) * 180.0f / kPi;
+    return c;
+}
+
+Image cropGuardBand(const Image& image, int g) {
+    if (g == 0) return image;
+    Image out(image.width - 2 * g, image.height - 2 * g, image.channels);
+    out.channelNames = image.channelNames;
+    for (int y = 0; y < out.height; ++y)
+        for (int x = 0; x < out.width; ++x)
+            for (int c = 0; c < image.channels; ++c) out.at(x, y, c) = image.at(x + g, y + g, c);
+    return out;
+}
+
+GBuffer cropGuardBand(const GBuffer& g, const Camera& innerCamera, int guardBand) {
+    GBuffer out;
+    out.camera = innerCamera;
+    out.depth = cropGuardBand(g.depth, guardBand);
+    out.normal = g.normal.empty() ? Image() : cropGuardBand(g.normal, guardBand);
+    out.albedo = g.albedo.empty() ? Image() : cropGuardBand(g.albedo, guardBand);
+    out.motion = g.motion.empty() ? Image() : cropGuardBand(g.motion, guardBand);
+    return out;
+}
+
+Image normalsFromDepth(const Image& depth, const Camera& camera) {
+    const int w = depth.width, h = depth.height;
+    Image out(w, h, 3);
+    auto position = [&](int x, int y) { return camera.viewFromPixel(float(x) + 0.5f, float(y) + 0.5f, depth.at(x, y)); };
+    auto usable = [&](int x, int y) { return x >= 0 && y >= 0 && x < w && y < h && !isSkyDepth(depth.at(x, y)); };
+    // How badly the neighbour at (x + dx, y + dy) fits the centre's surface, relative, +inf if unusable. The
+    // depth difference (the rule that keeps silhouettes apart) alone ties at a crease seen symmetrically,
+    // where both neighbours are equally far in depth; so where the next pixel exists, the test is whether
+    // the two pixels on that side continue the centre's plane: 1/depth is affine in screen space on a
+    // plane, so 2/d1 - 1/d2 - 1/d0 vanishes exactly there and not across a crease or a silhouette.
+    auto misfit = [&](int x, int y, int dx, int dy) {
+        if (!usable(x + dx, y + dy)) return INFINITY;
+        const float d0 = depth.at(x, y), d1 = depth.at(x + dx, y + dy);
+        if (!usable(x + 2 * dx, y + 2 * dy)) return std::fabs(d1 - d0) / d0;
+        const float d2 = depth.at(x + 2 * dx, y + 2 * dy);
+        return std::fabs(2.0f / d1 - 1.0f / d2 - 1.0f / d0) * d0;
+    };
+    parallelFor(std::size_t(h), [&](std::size_t y0, std::size_t y1) {
+        for (int y = int(y0); y < int(y1); ++y)
+            for (int x = 0; x < w; ++x) {
+                Vec3 n{0, 0, 1};
+                if (!isSkyDepth(depth.at(x, y))) {
+                    const Vec3 p = position(x, y);
+                    const float l = misfit(x, y, -1, 0), r = misfit(x, y, 1, 0);
+                    const float u = misfit(x, y, 0, -1), d = misfit(x, y, 0, 1);
+                    if ((l < INFINITY || r < INFINITY) && (u < INFINITY || d < INFINITY)) {
+                        const Vec3 ddx = r <= l ? position(x + 1, y) - p : p - position(x - 1, y);
+                        const Vec3 ddy = d <= u ? position(x, y + 1) - p : p - position(x, y - 1);
+                        // Pixel y grows downwards, so cross(ddy, ddx) points out of a camera-facing plane.
+                        n = normalize(cross(ddy, ddx));
+                        if (dot(n, p) > 0.0f) n = -n;
+                    } else {
+                        n = -normalize(p);
+                    }
+                }
+                for (int c = 0; c < 3; ++c) out.at(x, y, c) = n[c];
+            }
+    });
+    return out;
+}
+
+AlchemyInput alchemyInput(const GBuffer& g, const AlchemyConstants& k, bool rebuildNormals) {
+    AlchemyInput in;
+    in.width = k.width;
+    in.height = k.height;
+    const std::size_t n = std::size_t(k.width) * std::size_t(k.height);
+    for (auto* v : {&in.px, &in.py, &in.pz, &in.nx, &in.ny, &in.nz}) v->resize(n);
+    in.depth.assign(g.depth.pixels.begin(), g.depth.pixels.end());
+    const Image rebuilt = rebuildNormals ? normalsFromDepth(g.depth, g.camera) : Image();
+    const Image& normals = rebuildNormals ? rebuilt : g.normal;
+    parallelFor(std::size_t(k.height), [&](std::size_t y0, std::size_t y1) {
+        for (std::size_t y = y0; y < y1; ++y)
+            for (std::size_t x = 0; x < std::size_t(k.width); ++x) {
+                const std::size_t i = y * std::size_t(k.width) + x;
+                const float d = in.depth[i];
+                if (isSkyDepth(d)) {
+                    in.px[i] = in.py[i] = 0.0f;
+                    in.pz[i] = kSkyZ;
+                } else {
+                    in.px[i] = ((float(x) + 0.5f) * k.viewScaleX + k.viewOffsetX) * d;
+                    in.py[i] = ((float(y) + 0.5f) * k.viewScaleY + k.viewOffsetY) * d;
+                    in.pz[i] = -d;
+                }
+                in.nx[i] = normals.pixels[3 * i];
+                in.ny[i] = normals.pixels[3 * i + 1];
+                in.nz[i] = normals.pixels[3 * i + 2];
+            }
+    });
+    return in;
+}
+
+SpiralTable alchemySpiral(const AlchemyConstants& k) {
+    SpiralTable t;
+    t.maxSamples = k.samples;
+    t.minSamples = k.minSamples;
+    const double shift = double(toUnitFloat(hash32(k.seed)));
+    for (int count = k.minSamples; count <= k.samples; ++count)
+        for (int cls = 0; cls < kAlchemyPixelClasses; ++cls) {
+            const double phi = 2.0 * double(kPi) * (double(kBayer4[cls]) + shift) / kAlchemyPixelClasses;
+            const double turns = 7.0 * count / 9.0;
+            std::vector<float> o(2 * std::size_t(count));
+            for (int i = 0; i < count; ++i) {
+                const double alpha = (i + 0.5) / count;
+                const double theta = 2.0 * double(kPi) * alpha * turns + phi;
+                o[2 * std::size_t(i)] = float(alpha * std::cos(theta));
+                o[2 * std::size_t(i) + 1] = float(alpha * std::sin(theta));
+            }
+            t.offsets.push_back(std::move(o));
+        }
+    return t;
+}
+
+float alchemyPixel(const AlchemyConstants& k, const AlchemyInput& in, const SpiralTable& spiral, int x, int y) {
+    const std::size_t c = std::size_t(y) * std::size_t(k.width) + std::size_t(x);
+    const float d = in.depth[c];
+    if (isSkyDepth(d)) return 1.0f;
+    const float cx = in.px[c], cy = in.py[c], cz = in.pz[c];
+    const float nx = in.nx[c], ny = in.ny[c], nz = in.nz[c];
+    const float radiusPixels = std::min(k.radius * k.focalPixels / d, k.maxRadiusPixels);
+    int count = k.samples;
+    if (k.lodRadiusPixels > 0.0f && radiusPixels < k.lodRadiusPixels)
+        count = std::clamp(int(std::ceil(float(k.samples) * radiusPixels / k.lodRadiusPixels)), k.minSamples, k.samples);
+    const float* offsets = spiral.at(count, (y % kAlchemyClassTile) * kAlchemyClassTile + x % kAlchemyClassTile);
+    const float fx = float(x) + 0.5f, fy = float(y) + 0.5f;
+    // Paper: + z_C beta with z_C < 0; chapter: - bias. Both are one constant per pixel.
+    const float shift = k.formulation == kAlchemyPaper ? cz * k.bias : -k.bias;
+    float sum = 0.0f;
+    for (int i = 0; i < count; ++i) {
+        const int sx = int(std::floor(fx + offsets[2 * i] * radiusPixels));
+        const int sy = int(std::floor(fy + offsets[2 * i + 1] * radiusPixels));
+        if (sx < 0 || sy < 0 || sx >= k.width || sy >= k.height) continue;  // unseen: empty
+        const std::size_t j = std::size_t(sy) * std::size_t(k.width) + std::size_t(sx);
+        const float vx = in.px[j] - cx, vy = in.py[j] - cy, vz = in.pz[j] - cz;
+        const float vv = vx * vx + vy * vy + vz * vz;
+        const float vn = vx * nx + vy * ny + vz * nz;
+        if (k.formulation == kAlchemyPaper) {
+            if (vv < k.radius2) sum += std::max(0.0f, vn + shift) / (vv + k.denominator);
+        } else {
+            if (vv <= k.radius2) sum += std::max(0.0f, vn + shift) / std::max(k.denominator, vv);
+        }
+    }
+    const float a = std::max(0.0f, 1.0f - k.intensity / float(count) * sum);
+    return k.contrast == 1.0f ? a : std::pow(a, k.contrast);
+}
+
+Image alchemyAO(const GBuffer& g, const AlchemySettings& s) {
+    const AlchemyConstants k = alchemyConstants(s, g.camera);
+    const std::string what = "alchemy G-buffer";
+    if (s.normalsFromDepth) {
+        GBuffer depthOnly;
+        depthOnly.camera = g.camera;
+        depthOnly.depth = g.depth;
+        depthOnly.normal = Image(g.width(), g.height(), 3);  // validate() wants one; it is rebuilt
+        depthOnly.validate(what);
+    } else {
+        g.validate(what);
+    }
+    const AlchemyInput in = alchemyInput(g, k, s.normalsFromDepth);
+    const SpiralTable spiral = alchemySpiral(k);
+    const int gb = k.guardBand, w = k.width - 2 * gb, h = k.height - 2 * gb;
+    Image out(w, h, 1);
+    parallelFor(
+        std::size_t(h),
+        [&](std::size_t y0, std::size_t y1) {
+            for (int y = int(y0); y < int(y1); ++y)
+                for (int x = 0; x < w; ++x)
+                    out.pixels[std::size_t(y) * std::size_t(w) + std::size_t(x)] = alchemyPixel(k, in, spiral, x + gb, y + gb);
+        },
+        4);
+    return out;
+}
+
+trace::ObscuranceSettings rayTracedEquivalent(const AlchemySettings& s, int rays) {
+    s.validate();
+    trace::ObscuranceSettings t;
+    t.falloff = trace::Falloff::Alchemy;
+    t.radius = s.radius;
+    t.rays = rays;
+    if (s.formulation == AlchemyFormulation::Paper) {
+        // sigma t / (t^2 + eps) ~ sigma t / max(eps, t^2) = (sigma / u) u t / max(u, t)^2 with u^2 = eps.
+        t.alchemyU = std::sqrt(s.epsilon);
+        t.alchemyScale = s.intensity / t.alchemyU;
+    } else {
+        // scale (2 pi c / n) sum -> scale c Integral (v.n) / max(c^2, v.v) dw = (1/pi) Integral pi scale g_c cos dw.
+        t.alchemyU = 0.1f * s.radius;
+        t.alchemyScale = kPi * s.intensity;
+    }
+    return t;
+}
+
+} // namespace obscura::ssao
