@@ -1,6 +1,7 @@
 // `obscura render`: a scene lit by an environment, modulated by ambient occlusion, tonemapped to PNG.
 #include "cli_common.h"
 #include "commands.h"
+#include "gtao_cli.h"
 
 #include "obscura/camera_io.h"
 #include "obscura/error.h"
@@ -38,6 +39,7 @@ struct RenderOptions {
     int threads = 0;
     bool quiet = false;
     CameraOptions camera;
+    GtaoOptions gtao;
 };
 
 const std::map<std::string, trace::Falloff> kFalloffs = {
@@ -63,6 +65,10 @@ void run(const RenderOptions& o) {
         throw Error("--" + std::string(e.what()));
     }
     if (!(o.exposure >= -20.0f && o.exposure <= 20.0f)) fail("--exposure", "must be in [-20, 20] EV");
+    if (o.ao == "gtao") {
+        o.gtao.validate(o.aovDir);
+        o.gtao.settings(aoSettings.radius);  // throws on a bad value before any work
+    }
 
     ThreadLimit limit(o.threads);
     LoadedScene loaded = loadSceneArgument(o.scene);
@@ -96,8 +102,17 @@ void run(const RenderOptions& o) {
         Progress p("ambient occlusion", showProgress);
         ao = trace::ambientObscurance(*tracer, gbuffer, aoSettings, [&](double f) { p(f); });
     }
+    GtaoFrame gtao;
+    if (o.ao == "gtao") {
+        trace::GBufferSettings gs;
+        gs.supersample = o.supersample;
+        gtao = renderGtaoFrames(o.gtao, aoSettings.radius, *tracer, camera, gs, o.aovDir, showProgress);
+        gbuffer = gtao.gbuffer;
+        camera = gbuffer.camera;
+        ao = gtao.visibility;
+    }
 
-    render::Frame frame = render::shade(gbuffer, sh, ao, environment);
+    render::Frame frame = o.ao == "gtao" ? shadeGtao(gtao, sh, environment) : render::shade(gbuffer, sh, ao, environment);
     render::ShadeSettings shading;
     shading.exposure = o.exposure;
     shading.tonemap = kTonemaps.at(o.tonemap);
@@ -120,6 +135,7 @@ void run(const RenderOptions& o) {
     std::printf("wrote %s: %dx%d, scene %s, AO %s", o.output.c_str(), camera.width, camera.height, loaded.name.c_str(),
                 o.ao.c_str());
     if (o.ao == "raytraced") std::printf(" (%s, r = %s m, %d rays)", o.falloff.c_str(), o.radius.c_str(), o.rays);
+    if (o.ao == "gtao") std::printf(" (%s, r = %s m, %d frame(s))", o.gtao.quality.c_str(), o.radius.c_str(), o.gtao.frames);
     std::printf(", %.2f s\n", secondsSince(start));
 }
 
@@ -132,8 +148,8 @@ void addRenderCommand(CLI::App& app) {
         ->capture_default_str();
     cmd->add_option("-o,--output", o->output, "Output image: .png (tonemapped sRGB) or .exr (linear radiance)")
         ->capture_default_str();
-    cmd->add_option("--ao", o->ao, "Ambient occlusion: none, or raytraced (Monte Carlo ground truth)")
-        ->check(CLI::IsMember({"none", "raytraced"}))
+    cmd->add_option("--ao", o->ao, "Ambient occlusion: none, raytraced (Monte Carlo ground truth), gtao (screen space)")
+        ->check(CLI::IsMember({"none", "raytraced", "gtao"}))
         ->capture_default_str();
     cmd->add_option("--ao-radius", o->radius, "Occlusion radius r in meters, or inf")->capture_default_str();
     cmd->add_option("--ao-rays", o->rays, "Rays per pixel, [1, 1048576]")->capture_default_str();
@@ -158,6 +174,7 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_option("--threads", o->threads, "Worker threads (0 = all cores)")->capture_default_str();
     cmd->add_flag("-q,--quiet", o->quiet, "No progress bars");
     o->camera.add(*cmd);
+    o->gtao.add(*cmd);
     cmd->callback([o] { run(*o); });
 }
 
