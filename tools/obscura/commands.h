@@ -11,5 +11,6 @@ void addRenderCommand(CLI::App& app);
 void addGBufferCommand(CLI::App& app);
 void addScenesCommand(CLI::App& app);
 void addBenchCommand(CLI::App& app);
+void addGtaoBench(CLI::App& bench);  // `bench gtao`, registered by addBenchCommand
 
 } // namespace obscura::cli
