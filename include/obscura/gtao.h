@@ -40,7 +40,7 @@ struct GtaoSettings {
     bool jitter = false;            // per-pixel hashed slice rotation and step offsets (noise for a filter
                                     // to remove); false: the same regular slices everywhere
 
-    void validate() const;          // throws obscura::Error("gtao <field>: ...")
+    void validate() const;          // throws obscura::Error("gtao-<field>: ...")
 };
 
 // Slices x steps per side of each preset: low 1x2, medium 2x2, high 3x3, ultra 9x3 (as XeGTAO's).

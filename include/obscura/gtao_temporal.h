@@ -27,7 +27,7 @@ struct GtaoTemporalSettings {
     int maxHistory = 24;          // blend weight of the new frame is 1 / min(frames + 1, maxHistory),
                                   // [1, 1024]: 24 = 4 cycles of the 6 rotations
 
-    void validate() const;        // throws obscura::Error("gtao temporal <field>: ...")
+    void validate() const;        // throws obscura::Error("gtao-<field>: ...")
 };
 
 // Depth- and normal-aware gather of the 4x4 interleave: a 5x5 window whose edge rows and columns weigh 1/2,

@@ -104,7 +104,7 @@ ArcWeights arc(const GtaoConstants& c, float t0, float t1, float n) {
 
 void GtaoSettings::validate() const {
     auto check = [](bool ok, const char* field, const char* range) {
-        if (!ok) fail(std::string("gtao ") + field, std::string("must be in ") + range);
+        if (!ok) fail(std::string("gtao-") + field, std::string("must be in ") + range);
     };
     check(radius > 0.0f && radius <= 1e4f, "radius", "(0, 1e4] m");
     check(falloffStart >= 0.0f && falloffStart <= 1.0f, "falloff-start", "[0, 1] (a fraction of the radius)");

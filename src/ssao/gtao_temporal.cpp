@@ -32,7 +32,7 @@ void forRows(int height, const std::function<void(int)>& row) {
 
 void GtaoTemporalSettings::validate() const {
     auto check = [](bool ok, const char* field, const char* range) {
-        if (!ok) fail(std::string("gtao temporal ") + field, std::string("must be in ") + range);
+        if (!ok) fail(std::string("gtao-") + field, std::string("must be in ") + range);
     };
     check(depthSigma > 0.0f && depthSigma <= 1.0f, "depth-sigma", "(0, 1]");
     check(rejectDepth > 0.0f && rejectDepth <= 1.0f, "reject-depth", "(0, 1]");
