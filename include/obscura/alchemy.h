@@ -66,7 +66,8 @@ AlchemySettings alchemyPreset(const std::string& name);
 AlchemyConstants alchemyConstants(const AlchemySettings& settings, const Camera& bufferCamera);
 
 // The camera of a G-buffer with `guardBand` extra pixels on every side and the same focal length, so the
-// inner pixels see exactly what `camera` sees.
+// inner pixels see exactly what `camera` sees. A negative guardBand gives the inner camera of a buffer that
+// already has one.
 Camera guardBandCamera(const Camera& camera, int guardBand);
 // The inner image (or G-buffer) without its guard band.
 Image cropGuardBand(const Image& image, int guardBand);

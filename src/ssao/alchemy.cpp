@@ -35,13 +35,13 @@ void AlchemySettings::validate() const {
     checkRange(bias >= 0.0f && bias <= 1.0f, "bias", "[0, 1] m", double(bias));
     checkRange(epsilon > 0.0f && epsilon <= 1.0f, "epsilon", "(0, 1] m^2", double(epsilon));
     checkRange(samples >= 1 && samples <= kAlchemyMaxSamples, "samples", "[1, 1024]", samples);
-    checkRange(maxRadiusPixels >= 1.0f && maxRadiusPixels <= 4096.0f, "max radius", "[1, 4096] px",
+    checkRange(maxRadiusPixels >= 1.0f && maxRadiusPixels <= 4096.0f, "max-radius", "[1, 4096] px",
                double(maxRadiusPixels));
-    checkRange(lodRadiusPixels >= 0.0f && lodRadiusPixels <= 4096.0f, "lod radius", "[0, 4096] px",
+    checkRange(lodRadiusPixels >= 0.0f && lodRadiusPixels <= 4096.0f, "lod-radius", "[0, 4096] px",
                double(lodRadiusPixels));
     // The level of detail keeps one offset table per sample count; 256 counts x 16 classes is 4 MB.
     if (lodRadiusPixels > 0.0f && samples > 256) fail("samples", "at most 256 with the level of detail on");
-    checkRange(guardBand >= 0 && guardBand <= 1024, "guard band", "[0, 1024] px", guardBand);
+    checkRange(guardBand >= 0 && guardBand <= 1024, "guard-band", "[0, 1024] px", guardBand);
 }
 
 AlchemySettings alchemyPreset(const std::string& name) {
@@ -65,7 +65,7 @@ AlchemyConstants alchemyConstants(const AlchemySettings& s, const Camera& camera
     s.validate();
     camera.validate();
     if (camera.width <= 2 * s.guardBand || camera.height <= 2 * s.guardBand)
-        fail("guard band", std::to_string(s.guardBand) + " px leaves nothing of a " + std::to_string(camera.width) +
+        fail("guard-band", std::to_string(s.guardBand) + " px leaves nothing of a " + std::to_string(camera.width) +
                                "x" + std::to_string(camera.height) + " buffer");
     AlchemyConstants k{};
     k.width = camera.width;

@@ -14,9 +14,9 @@
 namespace obscura::ssao {
 
 void BilateralSettings::validate() const {
-    if (radius < 1 || radius > 32) fail("blur radius", "must be in [1, 32] taps, is " + std::to_string(radius));
+    if (radius < 1 || radius > 32) fail("blur-radius", "must be in [1, 32] taps, is " + std::to_string(radius));
     if (!(depthSigma > 0.0f && depthSigma <= 10.0f))
-        fail("blur depth sigma", "must be in (0, 10] (relative to depth), is " + std::to_string(depthSigma));
+        fail("blur-depth-sigma", "must be in (0, 10] (relative to depth), is " + std::to_string(depthSigma));
 }
 
 std::vector<float> gaussianHalfKernel(int radius) {
