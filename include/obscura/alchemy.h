@@ -78,14 +78,17 @@ GBuffer cropGuardBand(const GBuffer& gbuffer, const Camera& innerCamera, int gua
 // pixels without a usable neighbour face the camera. Returns a 3-channel image.
 Image normalsFromDepth(const Image& depth, const Camera& camera);
 
-// The G-buffer as the kernel reads it: view positions and normals as planes (structure of arrays).
+// The G-buffer as the kernel reads it, as the GPU pass will: the depth plane (one float per sample; the
+// view position is rebuilt from the pixel and the constants) and the centre pixel's normal.
 struct AlchemyInput {
     int width = 0, height = 0;
-    std::vector<float> px, py, pz;  // view position; sky pixels sit at z = +1e18 (far outside any radius)
-    std::vector<float> nx, ny, nz;  // view normal
-    std::vector<float> depth;       // linear depth, +inf for sky
+    const float* depth = nullptr;   // width * height linear depths, +inf for sky
+    const float* normal = nullptr;  // width * height * 3 view normals (x, y, z)
+    Image rebuiltNormals;           // owns the normals when they are rebuilt from depth
 };
-AlchemyInput alchemyInput(const GBuffer& gbuffer, const AlchemyConstants& k, bool normalsFromDepth);
+// References the G-buffer's depth and normals (or rebuilds normals into the input); the G-buffer must
+// outlive the input.
+AlchemyInput alchemyInput(const GBuffer& gbuffer, bool normalsFromDepth);
 
 // Unit-radius spiral offsets for each pixel class and each sample count a pixel can get.
 struct SpiralTable {

@@ -14,9 +14,6 @@ namespace obscura::ssao {
 
 namespace {
 
-// A sky pixel's view point: far outside any radius, yet v.v (~1e36) stays finite in float.
-constexpr float kSkyZ = 1e18f;
-
 bool isSkyDepth(float d) { return !(d < 1e30f); }
 
 // 4 x 4 Bayer order: neighbouring pixels get rotations far apart, so a small blur sees all of them.
@@ -169,33 +166,17 @@ Image normalsFromDepth(const Image& depth, const Camera& camera) {
     return out;
 }
 
-AlchemyInput alchemyInput(const GBuffer& g, const AlchemyConstants& k, bool rebuildNormals) {
+AlchemyInput alchemyInput(const GBuffer& g, bool rebuildNormals) {
     AlchemyInput in;
-    in.width = k.width;
-    in.height = k.height;
-    const std::size_t n = std::size_t(k.width) * std::size_t(k.height);
-    for (auto* v : {&in.px, &in.py, &in.pz, &in.nx, &in.ny, &in.nz}) v->resize(n);
-    in.depth.assign(g.depth.pixels.begin(), g.depth.pixels.end());
-    const Image rebuilt = rebuildNormals ? normalsFromDepth(g.depth, g.camera) : Image();
-    const Image& normals = rebuildNormals ? rebuilt : g.normal;
-    parallelFor(std::size_t(k.height), [&](std::size_t y0, std::size_t y1) {
-        for (std::size_t y = y0; y < y1; ++y)
-            for (std::size_t x = 0; x < std::size_t(k.width); ++x) {
-                const std::size_t i = y * std::size_t(k.width) + x;
-                const float d = in.depth[i];
-                if (isSkyDepth(d)) {
-                    in.px[i] = in.py[i] = 0.0f;
-                    in.pz[i] = kSkyZ;
-                } else {
-                    in.px[i] = ((float(x) + 0.5f) * k.viewScaleX + k.viewOffsetX) * d;
-                    in.py[i] = ((float(y) + 0.5f) * k.viewScaleY + k.viewOffsetY) * d;
-                    in.pz[i] = -d;
-                }
-                in.nx[i] = normals.pixels[3 * i];
-                in.ny[i] = normals.pixels[3 * i + 1];
-                in.nz[i] = normals.pixels[3 * i + 2];
-            }
-    });
+    in.width = g.width();
+    in.height = g.height();
+    in.depth = g.depth.pixels.data();
+    if (rebuildNormals) {
+        in.rebuiltNormals = normalsFromDepth(g.depth, g.camera);
+        in.normal = in.rebuiltNormals.pixels.data();
+    } else {
+        in.normal = g.normal.pixels.data();
+    }
     return in;
 }
 
@@ -224,30 +205,33 @@ float alchemyPixel(const AlchemyConstants& k, const AlchemyInput& in, const Spir
     const std::size_t c = std::size_t(y) * std::size_t(k.width) + std::size_t(x);
     const float d = in.depth[c];
     if (isSkyDepth(d)) return 1.0f;
-    const float cx = in.px[c], cy = in.py[c], cz = in.pz[c];
-    const float nx = in.nx[c], ny = in.ny[c], nz = in.nz[c];
+    const float fx = float(x) + 0.5f, fy = float(y) + 0.5f;
+    const float cx = (fx * k.viewScaleX + k.viewOffsetX) * d, cy = (fy * k.viewScaleY + k.viewOffsetY) * d, cz = -d;
+    const float nx = in.normal[3 * c], ny = in.normal[3 * c + 1], nz = in.normal[3 * c + 2];
     const float radiusPixels = std::min(k.radius * k.focalPixels / d, k.maxRadiusPixels);
     int count = k.samples;
     if (k.lodRadiusPixels > 0.0f && radiusPixels < k.lodRadiusPixels)
         count = std::clamp(int(std::ceil(float(k.samples) * radiusPixels / k.lodRadiusPixels)), k.minSamples, k.samples);
     const float* offsets = spiral.at(count, (y % kAlchemyClassTile) * kAlchemyClassTile + x % kAlchemyClassTile);
-    const float fx = float(x) + 0.5f, fy = float(y) + 0.5f;
     // Paper: + z_C beta with z_C < 0; chapter: - bias. Both are one constant per pixel.
     const float shift = k.formulation == kAlchemyPaper ? cz * k.bias : -k.bias;
+    // The paper drops samples at |v| >= r, the chapter's step() keeps |v| = r: one ulp of r^2 apart.
+    const float radius2 = k.formulation == kAlchemyPaper ? k.radius2 : std::nextafter(k.radius2, INFINITY);
+    const bool paper = k.formulation == kAlchemyPaper;
     float sum = 0.0f;
     for (int i = 0; i < count; ++i) {
         const int sx = int(std::floor(fx + offsets[2 * i] * radiusPixels));
         const int sy = int(std::floor(fy + offsets[2 * i + 1] * radiusPixels));
-        if (sx < 0 || sy < 0 || sx >= k.width || sy >= k.height) continue;  // unseen: empty
-        const std::size_t j = std::size_t(sy) * std::size_t(k.width) + std::size_t(sx);
-        const float vx = in.px[j] - cx, vy = in.py[j] - cy, vz = in.pz[j] - cz;
+        if (unsigned(sx) >= unsigned(k.width) || unsigned(sy) >= unsigned(k.height)) continue;  // unseen: empty
+        const float ds = in.depth[std::size_t(sy) * std::size_t(k.width) + std::size_t(sx)];
+        // A sky sample gives an infinite or NaN v.v, which fails the radius test below.
+        const float vx = ((float(sx) + 0.5f) * k.viewScaleX + k.viewOffsetX) * ds - cx;
+        const float vy = ((float(sy) + 0.5f) * k.viewScaleY + k.viewOffsetY) * ds - cy;
+        const float vz = -ds - cz;
         const float vv = vx * vx + vy * vy + vz * vz;
-        const float vn = vx * nx + vy * ny + vz * nz;
-        if (k.formulation == kAlchemyPaper) {
-            if (vv < k.radius2) sum += std::max(0.0f, vn + shift) / (vv + k.denominator);
-        } else {
-            if (vv <= k.radius2) sum += std::max(0.0f, vn + shift) / std::max(k.denominator, vv);
-        }
+        const float vn = std::max(0.0f, vx * nx + vy * ny + vz * nz + shift);
+        const float term = vn / (paper ? vv + k.denominator : std::max(k.denominator, vv));
+        sum += vv < radius2 ? term : 0.0f;
     }
     const float a = std::max(0.0f, 1.0f - k.intensity / float(count) * sum);
     return k.contrast == 1.0f ? a : std::pow(a, k.contrast);
@@ -265,7 +249,7 @@ Image alchemyAO(const GBuffer& g, const AlchemySettings& s) {
     } else {
         g.validate(what);
     }
-    const AlchemyInput in = alchemyInput(g, k, s.normalsFromDepth);
+    const AlchemyInput in = alchemyInput(g, s.normalsFromDepth);
     const SpiralTable spiral = alchemySpiral(k);
     const int gb = k.guardBand, w = k.width - 2 * gb, h = k.height - 2 * gb;
     Image out(w, h, 1);
