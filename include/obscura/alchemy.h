@@ -104,6 +104,13 @@ SpiralTable alchemySpiral(const AlchemyConstants& k);
 // Raw obscurance of pixel (x, y) of the buffers, before cropping. Hot path: no checks.
 float alchemyPixel(const AlchemyConstants& k, const AlchemyInput& in, const SpiralTable& spiral, int x, int y);
 
+// The same as alchemyPixel for the pixels [x0, x1) of row y (x1 - x0 <= 64), all at once: each sample index
+// is evaluated for the whole segment before the next, so the loop over pixels vectorises (gathers). Same
+// operations in the same order, so the same bits as alchemyPixel. Needs the level of detail off (one
+// sample count for every pixel). Hot path: no checks.
+void alchemyRow(const AlchemyConstants& k, const AlchemyInput& in, const SpiralTable& spiral, int y, int x0, int x1,
+                float* out);
+
 // Raw obscurance A in [0,1] for every pixel, guard band cropped: a 1-channel image of
 // (width - 2 guardBand) x (height - 2 guardBand). Sky pixels are 1. Validates the G-buffer (size, NaN
 // depths, normals) and settings; throws obscura::Error naming the problem. Deterministic: the same bits

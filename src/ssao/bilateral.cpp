@@ -74,8 +74,16 @@ inline float fastExpNegative(float x) {
 // The same loop serves the horizontal pass (tap pointers shifted by t), the vertical pass (tap pointers on
 // another row) and each offset of the 2-D filter; every output accumulates its taps in the same order on
 // any thread count.
+// Built for AVX2 as well where the compiler can (the library targets baseline x86-64 otherwise) and
+// chosen at load time; fp-contract is off in ISO C++ mode, so both versions give the same bits.
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define OBSCURA_TARGET_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define OBSCURA_TARGET_CLONES
+#endif
+
 template <bool UseNormal>
-void accumulateTaps(int n, float spatial, const float* __restrict dC, const float* __restrict invC,
+OBSCURA_TARGET_CLONES void accumulateTaps(int n, float spatial, const float* __restrict dC, const float* __restrict invC,
                     const float* __restrict nxC, const float* __restrict nyC, const float* __restrict nzC,
                     const float* __restrict dT, const float* __restrict nxT, const float* __restrict nyT,
                     const float* __restrict nzT, const float* __restrict aoT, float* __restrict sum,
@@ -121,6 +129,9 @@ struct RowScratch {
     }
 };
 
+// Rows are processed in chunks of this many pixels, so a chunk's centre data, sums and taps stay in L1.
+constexpr int kChunk = 256;
+
 // One 1-D pass along x (axis 0) or y (axis 1).
 Image pass1D(const Image& ao, const Planes& p, const BilateralSettings& s, int axis) {
     const std::vector<float> kernel = gaussianHalfKernel(s.radius);
@@ -133,22 +144,25 @@ Image pass1D(const Image& ao, const Planes& p, const BilateralSettings& s, int a
             for (int y = int(y0); y < int(y1); ++y) {
                 const std::size_t c = std::size_t(y) * std::size_t(w);
                 row.begin(&p.depth[c], w, s.depthSigma);
-                for (int t = -r; t <= r; ++t) {
-                    const float k = kernel[std::size_t(std::abs(t))];
-                    if (axis == 0) {
-                        // Centres x in [x0, x1) have their tap x + t inside the row.
-                        const int x0 = std::max(0, -t), x1 = std::min(w, w - t);
+                for (int cx0 = 0; cx0 < w; cx0 += kChunk) {
+                    const int cx1 = std::min(w, cx0 + kChunk);
+                    for (int t = -r; t <= r; ++t) {
+                        const float k = kernel[std::size_t(std::abs(t))];
+                        // Centres x in [x0, x1) whose tap (x + t along the axis) is inside the image.
+                        int x0 = cx0, x1 = cx1;
+                        std::ptrdiff_t shift = t;
+                        if (axis == 0) {
+                            x0 = std::max(x0, -t);
+                            x1 = std::min(x1, w - t);
+                        } else {
+                            if (y + t < 0 || y + t >= h) continue;
+                            shift = std::ptrdiff_t(t) * std::ptrdiff_t(w);
+                        }
                         if (x1 <= x0) continue;
-                        const std::size_t i = c + std::size_t(x0), j = std::size_t(std::ptrdiff_t(i) + t);
+                        const std::size_t i = c + std::size_t(x0), j = std::size_t(std::ptrdiff_t(i) + shift);
                         accumulateTaps(x1 - x0, k, s.normalWeight, &p.depth[i], &row.inv[std::size_t(x0)], &p.nx[i],
                                        &p.ny[i], &p.nz[i], &p.depth[j], &p.nx[j], &p.ny[j], &p.nz[j], &ao.pixels[j],
                                        &row.sum[std::size_t(x0)], &row.wsum[std::size_t(x0)]);
-                    } else {
-                        if (y + t < 0 || y + t >= h) continue;
-                        const std::size_t j = std::size_t(y + t) * std::size_t(w);
-                        accumulateTaps(w, k, s.normalWeight, &p.depth[c], row.inv.data(), &p.nx[c], &p.ny[c], &p.nz[c],
-                                       &p.depth[j], &p.nx[j], &p.ny[j], &p.nz[j], &ao.pixels[j], row.sum.data(),
-                                       row.wsum.data());
                     }
                 }
                 row.finish(&p.depth[c], &ao.pixels[c], &out.pixels[c], w);
@@ -169,16 +183,20 @@ Image pass2D(const Image& ao, const Planes& p, const BilateralSettings& s) {
             for (int y = int(y0); y < int(y1); ++y) {
                 const std::size_t c = std::size_t(y) * std::size_t(w);
                 row.begin(&p.depth[c], w, s.depthSigma);
-                for (int ty = std::max(-r, -y); ty <= std::min(r, h - 1 - y); ++ty) {
-                    const std::size_t rowT = std::size_t(y + ty) * std::size_t(w);
-                    for (int tx = -r; tx <= r; ++tx) {
-                        const int x0 = std::max(0, -tx), x1 = std::min(w, w - tx);
-                        if (x1 <= x0) continue;
-                        const float k = kernel[std::size_t(std::abs(tx))] * kernel[std::size_t(std::abs(ty))];
-                        const std::size_t i = c + std::size_t(x0), j = std::size_t(std::ptrdiff_t(rowT + std::size_t(x0)) + tx);
-                        accumulateTaps(x1 - x0, k, s.normalWeight, &p.depth[i], &row.inv[std::size_t(x0)], &p.nx[i],
-                                       &p.ny[i], &p.nz[i], &p.depth[j], &p.nx[j], &p.ny[j], &p.nz[j], &ao.pixels[j],
-                                       &row.sum[std::size_t(x0)], &row.wsum[std::size_t(x0)]);
+                for (int cx0 = 0; cx0 < w; cx0 += kChunk) {
+                    const int cx1 = std::min(w, cx0 + kChunk);
+                    for (int ty = std::max(-r, -y); ty <= std::min(r, h - 1 - y); ++ty) {
+                        const std::size_t rowT = std::size_t(y + ty) * std::size_t(w);
+                        for (int tx = -r; tx <= r; ++tx) {
+                            const int x0 = std::max(cx0, -tx), x1 = std::min(cx1, w - tx);
+                            if (x1 <= x0) continue;
+                            const float k = kernel[std::size_t(std::abs(tx))] * kernel[std::size_t(std::abs(ty))];
+                            const std::size_t i = c + std::size_t(x0);
+                            const std::size_t j = std::size_t(std::ptrdiff_t(rowT + std::size_t(x0)) + tx);
+                            accumulateTaps(x1 - x0, k, s.normalWeight, &p.depth[i], &row.inv[std::size_t(x0)],
+                                           &p.nx[i], &p.ny[i], &p.nz[i], &p.depth[j], &p.nx[j], &p.ny[j], &p.nz[j],
+                                           &ao.pixels[j], &row.sum[std::size_t(x0)], &row.wsum[std::size_t(x0)]);
+                        }
                     }
                 }
                 row.finish(&p.depth[c], &ao.pixels[c], &out.pixels[c], w);

@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <ctime>
 #include <functional>
 #include <memory>
 #include <vector>
@@ -30,16 +31,29 @@ struct AlchemyBenchOptions {
     bool json = false;
 };
 
-// Median wall time of `repeats` runs, ms.
-double medianMs(int repeats, const std::function<void()>& body) {
-    std::vector<double> t;
+struct Timing {
+    double wallMs = 0;  // median wall time
+    double cpuMs = 0;   // median process CPU time (all threads): on a shared machine, what the pass cost
+};
+
+double processCpuMs() {
+    timespec ts{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return 1000.0 * double(ts.tv_sec) + 1e-6 * double(ts.tv_nsec);
+}
+
+Timing median(int repeats, const std::function<void()>& body) {
+    std::vector<double> wall, cpu;
     for (int i = 0; i < repeats; ++i) {
+        const double c0 = processCpuMs();
         auto start = std::chrono::steady_clock::now();
         body();
-        t.push_back(1000.0 * secondsSince(start));
+        wall.push_back(1000.0 * secondsSince(start));
+        cpu.push_back(processCpuMs() - c0);
     }
-    std::sort(t.begin(), t.end());
-    return t[t.size() / 2];
+    std::sort(wall.begin(), wall.end());
+    std::sort(cpu.begin(), cpu.end());
+    return {wall[wall.size() / 2], cpu[cpu.size() / 2]};
 }
 
 void runAlchemy(const AlchemyBenchOptions& o) {
@@ -58,9 +72,9 @@ void runAlchemy(const AlchemyBenchOptions& o) {
     report["repeats"] = o.repeats;
     if (!o.json) {
         std::printf("obscura bench alchemy: scene %s, %d samples/px, paper defaults (r 0.5 m), blur radius 6 (13 taps),\n"
-                    "median of %d runs, ms per pass\n\n",
+                    "median of %d runs; wall ms per pass (process CPU ms in brackets)\n\n",
                     loaded.name.c_str(), o.samples, o.repeats);
-        std::printf("%-11s %8s %12s %14s %10s %16s\n", "size", "threads", "alchemy", "blur separable", "blur 2d",
+        std::printf("%-10s %7s %17s %17s %17s %17s\n", "size", "threads", "alchemy", "blur separable", "blur 2d",
                     "alchemy+separable");
     }
     const std::pair<int, int> sizes[] = {{1280, 720}, {1920, 1080}};
@@ -72,17 +86,27 @@ void runAlchemy(const AlchemyBenchOptions& o) {
         for (int threads : {1, all}) {
             ThreadLimit limit(threads);
             Image ao;
-            const double tAo = medianMs(o.repeats, [&] { ao = ssao::alchemyAO(g, settings); });
-            const double tSep = medianMs(o.repeats, [&] { (void)ssao::bilateralFilter(ao, g, separable); });
-            const double t2d = medianMs(o.repeats, [&] { (void)ssao::bilateralFilter(ao, g, twoD); });
+            const Timing tAo = median(o.repeats, [&] { ao = ssao::alchemyAO(g, settings); });
+            const Timing tSep = median(o.repeats, [&] { (void)ssao::bilateralFilter(ao, g, separable); });
+            const Timing t2d = median(o.repeats, [&] { (void)ssao::bilateralFilter(ao, g, twoD); });
+            auto cell = [](double wall, double cpu) {
+                char b[32];
+                std::snprintf(b, sizeof b, "%.1f (%.1f)", wall, cpu);
+                return std::string(b);
+            };
             if (!o.json)
-                std::printf("%4dx%-6d %8d %12.1f %14.1f %10.1f %16.1f\n", w, h, threads, tAo, tSep, t2d, tAo + tSep);
+                std::printf("%4dx%-5d %7d %17s %17s %17s %17s\n", w, h, threads, cell(tAo.wallMs, tAo.cpuMs).c_str(),
+                            cell(tSep.wallMs, tSep.cpuMs).c_str(), cell(t2d.wallMs, t2d.cpuMs).c_str(),
+                            cell(tAo.wallMs + tSep.wallMs, tAo.cpuMs + tSep.cpuMs).c_str());
             report["rows"].push_back({{"width", w},
                                       {"height", h},
                                       {"threads", threads},
-                                      {"alchemy_ms", tAo},
-                                      {"blur_separable_ms", tSep},
-                                      {"blur_2d_ms", t2d}});
+                                      {"alchemy_ms", tAo.wallMs},
+                                      {"blur_separable_ms", tSep.wallMs},
+                                      {"blur_2d_ms", t2d.wallMs},
+                                      {"alchemy_cpu_ms", tAo.cpuMs},
+                                      {"blur_separable_cpu_ms", tSep.cpuMs},
+                                      {"blur_2d_cpu_ms", t2d.cpuMs}});
             if (threads == all) break;  // a one-core machine has one row
         }
     }
