@@ -1,7 +1,9 @@
 // `obscura render`: a scene lit by an environment, modulated by ambient occlusion, tonemapped to PNG.
+#include "ao_options.h"
 #include "cli_common.h"
 #include "commands.h"
 
+#include "obscura/alchemy.h"
 #include "obscura/camera_io.h"
 #include "obscura/error.h"
 #include "obscura/image_io.h"
@@ -38,6 +40,9 @@ struct RenderOptions {
     int threads = 0;
     bool quiet = false;
     CameraOptions camera;
+    AlchemyFlags alchemy;  // --ao alchemy
+    BlurFlags blur;
+    CLI::Option* radiusOption = nullptr;
 };
 
 const std::map<std::string, trace::Falloff> kFalloffs = {
@@ -63,6 +68,13 @@ void run(const RenderOptions& o) {
         throw Error("--" + std::string(e.what()));
     }
     if (!(o.exposure >= -20.0f && o.exposure <= 20.0f)) fail("--exposure", "must be in [-20, 20] EV");
+    ssao::AlchemySettings alchemy;
+    ssao::BilateralSettings blur;
+    if (o.ao == "alchemy") {
+        alchemy = o.alchemy.settings(o.radiusOption->count() > 0 ? o.radius : std::string());
+        alchemy.seed = o.seed;
+        blur = o.blur.settings();
+    }
 
     ThreadLimit limit(o.threads);
     LoadedScene loaded = loadSceneArgument(o.scene);
@@ -89,12 +101,18 @@ void run(const RenderOptions& o) {
         Progress p("primary rays", showProgress);
         trace::GBufferSettings gs;
         gs.supersample = o.supersample;
-        gbuffer = trace::renderGBuffer(*tracer, camera, gs, [&](double f) { p(f); });
+        // Alchemy's guard band renders a larger G-buffer and crops it after the AO pass.
+        const Camera gbufferCamera = o.ao == "alchemy" ? ssao::guardBandCamera(camera, alchemy.guardBand) : camera;
+        gbuffer = trace::renderGBuffer(*tracer, gbufferCamera, gs, [&](double f) { p(f); });
     }
     Image ao;
     if (o.ao == "raytraced") {
         Progress p("ambient occlusion", showProgress);
         ao = trace::ambientObscurance(*tracer, gbuffer, aoSettings, [&](double f) { p(f); });
+    } else if (o.ao == "alchemy") {
+        Image raw = ssao::alchemyAO(gbuffer, alchemy);
+        gbuffer = ssao::cropGuardBand(gbuffer, camera, alchemy.guardBand);
+        ao = ssao::bilateralFilter(raw, gbuffer, blur);
     }
 
     render::Frame frame = render::shade(gbuffer, sh, ao, environment);
@@ -120,6 +138,10 @@ void run(const RenderOptions& o) {
     std::printf("wrote %s: %dx%d, scene %s, AO %s", o.output.c_str(), camera.width, camera.height, loaded.name.c_str(),
                 o.ao.c_str());
     if (o.ao == "raytraced") std::printf(" (%s, r = %s m, %d rays)", o.falloff.c_str(), o.radius.c_str(), o.rays);
+    if (o.ao == "alchemy")
+        std::printf(" (%s, r = %g m, intensity %g, contrast %g, %d samples, blur %s)",
+                    alchemy.formulation == ssao::AlchemyFormulation::Paper ? "paper" : "chapter", double(alchemy.radius),
+                    double(alchemy.intensity), double(alchemy.contrast), alchemy.samples, o.blur.mode.c_str());
     std::printf(", %.2f s\n", secondsSince(start));
 }
 
@@ -132,10 +154,13 @@ void addRenderCommand(CLI::App& app) {
         ->capture_default_str();
     cmd->add_option("-o,--output", o->output, "Output image: .png (tonemapped sRGB) or .exr (linear radiance)")
         ->capture_default_str();
-    cmd->add_option("--ao", o->ao, "Ambient occlusion: none, or raytraced (Monte Carlo ground truth)")
-        ->check(CLI::IsMember({"none", "raytraced"}))
+    cmd->add_option("--ao", o->ao,
+                    "Ambient occlusion: none, raytraced (Monte Carlo ground truth) or alchemy (screen space)")
+        ->check(CLI::IsMember({"none", "raytraced", "alchemy"}))
         ->capture_default_str();
-    cmd->add_option("--ao-radius", o->radius, "Occlusion radius r in meters, or inf")->capture_default_str();
+    o->radiusOption = cmd->add_option("--ao-radius", o->radius,
+                                      "Occlusion radius r in meters, or inf (alchemy: finite, default 0.5 or the preset's)")
+                          ->capture_default_str();
     cmd->add_option("--ao-rays", o->rays, "Rays per pixel, [1, 1048576]")->capture_default_str();
     cmd->add_option("--ao-falloff", o->falloff,
                     "binary (occlusion within r), alchemy (g = u t / max(u,t)^2 within r), "
@@ -158,6 +183,8 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_option("--threads", o->threads, "Worker threads (0 = all cores)")->capture_default_str();
     cmd->add_flag("-q,--quiet", o->quiet, "No progress bars");
     o->camera.add(*cmd);
+    o->alchemy.add(*cmd, false);
+    o->blur.add(*cmd);
     cmd->callback([o] { run(*o); });
 }
 

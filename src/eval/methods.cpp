@@ -1,0 +1,67 @@
+// The registry of screen-space AO methods (include/obscura/ao_methods.h).
+#include "obscura/ao_methods.h"
+
+#include "obscura/alchemy.h"
+#include "obscura/error.h"
+
+#include <algorithm>
+
+namespace obscura::eval {
+
+namespace {
+
+ssao::AlchemySettings alchemySettings(ssao::AlchemyFormulation formulation, const MethodOptions& o) {
+    ssao::AlchemySettings s;
+    s.formulation = formulation;
+    if (o.samples > 0) s.samples = o.samples;
+    if (o.radius > 0.0f) s.radius = o.radius;
+    s.seed = o.seed;
+    return s;
+}
+
+AoMethod alchemy(const char* name, const char* description, ssao::AlchemyFormulation f) {
+    return {name, description,
+            [f](const GBuffer& g, const MethodOptions& o) {
+                Image raw = ssao::alchemyAO(g, alchemySettings(f, o));
+                return ssao::bilateralFilter(raw, g, o.blur);
+            },
+            [f](const MethodOptions& o, int rays) { return ssao::rayTracedEquivalent(alchemySettings(f, o), rays); }};
+}
+
+} // namespace
+
+const std::vector<AoMethod>& aoMethods() {
+    static const std::vector<AoMethod> methods = {
+        alchemy("alchemy", "Alchemy AO, McGuire et al. 2011 eq. 10 (r 0.5 m, sigma 1, k 1, 12 samples)",
+                ssao::AlchemyFormulation::Paper),
+        alchemy("alchemy-chapter", "Alchemy AO as the IBL chapter writes it (c = 0.1 R, bias subtracted)",
+                ssao::AlchemyFormulation::Chapter),
+    };
+    return methods;
+}
+
+const AoMethod& findAoMethod(const std::string& name) {
+    std::string names;
+    for (const AoMethod& m : aoMethods()) {
+        if (m.name == name) return m;
+        names += (names.empty() ? "" : ", ") + m.name;
+    }
+    fail("--methods", "unknown AO method '" + name + "' (known: " + names + ")");
+}
+
+std::vector<const AoMethod*> parseMethodList(const std::string& list) {
+    std::vector<const AoMethod*> out;
+    std::size_t start = 0;
+    while (start <= list.size()) {
+        std::size_t end = list.find(',', start);
+        if (end == std::string::npos) end = list.size();
+        const std::string name = list.substr(start, end - start);
+        if (name.empty()) fail("--methods", "empty method name in '" + list + "'");
+        const AoMethod* m = &findAoMethod(name);
+        if (std::find(out.begin(), out.end(), m) == out.end()) out.push_back(m);
+        start = end + 1;
+    }
+    return out;
+}
+
+} // namespace obscura::eval
