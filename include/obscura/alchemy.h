@@ -66,7 +66,8 @@ AlchemySettings alchemyPreset(const std::string& name);
 AlchemyConstants alchemyConstants(const AlchemySettings& settings, const Camera& bufferCamera);
 
 // The camera of a G-buffer with `guardBand` extra pixels on every side and the same focal length, so the
-// inner pixels see exactly what `camera` sees.
+// inner pixels see exactly what `camera` sees. A negative guardBand gives the inner camera of a buffer that
+// already has one.
 Camera guardBandCamera(const Camera& camera, int guardBand);
 // The inner image (or G-buffer) without its guard band.
 Image cropGuardBand(const Image& image, int guardBand);
@@ -77,14 +78,17 @@ GBuffer cropGuardBand(const GBuffer& gbuffer, const Camera& innerCamera, int gua
 // pixels without a usable neighbour face the camera. Returns a 3-channel image.
 Image normalsFromDepth(const Image& depth, const Camera& camera);
 
-// The G-buffer as the kernel reads it: view positions and normals as planes (structure of arrays).
+// The G-buffer as the kernel reads it, as the GPU pass will: the depth plane (one float per sample; the
+// view position is rebuilt from the pixel and the constants) and the centre pixel's normal.
 struct AlchemyInput {
     int width = 0, height = 0;
-    std::vector<float> px, py, pz;  // view position; sky pixels sit at z = +1e18 (far outside any radius)
-    std::vector<float> nx, ny, nz;  // view normal
-    std::vector<float> depth;       // linear depth, +inf for sky
+    const float* depth = nullptr;   // width * height linear depths, +inf for sky
+    const float* normal = nullptr;  // width * height * 3 view normals (x, y, z)
+    Image rebuiltNormals;           // owns the normals when they are rebuilt from depth
 };
-AlchemyInput alchemyInput(const GBuffer& gbuffer, const AlchemyConstants& k, bool normalsFromDepth);
+// References the G-buffer's depth and normals (or rebuilds normals into the input); the G-buffer must
+// outlive the input.
+AlchemyInput alchemyInput(const GBuffer& gbuffer, bool normalsFromDepth);
 
 // Unit-radius spiral offsets for each pixel class and each sample count a pixel can get.
 struct SpiralTable {
@@ -99,6 +103,13 @@ SpiralTable alchemySpiral(const AlchemyConstants& k);
 
 // Raw obscurance of pixel (x, y) of the buffers, before cropping. Hot path: no checks.
 float alchemyPixel(const AlchemyConstants& k, const AlchemyInput& in, const SpiralTable& spiral, int x, int y);
+
+// The same as alchemyPixel for the pixels [x0, x1) of row y (x1 - x0 <= 64), all at once: each sample index
+// is evaluated for the whole segment before the next, so the loop over pixels vectorises (gathers). Same
+// operations in the same order, so the same bits as alchemyPixel. Needs the level of detail off (one
+// sample count for every pixel). Hot path: no checks.
+void alchemyRow(const AlchemyConstants& k, const AlchemyInput& in, const SpiralTable& spiral, int y, int x0, int x1,
+                float* out);
 
 // Raw obscurance A in [0,1] for every pixel, guard band cropped: a 1-channel image of
 // (width - 2 guardBand) x (height - 2 guardBand). Sky pixels are 1. Validates the G-buffer (size, NaN

@@ -14,10 +14,13 @@ namespace obscura::ssao {
 
 namespace {
 
-// A sky pixel's view point: far outside any radius, yet v.v (~1e36) stays finite in float.
-constexpr float kSkyZ = 1e18f;
-
 bool isSkyDepth(float d) { return !(d < 1e30f); }
+
+// Exact floor without a libm call (SSE2 has no rounding instruction): truncate, then step down below zero.
+inline int floorToInt(float v) {
+    const int i = int(v);
+    return i - (float(i) > v ? 1 : 0);
+}
 
 // 4 x 4 Bayer order: neighbouring pixels get rotations far apart, so a small blur sees all of them.
 constexpr int kBayer4[16] = {0, 8, 2, 10, 12, 4, 14, 6, 3, 11, 1, 9, 15, 7, 13, 5};
@@ -35,13 +38,13 @@ void AlchemySettings::validate() const {
     checkRange(bias >= 0.0f && bias <= 1.0f, "bias", "[0, 1] m", double(bias));
     checkRange(epsilon > 0.0f && epsilon <= 1.0f, "epsilon", "(0, 1] m^2", double(epsilon));
     checkRange(samples >= 1 && samples <= kAlchemyMaxSamples, "samples", "[1, 1024]", samples);
-    checkRange(maxRadiusPixels >= 1.0f && maxRadiusPixels <= 4096.0f, "max radius", "[1, 4096] px",
+    checkRange(maxRadiusPixels >= 1.0f && maxRadiusPixels <= 4096.0f, "max-radius", "[1, 4096] px",
                double(maxRadiusPixels));
-    checkRange(lodRadiusPixels >= 0.0f && lodRadiusPixels <= 4096.0f, "lod radius", "[0, 4096] px",
+    checkRange(lodRadiusPixels >= 0.0f && lodRadiusPixels <= 4096.0f, "lod-radius", "[0, 4096] px",
                double(lodRadiusPixels));
     // The level of detail keeps one offset table per sample count; 256 counts x 16 classes is 4 MB.
     if (lodRadiusPixels > 0.0f && samples > 256) fail("samples", "at most 256 with the level of detail on");
-    checkRange(guardBand >= 0 && guardBand <= 1024, "guard band", "[0, 1024] px", guardBand);
+    checkRange(guardBand >= 0 && guardBand <= 1024, "guard-band", "[0, 1024] px", guardBand);
 }
 
 AlchemySettings alchemyPreset(const std::string& name) {
@@ -65,7 +68,7 @@ AlchemyConstants alchemyConstants(const AlchemySettings& s, const Camera& camera
     s.validate();
     camera.validate();
     if (camera.width <= 2 * s.guardBand || camera.height <= 2 * s.guardBand)
-        fail("guard band", std::to_string(s.guardBand) + " px leaves nothing of a " + std::to_string(camera.width) +
+        fail("guard-band", std::to_string(s.guardBand) + " px leaves nothing of a " + std::to_string(camera.width) +
                                "x" + std::to_string(camera.height) + " buffer");
     AlchemyConstants k{};
     k.width = camera.width;
@@ -169,33 +172,17 @@ Image normalsFromDepth(const Image& depth, const Camera& camera) {
     return out;
 }
 
-AlchemyInput alchemyInput(const GBuffer& g, const AlchemyConstants& k, bool rebuildNormals) {
+AlchemyInput alchemyInput(const GBuffer& g, bool rebuildNormals) {
     AlchemyInput in;
-    in.width = k.width;
-    in.height = k.height;
-    const std::size_t n = std::size_t(k.width) * std::size_t(k.height);
-    for (auto* v : {&in.px, &in.py, &in.pz, &in.nx, &in.ny, &in.nz}) v->resize(n);
-    in.depth.assign(g.depth.pixels.begin(), g.depth.pixels.end());
-    const Image rebuilt = rebuildNormals ? normalsFromDepth(g.depth, g.camera) : Image();
-    const Image& normals = rebuildNormals ? rebuilt : g.normal;
-    parallelFor(std::size_t(k.height), [&](std::size_t y0, std::size_t y1) {
-        for (std::size_t y = y0; y < y1; ++y)
-            for (std::size_t x = 0; x < std::size_t(k.width); ++x) {
-                const std::size_t i = y * std::size_t(k.width) + x;
-                const float d = in.depth[i];
-                if (isSkyDepth(d)) {
-                    in.px[i] = in.py[i] = 0.0f;
-                    in.pz[i] = kSkyZ;
-                } else {
-                    in.px[i] = ((float(x) + 0.5f) * k.viewScaleX + k.viewOffsetX) * d;
-                    in.py[i] = ((float(y) + 0.5f) * k.viewScaleY + k.viewOffsetY) * d;
-                    in.pz[i] = -d;
-                }
-                in.nx[i] = normals.pixels[3 * i];
-                in.ny[i] = normals.pixels[3 * i + 1];
-                in.nz[i] = normals.pixels[3 * i + 2];
-            }
-    });
+    in.width = g.width();
+    in.height = g.height();
+    in.depth = g.depth.pixels.data();
+    if (rebuildNormals) {
+        in.rebuiltNormals = normalsFromDepth(g.depth, g.camera);
+        in.normal = in.rebuiltNormals.pixels.data();
+    } else {
+        in.normal = g.normal.pixels.data();
+    }
     return in;
 }
 
@@ -224,33 +211,108 @@ float alchemyPixel(const AlchemyConstants& k, const AlchemyInput& in, const Spir
     const std::size_t c = std::size_t(y) * std::size_t(k.width) + std::size_t(x);
     const float d = in.depth[c];
     if (isSkyDepth(d)) return 1.0f;
-    const float cx = in.px[c], cy = in.py[c], cz = in.pz[c];
-    const float nx = in.nx[c], ny = in.ny[c], nz = in.nz[c];
+    const float fx = float(x) + 0.5f, fy = float(y) + 0.5f;
+    const float cx = (fx * k.viewScaleX + k.viewOffsetX) * d, cy = (fy * k.viewScaleY + k.viewOffsetY) * d, cz = -d;
+    const float nx = in.normal[3 * c], ny = in.normal[3 * c + 1], nz = in.normal[3 * c + 2];
     const float radiusPixels = std::min(k.radius * k.focalPixels / d, k.maxRadiusPixels);
     int count = k.samples;
     if (k.lodRadiusPixels > 0.0f && radiusPixels < k.lodRadiusPixels)
         count = std::clamp(int(std::ceil(float(k.samples) * radiusPixels / k.lodRadiusPixels)), k.minSamples, k.samples);
     const float* offsets = spiral.at(count, (y % kAlchemyClassTile) * kAlchemyClassTile + x % kAlchemyClassTile);
-    const float fx = float(x) + 0.5f, fy = float(y) + 0.5f;
     // Paper: + z_C beta with z_C < 0; chapter: - bias. Both are one constant per pixel.
     const float shift = k.formulation == kAlchemyPaper ? cz * k.bias : -k.bias;
+    // The paper drops samples at |v| >= r, the chapter's step() keeps |v| = r: one ulp of r^2 apart.
+    const float radius2 = k.formulation == kAlchemyPaper ? k.radius2 : std::nextafter(k.radius2, INFINITY);
+    const bool paper = k.formulation == kAlchemyPaper;
     float sum = 0.0f;
     for (int i = 0; i < count; ++i) {
-        const int sx = int(std::floor(fx + offsets[2 * i] * radiusPixels));
-        const int sy = int(std::floor(fy + offsets[2 * i + 1] * radiusPixels));
-        if (sx < 0 || sy < 0 || sx >= k.width || sy >= k.height) continue;  // unseen: empty
-        const std::size_t j = std::size_t(sy) * std::size_t(k.width) + std::size_t(sx);
-        const float vx = in.px[j] - cx, vy = in.py[j] - cy, vz = in.pz[j] - cz;
+        const int sx = floorToInt(fx + offsets[2 * i] * radiusPixels);
+        const int sy = floorToInt(fy + offsets[2 * i + 1] * radiusPixels);
+        if (unsigned(sx) >= unsigned(k.width) || unsigned(sy) >= unsigned(k.height)) continue;  // unseen: empty
+        // A sky sample (+inf) becomes a point 1e18 m away: finite arithmetic, and far outside the radius.
+        const float ds = std::min(in.depth[std::size_t(sy) * std::size_t(k.width) + std::size_t(sx)], 1e18f);
+        const float vx = ((float(sx) + 0.5f) * k.viewScaleX + k.viewOffsetX) * ds - cx;
+        const float vy = ((float(sy) + 0.5f) * k.viewScaleY + k.viewOffsetY) * ds - cy;
+        const float vz = -ds - cz;
         const float vv = vx * vx + vy * vy + vz * vz;
-        const float vn = vx * nx + vy * ny + vz * nz;
-        if (k.formulation == kAlchemyPaper) {
-            if (vv < k.radius2) sum += std::max(0.0f, vn + shift) / (vv + k.denominator);
-        } else {
-            if (vv <= k.radius2) sum += std::max(0.0f, vn + shift) / std::max(k.denominator, vv);
-        }
+        const float vn = std::max(0.0f, vx * nx + vy * ny + vz * nz + shift);
+        const float term = vn / (paper ? vv + k.denominator : std::max(k.denominator, vv));
+        // Heaviside term as a 0/1 factor: the test is data-dependent, so a branch would mispredict.
+        sum += term * float(vv < radius2);
     }
     const float a = std::max(0.0f, 1.0f - k.intensity / float(count) * sum);
     return k.contrast == 1.0f ? a : std::pow(a, k.contrast);
+}
+
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define OBSCURA_TARGET_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define OBSCURA_TARGET_CLONES
+#endif
+
+// Built for AVX2 too (gathers) and chosen at load time; fp-contract is off in ISO C++ mode, so every
+// version performs alchemyPixel's exact operations.
+OBSCURA_TARGET_CLONES void alchemyRow(const AlchemyConstants& k, const AlchemyInput& in, const SpiralTable& spiral,
+                                      int y, int x0, int x1, float* out) {
+    constexpr int kMax = 64;
+    const int n = x1 - x0;
+    float fx[kMax], cx[kMax], cy[kMax], cz[kMax], nx[kMax], ny[kMax], nz[kMax], rpx[kMax], shift[kMax], sum[kMax];
+    const std::size_t rowStart = std::size_t(y) * std::size_t(k.width);
+    const bool paper = k.formulation == kAlchemyPaper;
+    const float fy = float(y) + 0.5f;
+    for (int j = 0; j < n; ++j) {
+        const std::size_t c = rowStart + std::size_t(x0 + j);
+        const float d = in.depth[c];
+        fx[j] = float(x0 + j) + 0.5f;
+        cx[j] = (fx[j] * k.viewScaleX + k.viewOffsetX) * d;
+        cy[j] = (fy * k.viewScaleY + k.viewOffsetY) * d;
+        cz[j] = -d;
+        nx[j] = in.normal[3 * c];
+        ny[j] = in.normal[3 * c + 1];
+        nz[j] = in.normal[3 * c + 2];
+        rpx[j] = std::min(k.radius * k.focalPixels / d, k.maxRadiusPixels);
+        shift[j] = paper ? cz[j] * k.bias : -k.bias;
+        sum[j] = 0.0f;
+    }
+    // The offsets of the four pixel classes of this row, interleaved: sample i of class (x mod 4) is at 4 i + x mod 4.
+    const int classRow = (y % kAlchemyClassTile) * kAlchemyClassTile;
+    std::vector<float> ox(4 * std::size_t(k.samples)), oy(4 * std::size_t(k.samples));
+    for (int col = 0; col < kAlchemyClassTile; ++col) {
+        const float* o = spiral.at(k.samples, classRow + col);
+        for (int i = 0; i < k.samples; ++i) {
+            ox[4 * std::size_t(i) + std::size_t(col)] = o[2 * i];
+            oy[4 * std::size_t(i) + std::size_t(col)] = o[2 * i + 1];
+        }
+    }
+    const float radius2 = paper ? k.radius2 : std::nextafter(k.radius2, INFINITY);
+    const int width = k.width, height = k.height;
+    for (int i = 0; i < k.samples; ++i) {
+        float oxr[kMax], oyr[kMax];  // this sample's offset for each pixel of the segment
+        for (int j = 0; j < n; ++j) {
+            oxr[j] = ox[4 * std::size_t(i) + std::size_t((x0 + j) & 3)];
+            oyr[j] = oy[4 * std::size_t(i) + std::size_t((x0 + j) & 3)];
+        }
+        for (int j = 0; j < n; ++j) {
+            const int sx = floorToInt(fx[j] + oxr[j] * rpx[j]);
+            const int sy = floorToInt(fy + oyr[j] * rpx[j]);
+            const bool inside = (unsigned(sx) < unsigned(width)) & (unsigned(sy) < unsigned(height));
+            // An off-screen sample reads the centre instead and is then multiplied by 0.
+            const int index = inside ? sy * width + sx : y * width + x0 + j;
+            const float ds = std::min(in.depth[index], 1e18f);
+            const float vx = ((float(sx) + 0.5f) * k.viewScaleX + k.viewOffsetX) * ds - cx[j];
+            const float vy = ((float(sy) + 0.5f) * k.viewScaleY + k.viewOffsetY) * ds - cy[j];
+            const float vz = -ds - cz[j];
+            const float vv = vx * vx + vy * vy + vz * vz;
+            const float vn = std::max(0.0f, vx * nx[j] + vy * ny[j] + vz * nz[j] + shift[j]);
+            const float term = vn / (paper ? vv + k.denominator : std::max(k.denominator, vv));
+            sum[j] += term * float((vv < radius2) & inside);
+        }
+    }
+    for (int j = 0; j < n; ++j) {
+        const float a = std::max(0.0f, 1.0f - k.intensity / float(k.samples) * sum[j]);
+        const float v = k.contrast == 1.0f ? a : std::pow(a, k.contrast);
+        out[j] = isSkyDepth(in.depth[rowStart + std::size_t(x0 + j)]) ? 1.0f : v;
+    }
 }
 
 Image alchemyAO(const GBuffer& g, const AlchemySettings& s) {
@@ -265,18 +327,28 @@ Image alchemyAO(const GBuffer& g, const AlchemySettings& s) {
     } else {
         g.validate(what);
     }
-    const AlchemyInput in = alchemyInput(g, k, s.normalsFromDepth);
+    const AlchemyInput in = alchemyInput(g, s.normalsFromDepth);
     const SpiralTable spiral = alchemySpiral(k);
     const int gb = k.guardBand, w = k.width - 2 * gb, h = k.height - 2 * gb;
     Image out(w, h, 1);
-    parallelFor(
-        std::size_t(h),
-        [&](std::size_t y0, std::size_t y1) {
-            for (int y = int(y0); y < int(y1); ++y)
-                for (int x = 0; x < w; ++x)
-                    out.pixels[std::size_t(y) * std::size_t(w) + std::size_t(x)] = alchemyPixel(k, in, spiral, x + gb, y + gb);
-        },
-        4);
+    // Tiles of 64 x 16 pixels: neighbouring pixels sample overlapping discs, so a tile's samples share a
+    // footprint of (64 + 2 R_px) x (16 + 2 R_px) depths that stays in cache, where a whole row's would not.
+    constexpr int kTileW = 64, kTileH = 16;
+    const int tilesX = (w + kTileW - 1) / kTileW, tilesY = (h + kTileH - 1) / kTileH;
+    parallelFor(std::size_t(tilesX) * std::size_t(tilesY), [&](std::size_t t0, std::size_t t1) {
+        for (std::size_t t = t0; t < t1; ++t) {
+            const int x0 = int(t % std::size_t(tilesX)) * kTileW, y0 = int(t / std::size_t(tilesX)) * kTileH;
+            const int x1 = std::min(w, x0 + kTileW);
+            for (int y = y0; y < std::min(h, y0 + kTileH); ++y) {
+                float* row = &out.pixels[std::size_t(y) * std::size_t(w)];
+                if (k.minSamples == k.samples) {
+                    alchemyRow(k, in, spiral, y + gb, x0 + gb, x1 + gb, row + x0);
+                } else {
+                    for (int x = x0; x < x1; ++x) row[x] = alchemyPixel(k, in, spiral, x + gb, y + gb);
+                }
+            }
+        }
+    });
     return out;
 }
 

@@ -277,8 +277,11 @@ GtaoPixel gtaoPixel(const GtaoConstants& c, const GBuffer& g, int x, int y, int 
         } else {
             float h0 = -std::acos(std::clamp(horizonCos1, -1.0f, 1.0f));
             float h1 = std::acos(std::clamp(horizonCos0, -1.0f, 1.0f));
-            h0 = n + std::clamp(h0 - n, -kHalfPi, kHalfPi);
-            h1 = n + std::clamp(h1 - n, -kHalfPi, kHalfPi);
+            // Samples on the surface's own plane come back within float noise of its horizon (up to 5e-4 rad
+            // where acos is steep); they are that horizon, so an open surface integrates exactly like `open`.
+            // Snapping moves A by at most 2e-3^2 / 2, the integrand vanishing at the hemisphere's edge.
+            h0 = h0 - n < -kHalfPi + 2e-3f ? n - kHalfPi : std::min(h0, n + kHalfPi);
+            h1 = h1 - n > kHalfPi - 2e-3f ? n + kHalfPi : std::max(h1, n - kHalfPi);
             ArcWeights w = arc(c, h0, h1, n);
             sliceVisibility = w.visibility;
             alongV = w.alongV;
@@ -287,11 +290,11 @@ GtaoPixel gtaoPixel(const GtaoConstants& c, const GBuffer& g, int x, int y, int 
         // eq. 8: the projected normal's length restores the cosine against the true normal.
         const float normalScale = c.weighting == GTAO_WEIGHTING_UNIFORM ? 1.0f : projectedLength;
         visibility += normalScale * sliceVisibility;
-        // The slice's value with nothing in the way: n sin n + cos n (cosine), 1 (uniform).
-        unoccluded += normalScale * (c.weighting == GTAO_WEIGHTING_UNIFORM ? 1.0f : n * std::sin(n) + std::cos(n));
-        // Control variate for the bent normal: subtract the slice's unoccluded mean direction, whose
-        // average over phi is known, (2/3) N, and add that back after the loop.
+        // The slice with nothing in the way: n sin n + cos n (cosine), 1 (uniform), computed by the same
+        // arithmetic as an open arc so that an open surface gives exactly 1. Its bent-normal part is a control
+        // variate: subtracted here, its average over phi, (2/3) N, added back after the loop.
         const ArcWeights open = arc(c, n - kHalfPi, n + kHalfPi, n);
+        unoccluded += normalScale * open.visibility;
         bent += (v * (alongV - open.alongV) + t * (alongT - open.alongT)) * projectedLength;
     }
     // Eq. 8 averages over phi, where the unoccluded values average to exactly 1; dividing by their sum

@@ -233,6 +233,23 @@ TEST(Alchemy, LevelOfDetailOnlyChangesDistantPixels) {
     EXPECT_EQ(full.pixels, lod.pixels);
 }
 
+// The row-batched fast path (alchemyRow, used by alchemyAO) performs alchemyPixel's operations in the same
+// order, so the two agree bit for bit, including off-screen samples, sky and contrast, for both formulations.
+TEST(Alchemy, RowPathEqualsPixelPathBitForBit) {
+    const Camera cam = camera({0.4f, 2.0f, 5.5f}, {-0.2f, 0.7f, -1.0f}, 150, 70);
+    GBuffer g = render("demo", cam);
+    for (AlchemySettings s : {AlchemySettings{}, alchemyPreset("scene"), chapter()}) {
+        s.samples = 19;
+        Image fast = alchemyAO(g, s);
+        AlchemyConstants k = alchemyConstants(s, cam);
+        AlchemyInput in = alchemyInput(g, false);
+        SpiralTable spiral = alchemySpiral(k);
+        for (int y = 0; y < cam.height; ++y)
+            for (int x = 0; x < cam.width; ++x)
+                ASSERT_EQ(fast.at(x, y), alchemyPixel(k, in, spiral, x, y)) << x << "," << y;
+    }
+}
+
 TEST(Alchemy, SameBitsOnAnyThreadCount) {
     GBuffer g = render("demo", camera({0.4f, 2.0f, 5.5f}, {-0.2f, 0.7f, -1.0f}, 120, 80));
     for (AlchemySettings s : {AlchemySettings{}, alchemyPreset("scene")}) {

@@ -1,8 +1,10 @@
 // `obscura render`: a scene lit by an environment, modulated by ambient occlusion, tonemapped to PNG.
+#include "ao_options.h"
 #include "cli_common.h"
 #include "commands.h"
 #include "gtao_cli.h"
 
+#include "obscura/alchemy.h"
 #include "obscura/camera_io.h"
 #include "obscura/error.h"
 #include "obscura/image_io.h"
@@ -39,6 +41,9 @@ struct RenderOptions {
     int threads = 0;
     bool quiet = false;
     CameraOptions camera;
+    AlchemyFlags alchemy;  // --ao alchemy
+    BlurFlags blur;
+    CLI::Option* radiusOption = nullptr;
     GtaoOptions gtao;
 };
 
@@ -65,6 +70,13 @@ void run(const RenderOptions& o) {
         throw Error("--" + std::string(e.what()));
     }
     if (!(o.exposure >= -20.0f && o.exposure <= 20.0f)) fail("--exposure", "must be in [-20, 20] EV");
+    ssao::AlchemySettings alchemy;
+    ssao::BilateralSettings blur;
+    if (o.ao == "alchemy") {
+        alchemy = o.alchemy.settings(o.radiusOption->count() > 0 ? o.radius : std::string());
+        alchemy.seed = o.seed;
+        blur = o.blur.settings();
+    }
     if (o.ao == "gtao") {
         o.gtao.validate(o.aovDir);
         o.gtao.settings(aoSettings.radius);  // throws on a bad value before any work
@@ -95,12 +107,18 @@ void run(const RenderOptions& o) {
         Progress p("primary rays", showProgress);
         trace::GBufferSettings gs;
         gs.supersample = o.supersample;
-        gbuffer = trace::renderGBuffer(*tracer, camera, gs, [&](double f) { p(f); });
+        // Alchemy's guard band renders a larger G-buffer and crops it after the AO pass.
+        const Camera gbufferCamera = o.ao == "alchemy" ? ssao::guardBandCamera(camera, alchemy.guardBand) : camera;
+        gbuffer = trace::renderGBuffer(*tracer, gbufferCamera, gs, [&](double f) { p(f); });
     }
     Image ao;
     if (o.ao == "raytraced") {
         Progress p("ambient occlusion", showProgress);
         ao = trace::ambientObscurance(*tracer, gbuffer, aoSettings, [&](double f) { p(f); });
+    } else if (o.ao == "alchemy") {
+        Image raw = ssao::alchemyAO(gbuffer, alchemy);
+        gbuffer = ssao::cropGuardBand(gbuffer, camera, alchemy.guardBand);
+        ao = ssao::bilateralFilter(raw, gbuffer, blur);
     }
     GtaoFrame gtao;
     if (o.ao == "gtao") {
@@ -135,6 +153,10 @@ void run(const RenderOptions& o) {
     std::printf("wrote %s: %dx%d, scene %s, AO %s", o.output.c_str(), camera.width, camera.height, loaded.name.c_str(),
                 o.ao.c_str());
     if (o.ao == "raytraced") std::printf(" (%s, r = %s m, %d rays)", o.falloff.c_str(), o.radius.c_str(), o.rays);
+    if (o.ao == "alchemy")
+        std::printf(" (%s, r = %g m, intensity %g, contrast %g, %d samples, blur %s)",
+                    alchemy.formulation == ssao::AlchemyFormulation::Paper ? "paper" : "chapter", double(alchemy.radius),
+                    double(alchemy.intensity), double(alchemy.contrast), alchemy.samples, o.blur.mode.c_str());
     if (o.ao == "gtao") std::printf(" (%s, r = %s m, %d frame(s))", o.gtao.quality.c_str(), o.radius.c_str(), o.gtao.frames);
     std::printf(", %.2f s\n", secondsSince(start));
 }
@@ -148,10 +170,13 @@ void addRenderCommand(CLI::App& app) {
         ->capture_default_str();
     cmd->add_option("-o,--output", o->output, "Output image: .png (tonemapped sRGB) or .exr (linear radiance)")
         ->capture_default_str();
-    cmd->add_option("--ao", o->ao, "Ambient occlusion: none, raytraced (Monte Carlo ground truth), gtao (screen space)")
-        ->check(CLI::IsMember({"none", "raytraced", "gtao"}))
+    cmd->add_option("--ao", o->ao,
+                    "Ambient occlusion: none, raytraced (Monte Carlo ground truth), alchemy or gtao (screen space)")
+        ->check(CLI::IsMember({"none", "raytraced", "alchemy", "gtao"}))
         ->capture_default_str();
-    cmd->add_option("--ao-radius", o->radius, "Occlusion radius r in meters, or inf")->capture_default_str();
+    o->radiusOption = cmd->add_option("--ao-radius", o->radius,
+                                      "Occlusion radius r in meters, or inf (alchemy: finite, default 0.5 or the preset's)")
+                          ->capture_default_str();
     cmd->add_option("--ao-rays", o->rays, "Rays per pixel, [1, 1048576]")->capture_default_str();
     cmd->add_option("--ao-falloff", o->falloff,
                     "binary (occlusion within r), alchemy (g = u t / max(u,t)^2 within r), "
@@ -174,6 +199,8 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_option("--threads", o->threads, "Worker threads (0 = all cores)")->capture_default_str();
     cmd->add_flag("-q,--quiet", o->quiet, "No progress bars");
     o->camera.add(*cmd);
+    o->alchemy.add(*cmd, false);
+    o->blur.add(*cmd);
     o->gtao.add(*cmd);
     cmd->callback([o] { run(*o); });
 }

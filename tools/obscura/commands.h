@@ -11,6 +11,9 @@ void addRenderCommand(CLI::App& app);
 void addGBufferCommand(CLI::App& app);
 void addScenesCommand(CLI::App& app);
 void addBenchCommand(CLI::App& app);
+void addAoCommand(CLI::App& app);
+void addCompareCommand(CLI::App& app);
+void addAlchemyBench(CLI::App& bench);
 void addGtaoBench(CLI::App& bench);  // `bench gtao`, registered by addBenchCommand
 
 } // namespace obscura::cli

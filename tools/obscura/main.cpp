@@ -20,6 +20,8 @@ int main(int argc, char** argv) {
     obscura::cli::addGBufferCommand(app);
     obscura::cli::addScenesCommand(app);
     obscura::cli::addBenchCommand(app);
+    obscura::cli::addAoCommand(app);
+    obscura::cli::addCompareCommand(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

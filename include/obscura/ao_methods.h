@@ -1,0 +1,43 @@
+// The screen-space AO methods by name, for the commands that run any of them (`obscura compare`,
+// `obscura ao`): each entry computes AO on a G-buffer and names the ray-traced settings of the integral it
+// estimates, so it can be measured against ground truth. A new method is one entry in src/eval/methods.cpp.
+//
+// Errors: findAoMethod()/parseMethodList() throw obscura::Error for an unknown name; compute() throws for
+// bad settings or buffers.
+#pragma once
+
+#include "obscura/bilateral.h"
+#include "obscura/gbuffer.h"
+#include "obscura/image.h"
+#include "obscura/trace.h"
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace obscura::eval {
+
+// Knobs every method understands; 0 keeps the method's own default.
+struct MethodOptions {
+    int samples = 0;                      // samples (or directions x steps) per pixel
+    float radius = 0.0f;                  // world-space radius, m
+    ssao::BilateralSettings blur{ssao::BlurMode::None};  // filter applied after the raw estimate
+    std::uint32_t seed = 0;
+};
+
+struct AoMethod {
+    std::string name;
+    std::string description;  // one line
+    // Obscurance in [0, 1], one channel of the G-buffer's size; sky 1.
+    std::function<Image(const GBuffer&, const MethodOptions&)> compute;
+    // The ray-traced settings (falloff, radius) of the integral the method estimates, with `rays` rays.
+    std::function<trace::ObscuranceSettings(const MethodOptions&, int rays)> reference;
+};
+
+const std::vector<AoMethod>& aoMethods();
+const AoMethod& findAoMethod(const std::string& name);
+// "alchemy,gtao" -> the methods, in order, without duplicates.
+std::vector<const AoMethod*> parseMethodList(const std::string& commaSeparated);
+
+} // namespace obscura::eval

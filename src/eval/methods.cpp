@@ -1,0 +1,96 @@
+// The registry of screen-space AO methods (include/obscura/ao_methods.h).
+#include "obscura/ao_methods.h"
+
+#include "obscura/alchemy.h"
+#include "obscura/error.h"
+#include "obscura/gtao.h"
+
+#include <algorithm>
+
+namespace obscura::eval {
+
+namespace {
+
+ssao::AlchemySettings alchemySettings(ssao::AlchemyFormulation formulation, const MethodOptions& o) {
+    ssao::AlchemySettings s;
+    s.formulation = formulation;
+    if (o.samples > 0) s.samples = o.samples;
+    if (o.radius > 0.0f) s.radius = o.radius;
+    s.seed = o.seed;
+    return s;
+}
+
+AoMethod alchemy(const char* name, const char* description, ssao::AlchemyFormulation f) {
+    return {name, description,
+            [f](const GBuffer& g, const MethodOptions& o) {
+                Image raw = ssao::alchemyAO(g, alchemySettings(f, o));
+                return ssao::bilateralFilter(raw, g, o.blur);
+            },
+            [f](const MethodOptions& o, int rays) { return ssao::rayTracedEquivalent(alchemySettings(f, o), rays); }};
+}
+
+// GTAO with a preset; `samples` > 0 sets the slice count to samples / (2 x steps per side), the horizon
+// samples per pixel being 2 x slices x steps. Its integral is binary AO of the same radius (default 1 m).
+ssao::GtaoSettings gtaoSettings(ssao::GtaoQuality quality, const MethodOptions& o) {
+    ssao::GtaoSettings s;
+    ssao::applyQuality(s, quality);
+    if (o.radius > 0.0f) s.radius = o.radius;
+    if (o.samples > 0) s.sliceCount = std::clamp(o.samples / (2 * s.stepsPerSide), 1, 64);
+    return s;
+}
+
+AoMethod gtao(const char* name, const char* description, ssao::GtaoQuality quality) {
+    return {name, description,
+            [quality](const GBuffer& g, const MethodOptions& o) {
+                ssao::GtaoResult r = ssao::computeGtao(g, gtaoSettings(quality, o));
+                return ssao::bilateralFilter(r.visibility, g, o.blur);
+            },
+            [quality](const MethodOptions& o, int rays) {
+                trace::ObscuranceSettings ref;
+                ref.falloff = trace::Falloff::Binary;
+                ref.radius = gtaoSettings(quality, o).radius;
+                ref.rays = rays;
+                return ref;
+            }};
+}
+
+} // namespace
+
+const std::vector<AoMethod>& aoMethods() {
+    static const std::vector<AoMethod> methods = {
+        alchemy("alchemy", "Alchemy AO, McGuire et al. 2011 eq. 10 (r 0.5 m, sigma 1, k 1, 12 samples)",
+                ssao::AlchemyFormulation::Paper),
+        alchemy("alchemy-chapter", "Alchemy AO as the IBL chapter writes it (c = 0.1 R, bias subtracted)",
+                ssao::AlchemyFormulation::Chapter),
+        gtao("gtao", "GTAO, Jimenez et al. 2016, high preset (3 slices x 3 steps per side, r 1 m, binary AO)",
+             ssao::GtaoQuality::High),
+        gtao("gtao-ultra", "GTAO, ultra preset (9 slices x 3 steps per side, r 1 m, binary AO)", ssao::GtaoQuality::Ultra),
+    };
+    return methods;
+}
+
+const AoMethod& findAoMethod(const std::string& name) {
+    std::string names;
+    for (const AoMethod& m : aoMethods()) {
+        if (m.name == name) return m;
+        names += (names.empty() ? "" : ", ") + m.name;
+    }
+    fail("--methods", "unknown AO method '" + name + "' (known: " + names + ")");
+}
+
+std::vector<const AoMethod*> parseMethodList(const std::string& list) {
+    std::vector<const AoMethod*> out;
+    std::size_t start = 0;
+    while (start <= list.size()) {
+        std::size_t end = list.find(',', start);
+        if (end == std::string::npos) end = list.size();
+        const std::string name = list.substr(start, end - start);
+        if (name.empty()) fail("--methods", "empty method name in '" + list + "'");
+        const AoMethod* m = &findAoMethod(name);
+        if (std::find(out.begin(), out.end(), m) == out.end()) out.push_back(m);
+        start = end + 1;
+    }
+    return out;
+}
+
+} // namespace obscura::eval

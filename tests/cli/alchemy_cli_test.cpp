@@ -1,0 +1,149 @@
+// `obscura render --ao alchemy`, `obscura ao` and `obscura compare`: good runs write what they promise (the
+// AO of `ao` on a render's own buffers is the render's AO bit for bit); bad input gives one line naming the
+// file or flag, a non-zero exit and no output.
+#include "obscura/image_io.h"
+
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <sys/wait.h>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Result {
+    int code = -1;
+    std::string out;
+};
+
+Result run(const std::string& args) {
+    std::string cmd = std::string(OBSCURA_CLI) + " " + args + " 2>&1";
+    Result r;
+    FILE* pipe = popen(cmd.c_str(), "r");
+    if (!pipe) return r;
+    std::array<char, 4096> buf{};
+    std::size_t n;
+    while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
+    int status = pclose(pipe);
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return r;
+}
+
+class AlchemyCli : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir = fs::temp_directory_path() / ("obscura_alchemy_cli_" + std::to_string(getpid()) + "_" +
+                                           ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::remove_all(dir);
+        fs::create_directories(dir);
+    }
+    void TearDown() override { fs::remove_all(dir); }
+    std::string path(const std::string& name) const { return (dir / name).string(); }
+    void expectFailure(const std::string& args, const std::vector<std::string>& needles, int code = 1) {
+        std::size_t before = std::distance(fs::directory_iterator(dir), fs::directory_iterator{});
+        Result r = run(args);
+        EXPECT_EQ(r.code, code) << args << "\n" << r.out;
+        EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << "not one line: " << r.out;
+        EXPECT_EQ(r.out.rfind("obscura: error: ", 0), 0u) << r.out;
+        for (const std::string& n : needles) EXPECT_NE(r.out.find(n), std::string::npos) << "'" << n << "' not in: " << r.out;
+        std::size_t after = std::distance(fs::directory_iterator(dir), fs::directory_iterator{});
+        EXPECT_EQ(after, before) << "output left behind by: " << args;
+    }
+    fs::path dir;
+};
+
+} // namespace
+
+TEST_F(AlchemyCli, RenderAndAoAgreeBitForBit) {
+    for (const std::string blur : {"none", "separable", "2d"}) {
+        Result r = run("render demo --size 64x36 -q --ao alchemy --ao-samples 16 --blur " + blur + " -o " +
+                       path("f.png") + " --aov-dir " + path("aov"));
+        ASSERT_EQ(r.code, 0) << r.out;
+        EXPECT_NE(r.out.find("16 samples"), std::string::npos) << r.out;
+        r = run("ao --depth " + path("aov/depth.exr") + " --normal " + path("aov/normal.exr") + " --camera " +
+                path("aov/camera.json") + " --ao-samples 16 --blur " + blur + " -o " + path("ao.exr"));
+        ASSERT_EQ(r.code, 0) << r.out;
+        obscura::Image a = obscura::readExr(path("aov/ao.exr")), b = obscura::readExr(path("ao.exr"));
+        ASSERT_EQ(a.pixels.size(), b.pixels.size());
+        EXPECT_EQ(a.pixels, b.pixels) << blur;
+        double mean = 0;
+        for (float v : a.pixels) mean += double(v);
+        EXPECT_LT(mean / double(a.pixels.size()), 0.99);  // the room has occlusion
+    }
+}
+
+TEST_F(AlchemyCli, PresetsGuardBandAndDepthOnlyInput) {
+    for (const char* preset : {"scene", "closeup"}) {
+        Result r = run(std::string("render demo --size 48x32 -q --ao alchemy --ao-preset ") + preset +
+                       " --ao-guard-band 6 -o " + path("f.png") + " --aov-dir " + path("aov"));
+        ASSERT_EQ(r.code, 0) << r.out;
+        EXPECT_NE(r.out.find("chapter"), std::string::npos) << r.out;
+        obscura::Image ao = obscura::readExr(path("aov/ao.exr"));
+        EXPECT_EQ(ao.width, 48);
+        EXPECT_EQ(ao.height, 32);
+    }
+    Result r = run("ao --depth " + path("aov/depth.exr") + " --camera " + path("aov/camera.json") + " -o " + path("d.exr"));
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_TRUE(fs::is_regular_file(path("d.exr")));
+    // The combined G-buffer EXR of `obscura gbuffer` works as both --depth and --normal.
+    ASSERT_EQ(run("gbuffer demo --size 48x32 -q -o " + path("g.exr")).code, 0);
+    r = run("ao --depth " + path("g.exr") + " --normal " + path("g.exr") + " --camera " + path("g.camera.json") +
+            " -o " + path("c.exr"));
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_EQ(obscura::readExr(path("c.exr")).width, 48);
+}
+
+TEST_F(AlchemyCli, AoRejectsBadBuffers) {
+    ASSERT_EQ(run("gbuffer corner --size 24x16 -q -o " + path("g")).code, 0);
+    const std::string cam = " --camera " + path("g/camera.json");
+    obscura::Image depth = obscura::readExr(path("g/depth.exr"));
+    depth.at(5, 7) = NAN;
+    obscura::writeExr(path("nan.exr"), depth);
+    expectFailure("ao --depth " + path("nan.exr") + cam + " -o " + path("ao.exr"), {"nan.exr", "(5, 7)"});
+    expectFailure("ao --depth " + path("missing.exr") + cam + " -o " + path("ao.exr"), {"missing.exr"});
+    expectFailure("ao --depth " + path("g/normal.exr") + cam + " -o " + path("ao.exr"), {"normal.exr", "1 channel"});
+    ASSERT_EQ(run("gbuffer corner --size 20x16 -q -o " + path("small")).code, 0);
+    expectFailure("ao --depth " + path("small/depth.exr") + cam + " -o " + path("ao.exr"), {"depth.exr", "20x16", "24x16"});
+    expectFailure("ao --depth " + path("g/depth.exr") + " --normal " + path("small/normal.exr") + cam + " -o " +
+                      path("ao.exr"),
+                  {"normal.exr", "20x16"});
+    { std::ofstream(path("bad.json")) << "{\"width\": 24,"; }
+    expectFailure("ao --depth " + path("g/depth.exr") + " --camera " + path("bad.json") + " -o " + path("ao.exr"), {"bad.json"});
+    expectFailure("ao --depth " + path("g/depth.exr") + cam + " --ao-samples 0 -o " + path("ao.exr"), {"--ao-samples"});
+    expectFailure("ao --depth " + path("g/depth.exr") + cam + " --blur-radius 40 -o " + path("ao.exr"), {"--blur-radius"});
+    expectFailure("ao --depth " + path("g/depth.exr") + cam + " --ao-radius 0 -o " + path("ao.exr"), {"--ao-radius"});
+    expectFailure("ao --depth " + path("g/depth.exr") + cam + " --ao-guard-band 12 -o " + path("ao.exr"), {"guard-band"});
+    expectFailure("ao --depth " + path("g/depth.exr") + cam + " -o " + path("ao.png"), {"ao.png", "unsupported"});
+}
+
+TEST_F(AlchemyCli, RenderRejectsBadAlchemyFlags) {
+    const std::string base = "render plane --size 32x18 -q --ao alchemy -o " + path("f.png");
+    expectFailure(base + " --ao-intensity -1", {"--ao-intensity"});
+    expectFailure(base + " --ao-contrast 0", {"--ao-contrast"});
+    expectFailure(base + " --ao-radius inf", {"--ao-radius", "finite"});
+    expectFailure(base + " --ao-preset loud", {"--ao-preset"}, 2);
+    expectFailure(base + " --blur box", {"--blur"}, 2);
+}
+
+TEST_F(AlchemyCli, CompareReportsMetricsAndWritesThePicture) {
+    Result r = run("compare corner --methods alchemy,alchemy-chapter --size 48x32 --rays 64 --json -o " + path("c.png"));
+    ASSERT_EQ(r.code, 0) << r.out;
+    for (const char* key : {"\"mae\"", "\"rmse\"", "\"bias\"", "\"max\"", "\"alchemy-chapter\"", "\"surface_pixels\""})
+        EXPECT_NE(r.out.find(key), std::string::npos) << key << " in " << r.out;
+    obscura::Image sheet = obscura::readPng(path("c.png"));
+    EXPECT_EQ(sheet.width, 4 * 48 + 5 * 4);
+    EXPECT_GT(sheet.height, 2 * 32);
+    r = run("compare corner --size 48x32 --rays 16 -q -o " + path("t.png"));
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_NE(r.out.find("MAE"), std::string::npos) << r.out;
+    expectFailure("compare corner --methods alchemy,nope --size 48x32 -o " + path("x.png"), {"nope", "alchemy"});
+    expectFailure("compare corner --rays 0 --size 48x32 -o " + path("x.png"), {"--rays"});
+}

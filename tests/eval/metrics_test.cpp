@@ -1,0 +1,71 @@
+// Error metrics and the method registry (obscura::eval) on hand-made images with exact answers.
+#include "obscura/ao_methods.h"
+#include "obscura/error.h"
+#include "obscura/metrics.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace obscura::eval {
+namespace {
+
+GBuffer flat(int w, int h) {
+    GBuffer g;
+    g.camera.width = w;
+    g.camera.height = h;
+    g.depth = Image(w, h, 1, 2.0f);
+    g.normal = Image(w, h, 3);
+    for (std::size_t i = 0; i < g.depth.pixelCount(); ++i) g.normal.pixels[3 * i + 2] = 1.0f;
+    return g;
+}
+
+} // namespace
+
+// Errors e = {+0.2, -0.1, 0, +0.3} on four surface pixels and a sky pixel with a huge error that must be
+// ignored: MAE 0.15, bias 0.1, RMSE sqrt(0.14 / 4), max 0.3.
+TEST(Metrics, ExactOnAHandMadeImage) {
+    GBuffer g = flat(5, 1);
+    g.depth.at(4, 0) = INFINITY;
+    Image ref(5, 1, 1, 0.5f), est(5, 1, 1);
+    const float e[5] = {0.2f, -0.1f, 0.0f, 0.3f, -0.5f};
+    for (int x = 0; x < 5; ++x) est.at(x, 0) = 0.5f + e[x];
+    ErrorStats s = errorStats(est, ref, g);
+    EXPECT_EQ(s.pixels, 4u);
+    EXPECT_NEAR(s.mae, 0.15, 1e-7);
+    EXPECT_NEAR(s.bias, 0.1, 1e-7);
+    EXPECT_NEAR(s.rmse, std::sqrt(0.14 / 4), 1e-7);
+    EXPECT_NEAR(s.maxError, 0.3, 1e-7);
+}
+
+TEST(Metrics, ColoursAndSizeChecks) {
+    Vec3 white = signedErrorColor(0.0f, 0.5f), red = signedErrorColor(1.0f, 0.5f), blue = signedErrorColor(-0.5f, 0.5f);
+    EXPECT_EQ(white, Vec3(1.0f));
+    EXPECT_GT(red.x, red.z);
+    EXPECT_GT(blue.z, blue.x);
+    GBuffer g = flat(4, 4);
+    EXPECT_THROW(errorStats(Image(4, 3, 1), Image(4, 4, 1), g), Error);
+    EXPECT_THROW(errorStats(Image(4, 4, 3), Image(4, 4, 1), g), Error);
+}
+
+TEST(Methods, RegistryFindsAndRejectsNames) {
+    auto list = parseMethodList("alchemy,alchemy-chapter,alchemy");
+    ASSERT_EQ(list.size(), 2u);
+    EXPECT_EQ(list[0]->name, "alchemy");
+    EXPECT_THROW(parseMethodList("alchemy,,x"), Error);
+    try {
+        findAoMethod("hbao");
+        FAIL();
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("alchemy"), std::string::npos) << e.what();
+    }
+    // A flat plane facing the camera: every method gives 1, and its reference names a radius.
+    GBuffer g = flat(16, 12);
+    for (const AoMethod& m : aoMethods()) {
+        Image ao = m.compute(g, MethodOptions{});
+        for (float v : ao.pixels) EXPECT_EQ(v, 1.0f) << m.name;
+        EXPECT_GT(m.reference(MethodOptions{}, 64).radius, 0.0f) << m.name;
+    }
+}
+
+} // namespace obscura::eval

@@ -1,0 +1,46 @@
+// Flags of the screen-space AO settings shared by `render --ao alchemy`, `ao` and `compare`: the Alchemy
+// parameters with the chapter's presets, and the cross-bilateral blur.
+#pragma once
+
+#include "obscura/alchemy.h"
+#include "obscura/bilateral.h"
+
+#include <string>
+
+namespace CLI {
+class App;
+class Option;
+} // namespace CLI
+
+namespace obscura::cli {
+
+struct BlurFlags {
+    std::string mode = "separable";
+    int radius = 6;
+    float depthSigma = 0.05f;
+    void add(CLI::App& app);
+    // Validated; errors name the flag.
+    ssao::BilateralSettings settings() const;
+};
+
+struct AlchemyFlags {
+    std::string preset;
+    std::string formulation = "paper";
+    float intensity = 1.0f, contrast = 1.0f, bias = 1e-4f;
+    int samples = 12;
+    int guardBand = 0;
+    bool normalsFromDepth = false;
+    unsigned seed = 0;
+    // Registers --ao-preset, --ao-formulation, --ao-intensity, --ao-contrast, --ao-bias, --ao-samples,
+    // --ao-guard-band, --ao-normals-from-depth; and --ao-radius when `withRadius` (render has its own).
+    void add(CLI::App& app, bool withRadius);
+    // Preset first, then every flag given explicitly. `radiusText` is the --ao-radius value when the
+    // command registered it itself (empty: not given). Validated; errors name the flag.
+    ssao::AlchemySettings settings(const std::string& radiusText) const;
+
+    float radius = 0.5f;
+    CLI::Option *radiusOption = nullptr, *formulationOption = nullptr, *intensityOption = nullptr,
+                *contrastOption = nullptr, *biasOption = nullptr, *samplesOption = nullptr;
+};
+
+} // namespace obscura::cli

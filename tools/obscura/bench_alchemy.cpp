@@ -1,0 +1,130 @@
+// `obscura bench alchemy`: milliseconds per pass of the Alchemy AO CPU reference (estimator, separable and
+// 2-D bilateral blur) at 1280x720 and 1920x1080, on one thread and on all of them.
+#include "cli_common.h"
+#include "commands.h"
+
+#include "obscura/alchemy.h"
+#include "obscura/bilateral.h"
+#include "obscura/error.h"
+#include "obscura/parallel.h"
+#include "obscura/trace.h"
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <ctime>
+#include <functional>
+#include <memory>
+#include <vector>
+
+namespace obscura::cli {
+
+namespace {
+
+struct AlchemyBenchOptions {
+    std::string scene = "demo";
+    int samples = 12;
+    int repeats = 5;
+    int threads = 0;  // the "all threads" column; 0 = all cores
+    bool json = false;
+};
+
+struct Timing {
+    double wallMs = 0;  // median wall time
+    double cpuMs = 0;   // median process CPU time (all threads): on a shared machine, what the pass cost
+};
+
+double processCpuMs() {
+    timespec ts{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return 1000.0 * double(ts.tv_sec) + 1e-6 * double(ts.tv_nsec);
+}
+
+Timing median(int repeats, const std::function<void()>& body) {
+    std::vector<double> wall, cpu;
+    for (int i = 0; i < repeats; ++i) {
+        const double c0 = processCpuMs();
+        auto start = std::chrono::steady_clock::now();
+        body();
+        wall.push_back(1000.0 * secondsSince(start));
+        cpu.push_back(processCpuMs() - c0);
+    }
+    std::sort(wall.begin(), wall.end());
+    std::sort(cpu.begin(), cpu.end());
+    return {wall[wall.size() / 2], cpu[cpu.size() / 2]};
+}
+
+void runAlchemy(const AlchemyBenchOptions& o) {
+    if (o.samples < 1 || o.samples > 1024) fail("--samples", "must be in [1, 1024]");
+    if (o.repeats < 1 || o.repeats > 100) fail("--repeats", "must be in [1, 100]");
+    const int all = o.threads > 0 ? o.threads : hardwareThreads();
+    LoadedScene loaded = loadSceneArgument(o.scene);
+    trace::Tracer tracer(loaded.scene);
+    ssao::AlchemySettings settings;
+    settings.samples = o.samples;
+    ssao::BilateralSettings separable, twoD;
+    twoD.mode = ssao::BlurMode::TwoD;
+    nlohmann::json report;
+    report["scene"] = loaded.name;
+    report["samples"] = o.samples;
+    report["repeats"] = o.repeats;
+    if (!o.json) {
+        std::printf("obscura bench alchemy: scene %s, %d samples/px, paper defaults (r 0.5 m), blur radius 6 (13 taps),\n"
+                    "median of %d runs; wall ms per pass (process CPU ms in brackets)\n\n",
+                    loaded.name.c_str(), o.samples, o.repeats);
+        std::printf("%-10s %7s %17s %17s %17s %17s\n", "size", "threads", "alchemy", "blur separable", "blur 2d",
+                    "alchemy+separable");
+    }
+    const std::pair<int, int> sizes[] = {{1280, 720}, {1920, 1080}};
+    for (auto [w, h] : sizes) {
+        Camera camera = loaded.camera;
+        camera.width = w;
+        camera.height = h;
+        GBuffer g = trace::renderGBuffer(tracer, camera);
+        for (int threads : {1, all}) {
+            ThreadLimit limit(threads);
+            Image ao;
+            const Timing tAo = median(o.repeats, [&] { ao = ssao::alchemyAO(g, settings); });
+            const Timing tSep = median(o.repeats, [&] { (void)ssao::bilateralFilter(ao, g, separable); });
+            const Timing t2d = median(o.repeats, [&] { (void)ssao::bilateralFilter(ao, g, twoD); });
+            auto cell = [](double wall, double cpu) {
+                char b[32];
+                std::snprintf(b, sizeof b, "%.1f (%.1f)", wall, cpu);
+                return std::string(b);
+            };
+            if (!o.json)
+                std::printf("%4dx%-5d %7d %17s %17s %17s %17s\n", w, h, threads, cell(tAo.wallMs, tAo.cpuMs).c_str(),
+                            cell(tSep.wallMs, tSep.cpuMs).c_str(), cell(t2d.wallMs, t2d.cpuMs).c_str(),
+                            cell(tAo.wallMs + tSep.wallMs, tAo.cpuMs + tSep.cpuMs).c_str());
+            report["rows"].push_back({{"width", w},
+                                      {"height", h},
+                                      {"threads", threads},
+                                      {"alchemy_ms", tAo.wallMs},
+                                      {"blur_separable_ms", tSep.wallMs},
+                                      {"blur_2d_ms", t2d.wallMs},
+                                      {"alchemy_cpu_ms", tAo.cpuMs},
+                                      {"blur_separable_cpu_ms", tSep.cpuMs},
+                                      {"blur_2d_cpu_ms", t2d.cpuMs}});
+            if (threads == all) break;  // a one-core machine has one row
+        }
+    }
+    if (o.json) std::printf("%s\n", report.dump(2).c_str());
+}
+
+} // namespace
+
+void addAlchemyBench(CLI::App& bench) {
+    auto o = std::make_shared<AlchemyBenchOptions>();
+    CLI::App* cmd = bench.add_subcommand(
+        "alchemy", "Alchemy AO CPU passes (estimator, separable and 2-D blur) at 1280x720 and 1920x1080, ms");
+    cmd->add_option("--scene", o->scene, "Built-in scene or scene file")->capture_default_str();
+    cmd->add_option("--samples", o->samples, "Samples per pixel, [1, 1024]")->capture_default_str();
+    cmd->add_option("--repeats", o->repeats, "Runs per pass; the median is printed, [1, 100]")->capture_default_str();
+    cmd->add_option("--threads", o->threads, "Threads of the multithreaded rows (0 = all cores)")->capture_default_str();
+    cmd->add_flag("--json", o->json, "Print JSON instead of a table");
+    cmd->callback([o] { runAlchemy(*o); });
+}
+
+} // namespace obscura::cli

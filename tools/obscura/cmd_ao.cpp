@@ -1,0 +1,135 @@
+// `obscura ao`: screen-space AO of a user's own depth (and normal) buffers, with the camera they were
+// rendered with. Conventions in docs/FORMATS.md.
+#include "ao_options.h"
+#include "cli_common.h"
+#include "commands.h"
+
+#include "obscura/alchemy.h"
+#include "obscura/ao_methods.h"
+#include "obscura/camera_io.h"
+#include "obscura/error.h"
+#include "obscura/image_io.h"
+#include "obscura/parallel.h"
+
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+
+namespace obscura::cli {
+
+namespace {
+
+struct AoOptions {
+    std::string depth, normal, camera, output;
+    std::string method = "alchemy";
+    int threads = 0;
+    AlchemyFlags alchemy;
+    BlurFlags blur;
+};
+
+// The whole image when it has exactly names.size() channels, or the channels `names` of a combined
+// G-buffer EXR (the one `obscura gbuffer -o g.exr` writes: Z, N.X, N.Y, N.Z, albedo.*); otherwise fails
+// naming the file.
+Image channels(const Image& img, const std::vector<std::string>& names, const std::string& path, const char* what) {
+    const int n = int(names.size());
+    std::vector<int> index;
+    if (img.channels == n) {
+        for (int c = 0; c < n; ++c) index.push_back(c);
+    } else {
+        const auto& cn = img.channelNames;
+        const bool combined = std::find(cn.begin(), cn.end(), "N.X") != cn.end();
+        for (const std::string& name : names)
+            for (int c = 0; combined && c < int(cn.size()); ++c)
+                if (cn[std::size_t(c)] == name) index.push_back(c);
+        if (int(index.size()) != n)
+            fail(path, std::string(what) + " needs " + std::to_string(n) + " channel" + (n > 1 ? "s" : "") + ", has " +
+                           std::to_string(img.channels));
+    }
+    Image out(img.width, img.height, n);
+    for (std::size_t i = 0; i < out.pixelCount(); ++i)
+        for (int c = 0; c < n; ++c)
+            out.pixels[i * std::size_t(n) + std::size_t(c)] =
+                img.pixels[i * std::size_t(img.channels) + std::size_t(index[std::size_t(c)])];
+    return out;
+}
+
+void checkSize(const Image& img, const Camera& camera, const std::string& path, const std::string& cameraPath) {
+    if (img.width != camera.width || img.height != camera.height)
+        fail(path, "is " + std::to_string(img.width) + "x" + std::to_string(img.height) + " but " + cameraPath + " says " +
+                       std::to_string(camera.width) + "x" + std::to_string(camera.height));
+}
+
+void run(const AoOptions& o) {
+    auto start = std::chrono::steady_clock::now();
+    checkOutputPath("-o", o.output, {".exr"});
+    const eval::AoMethod& method = eval::findAoMethod(o.method);
+    const ssao::BilateralSettings blur = o.blur.settings();
+    ssao::AlchemySettings alchemy = o.alchemy.settings("");
+    if (o.method == "alchemy-chapter") alchemy.formulation = ssao::AlchemyFormulation::Chapter;
+    if (!o.method.starts_with("alchemy") && o.normal.empty())
+        fail("--normal", "method " + o.method + " needs a normal buffer");
+    ThreadLimit limit(o.threads);
+
+    GBuffer g;
+    g.camera = readCameraJson(o.camera);
+    g.depth = channels(readImage(o.depth), {"Z"}, o.depth, "depth");
+    checkSize(g.depth, g.camera, o.depth, o.camera);
+    for (int y = 0; y < g.height(); ++y)
+        for (int x = 0; x < g.width(); ++x) {
+            const float d = g.depth.at(x, y);
+            if (std::isnan(d) || d <= 0.0f)
+                fail(o.depth, "depth at pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") is " +
+                                  std::to_string(d) + " (linear view depth in m must be > 0, or +inf for sky)");
+        }
+    if (o.normal.empty()) {
+        alchemy.normalsFromDepth = true;
+        g.normal = ssao::normalsFromDepth(g.depth, g.camera);
+    } else {
+        g.normal = channels(readImage(o.normal), {"N.X", "N.Y", "N.Z"}, o.normal, "normal");
+        checkSize(g.normal, g.camera, o.normal, o.camera);
+        for (std::size_t i = 0; i < g.normal.pixels.size(); ++i)
+            if (!std::isfinite(g.normal.pixels[i]))
+                fail(o.normal, "normal at pixel index " + std::to_string(i / 3) + " is not finite");
+    }
+
+    Image ao;
+    if (o.method.starts_with("alchemy")) {
+        Image raw = ssao::alchemyAO(g, alchemy);
+        const int band = alchemy.guardBand;
+        const GBuffer cropped = ssao::cropGuardBand(g, ssao::guardBandCamera(g.camera, -band), band);
+        ao = ssao::bilateralFilter(raw, cropped, blur);
+    } else {
+        eval::MethodOptions mo;
+        mo.blur = blur;
+        ao = method.compute(g, mo);
+    }
+    ao.channelNames = {"Y"};
+    writeExr(o.output, ao);
+    std::printf("wrote %s: %dx%d %s AO, %.2f s\n", o.output.c_str(), ao.width, ao.height, o.method.c_str(),
+                secondsSince(start));
+}
+
+} // namespace
+
+void addAoCommand(CLI::App& app) {
+    auto o = std::make_shared<AoOptions>();
+    CLI::App* cmd = app.add_subcommand(
+        "ao", "Screen-space AO of your own depth (+ normal) buffers and camera (formats in docs/FORMATS.md)");
+    cmd->add_option("--depth", o->depth,
+                    "Linear view depth EXR: 1 channel, or a channel named Z; meters along -Z, +inf for sky")
+        ->required();
+    cmd->add_option("--normal", o->normal,
+                    "View-space unit normal EXR: 3 channels, or N.X N.Y N.Z; default: rebuilt from depth");
+    cmd->add_option("--camera", o->camera, "Camera JSON of the buffers (as `obscura gbuffer` writes it)")->required();
+    cmd->add_option("-o,--output", o->output, "Output AO EXR (1 channel Y, 1 = unoccluded)")->required();
+    cmd->add_option("--method", o->method, "AO method: alchemy or alchemy-chapter")->capture_default_str();
+    cmd->add_option("--threads", o->threads, "Worker threads (0 = all cores)")->capture_default_str();
+    o->alchemy.add(*cmd, true);
+    o->blur.add(*cmd);
+    cmd->callback([o] { run(*o); });
+}
+
+} // namespace obscura::cli

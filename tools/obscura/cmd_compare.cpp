@@ -1,0 +1,225 @@
+// `obscura compare`: screen-space AO methods against the ray-traced integral each one estimates, on one
+// G-buffer: MAE, RMSE, bias and max error per method, and a side-by-side picture.
+#include "cli_common.h"
+#include "commands.h"
+
+#include "obscura/ao_methods.h"
+#include "obscura/error.h"
+#include "obscura/image_io.h"
+#include "obscura/metrics.h"
+#include "obscura/parallel.h"
+#include "obscura/render.h"
+#include "obscura/trace.h"
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <tuple>
+
+namespace obscura::cli {
+
+namespace {
+
+struct CompareOptions {
+    std::string scene = "demo";
+    std::string methods = "alchemy";
+    std::string output = "compare.png";
+    int rays = 256;
+    int samples = 0;
+    float radius = 0.0f;
+    std::string blur = "none";
+    float range = 0.5f;
+    unsigned seed = 0;
+    int threads = 0;
+    bool json = false;
+    bool quiet = false;
+    CameraOptions camera;
+};
+
+// 3 x 5 glyphs of the legend's labels, one row of 3 bits per line, top first.
+const std::map<char, std::array<int, 5>> kGlyphs = {
+    {'0', {7, 5, 5, 5, 7}}, {'1', {2, 6, 2, 2, 7}}, {'2', {7, 1, 7, 4, 7}}, {'3', {7, 1, 7, 1, 7}},
+    {'4', {5, 5, 7, 1, 1}}, {'5', {7, 4, 7, 1, 7}}, {'6', {7, 4, 7, 5, 7}}, {'7', {7, 1, 1, 1, 1}},
+    {'8', {7, 5, 7, 5, 7}}, {'9', {7, 5, 7, 1, 7}}, {'.', {0, 0, 0, 0, 2}}, {'-', {0, 0, 7, 0, 0}},
+    {'+', {0, 2, 7, 2, 0}}, {' ', {0, 0, 0, 0, 0}}};
+
+void drawText(Image& img, int x0, int y0, const std::string& text, int scale) {
+    for (char ch : text) {
+        auto it = kGlyphs.find(ch);
+        if (it != kGlyphs.end())
+            for (int row = 0; row < 5; ++row)
+                for (int col = 0; col < 3; ++col)
+                    if (it->second[std::size_t(row)] & (4 >> col))
+                        for (int sy = 0; sy < scale; ++sy)
+                            for (int sx = 0; sx < scale; ++sx) {
+                                int x = x0 + col * scale + sx, y = y0 + row * scale + sy;
+                                if (x >= 0 && y >= 0 && x < img.width && y < img.height)
+                                    for (int c = 0; c < 3; ++c) img.at(x, y, c) = 1.0f;
+                            }
+        x0 += 4 * scale;
+    }
+}
+
+void blit(Image& dst, const Image& src, int x0, int y0) {
+    for (int y = 0; y < src.height; ++y)
+        for (int x = 0; x < src.width; ++x)
+            for (int c = 0; c < 3; ++c) dst.at(x0 + x, y0 + y, c) = src.at(x, y, src.channels == 1 ? 0 : c);
+}
+
+// Display (sRGB-encoded) grey picture of an AO buffer.
+Image aoPicture(const Image& ao) {
+    render::ShadeSettings s;
+    s.tonemap = render::Tonemap::None;
+    Image rgb(ao.width, ao.height, 3);
+    for (std::size_t i = 0; i < ao.pixelCount(); ++i)
+        for (int c = 0; c < 3; ++c) rgb.pixels[3 * i + std::size_t(c)] = ao.pixels[i];
+    return render::toDisplay(rgb, s);
+}
+
+void run(const CompareOptions& o) {
+    checkOutputPath("-o", o.output, {".png"});
+    const std::vector<const eval::AoMethod*> methods = eval::parseMethodList(o.methods);
+    if (o.rays < 1 || o.rays > 65536) fail("--rays", "must be in [1, 65536]");
+    if (o.samples < 0 || o.samples > 1024) fail("--samples", "must be in [0, 1024] (0: the method's default)");
+    if (!(o.radius >= 0.0f && o.radius <= 1e4f)) fail("--radius", "must be in [0, 1e4] m (0: the method's default)");
+    if (!(o.range > 0.0f && o.range <= 1.0f)) fail("--range", "must be in (0, 1]");
+    eval::MethodOptions mo;
+    mo.samples = o.samples;
+    mo.radius = o.radius;
+    mo.seed = o.seed;
+    mo.blur.mode = o.blur == "none" ? ssao::BlurMode::None : o.blur == "2d" ? ssao::BlurMode::TwoD : ssao::BlurMode::Separable;
+
+    ThreadLimit limit(o.threads);
+    LoadedScene loaded = loadSceneArgument(o.scene);
+    const Camera camera = o.camera.apply(loaded.camera);
+    trace::Tracer tracer(loaded.scene);
+    const bool showProgress = progressWanted(o.quiet || o.json);
+    GBuffer g;
+    {
+        Progress p("primary rays", showProgress);
+        g = trace::renderGBuffer(tracer, camera, {}, [&](double f) { p(f); });
+    }
+    const Image sky = render::proceduralSky();
+    const render::SH9 sh = render::projectEnvironment(sky);
+    const render::ShadeSettings shading;
+
+    struct Row {
+        const eval::AoMethod* method;
+        Image ao, reference;
+        eval::ErrorStats stats;
+        double ms;
+        trace::ObscuranceSettings ref;
+    };
+    std::vector<Row> rows;
+    // References are shared between methods that estimate the same integral.
+    std::map<std::tuple<int, float, float, float, float>, Image> references;
+    for (const eval::AoMethod* m : methods) {
+        Row r{m, {}, {}, {}, 0.0, m->reference(mo, o.rays)};
+        r.ref.seed = o.seed;
+        auto start = std::chrono::steady_clock::now();
+        r.ao = m->compute(g, mo);
+        r.ms = 1000.0 * secondsSince(start);
+        auto key = std::make_tuple(int(r.ref.falloff), r.ref.radius, r.ref.alchemyU, r.ref.alchemyScale, r.ref.halfDistance);
+        auto it = references.find(key);
+        if (it == references.end()) {
+            Progress p("ray-traced reference", showProgress);
+            it = references.emplace(key, trace::ambientObscurance(tracer, g, r.ref, [&](double f) { p(f); })).first;
+        }
+        r.reference = it->second;
+        r.stats = eval::errorStats(r.ao, r.reference, g);
+        rows.push_back(std::move(r));
+    }
+
+    nlohmann::json report;
+    report["scene"] = loaded.name;
+    report["width"] = camera.width;
+    report["height"] = camera.height;
+    report["rays"] = o.rays;
+    report["surface_pixels"] = rows.front().stats.pixels;
+    for (const Row& r : rows)
+        report["methods"].push_back({{"name", r.method->name},
+                                     {"mae", r.stats.mae},
+                                     {"rmse", r.stats.rmse},
+                                     {"bias", r.stats.bias},
+                                     {"max", r.stats.maxError},
+                                     {"ms", r.ms},
+                                     {"reference", {{"falloff", r.ref.falloff == trace::Falloff::Alchemy ? "alchemy" : r.ref.falloff == trace::Falloff::Binary ? "binary" : "exponential"},
+                                                    {"radius", r.ref.radius},
+                                                    {"u", r.ref.alchemyU},
+                                                    {"scale", r.ref.alchemyScale}}}});
+
+    // Picture: one row per method: lit frame | method AO | ray-traced AO | signed error; legend below.
+    const int w = camera.width, h = camera.height, gap = 4, scale = std::max(2, h / 60);
+    const int legendH = 12 * scale + 3 * gap;
+    Image sheet(4 * w + 5 * gap, int(rows.size()) * (h + gap) + gap + legendH, 3, 0.12f);
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        const Row& r = rows[i];
+        const int y0 = gap + int(i) * (h + gap);
+        blit(sheet, render::toDisplay(render::shade(g, sh, r.ao, sky).color, shading), gap, y0);
+        blit(sheet, aoPicture(r.ao), 2 * gap + w, y0);
+        blit(sheet, aoPicture(r.reference), 3 * gap + 2 * w, y0);
+        blit(sheet, eval::signedErrorImage(r.ao, r.reference, g, o.range), 4 * gap + 3 * w, y0);
+    }
+    // Legend under the error column: the colour ramp from -range (too dark) to +range (too light).
+    const int lx = 4 * gap + 3 * w, ly = sheet.height - legendH + gap, lw = w;
+    for (int x = 0; x < lw; ++x) {
+        const Vec3 c = eval::signedErrorColor((2.0f * (float(x) + 0.5f) / float(lw) - 1.0f) * o.range, o.range);
+        for (int y = 0; y < 5 * scale; ++y)
+            for (int k = 0; k < 3; ++k) sheet.at(lx + x, ly + y, k) = c[k];
+    }
+    char label[32];
+    std::snprintf(label, sizeof label, "-%.2f", double(o.range));
+    drawText(sheet, lx, ly + 6 * scale, label, scale);
+    drawText(sheet, lx + lw / 2 - 2 * scale, ly + 6 * scale, "0", scale);
+    std::snprintf(label, sizeof label, "+%.2f", double(o.range));
+    drawText(sheet, lx + lw - int(std::string(label).size()) * 4 * scale, ly + 6 * scale, label, scale);
+    writePng(o.output, sheet);
+
+    if (o.json) {
+        report["image"] = o.output;
+        std::printf("%s\n", report.dump(2).c_str());
+        return;
+    }
+    std::printf("obscura compare: scene %s, %dx%d, %zu surface pixels, reference %d rays/px; error = method - "
+                "ray traced\n\n",
+                loaded.name.c_str(), camera.width, camera.height, rows.front().stats.pixels, o.rays);
+    std::printf("%-18s %8s %8s %9s %8s %9s\n", "method", "MAE", "RMSE", "bias", "max", "ms");
+    for (const Row& r : rows)
+        std::printf("%-18s %8.4f %8.4f %+9.4f %8.4f %9.1f\n", r.method->name.c_str(), r.stats.mae, r.stats.rmse,
+                    r.stats.bias, r.stats.maxError, r.ms);
+    std::printf("\nwrote %s: rows = methods; columns = lit frame, method AO, ray-traced AO, signed error "
+                "(blue: too dark, red: too light, +-%.2f)\n",
+                o.output.c_str(), double(o.range));
+}
+
+} // namespace
+
+void addCompareCommand(CLI::App& app) {
+    auto o = std::make_shared<CompareOptions>();
+    CLI::App* cmd = app.add_subcommand(
+        "compare", "Screen-space AO methods against the ray-traced integral they estimate: MAE, RMSE, bias, max");
+    cmd->add_option("scene", o->scene, "Built-in scene name or a .gltf/.glb/.obj/.ply file")->capture_default_str();
+    cmd->add_option("--methods", o->methods, "Comma-separated methods: alchemy, alchemy-chapter, gtao, gtao-ultra")->capture_default_str();
+    cmd->add_option("-o,--output", o->output, "Side-by-side PNG")->capture_default_str();
+    cmd->add_option("--rays", o->rays, "Rays per pixel of the ray-traced reference, [1, 65536]")->capture_default_str();
+    cmd->add_option("--samples", o->samples, "Samples per pixel of every method (0: each method's default)")
+        ->capture_default_str();
+    cmd->add_option("--radius", o->radius, "World radius of every method, m (0: each method's default)")
+        ->capture_default_str();
+    cmd->add_option("--blur", o->blur, "Filter the methods' AO: none, separable or 2d (the reference is exact)")
+        ->check(CLI::IsMember({"none", "separable", "2d"}))
+        ->capture_default_str();
+    cmd->add_option("--range", o->range, "Error mapped to full colour in the heat map, (0, 1]")->capture_default_str();
+    cmd->add_option("--seed", o->seed, "Seed of the methods and of the reference rays")->capture_default_str();
+    cmd->add_option("--threads", o->threads, "Worker threads (0 = all cores)")->capture_default_str();
+    cmd->add_flag("--json", o->json, "Print JSON instead of a table");
+    cmd->add_flag("-q,--quiet", o->quiet, "No progress bars");
+    o->camera.add(*cmd);
+    cmd->callback([o] { run(*o); });
+}
+
+} // namespace obscura::cli
