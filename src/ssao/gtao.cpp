@@ -61,9 +61,10 @@ bool samplePosition(const GtaoConstants& c, const GBuffer& g, float sx, float sy
     const float nearest = g.depth.at(ix, iy);
     if (!(nearest < 1e30f)) return false;
     const float gx = sx - 0.5f, gy = sy - 0.5f;
-    // At the border the quad is shifted inwards: extrapolating an affine function is still exact.
-    const int x0 = std::clamp(int(std::floor(gx)), 0, c.width - 2), y0 = std::clamp(int(std::floor(gy)), 0, c.height - 2);
     if (c.width > 1 && c.height > 1) {
+        // At the border the quad is shifted inwards: extrapolating an affine function is still exact.
+        const int x0 = std::clamp(int(std::floor(gx)), 0, c.width - 2);
+        const int y0 = std::clamp(int(std::floor(gy)), 0, c.height - 2);
         const float d00 = g.depth.at(x0, y0), d10 = g.depth.at(x0 + 1, y0);
         const float d01 = g.depth.at(x0, y0 + 1), d11 = g.depth.at(x0 + 1, y0 + 1);
         if (d00 < 1e30f && d10 < 1e30f && d01 < 1e30f && d11 < 1e30f) {
