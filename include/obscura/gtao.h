@@ -40,7 +40,7 @@ struct GtaoSettings {
     bool jitter = false;            // per-pixel hashed slice rotation and step offsets (noise for a filter
                                     // to remove); false: the same regular slices everywhere
 
-    void validate() const;          // throws obscura::Error("gtao <field>: ...")
+    void validate() const;          // throws obscura::Error("gtao-<field>: ...")
 };
 
 // Slices x steps per side of each preset: low 1x2, medium 2x2, high 3x3, ultra 9x3 (as XeGTAO's).
@@ -50,7 +50,9 @@ GtaoQuality parseQuality(const std::string& name);
 const char* qualityName(GtaoQuality quality);
 
 // The pure function between settings and kernel: camera projection, radius and falloff, slice and step
-// counts. `interleaved` selects one slice per pixel from the 4x4 pattern rotated by frameIndex (§4.1).
+// counts. `interleaved` rotates each pixel's slices by its place in the 4x4 pattern and by frameIndex
+// (§4.1): with 1 slice (the paper's setting) a 4x4 block and 6 frames cover 96 directions, with k slices
+// 96 k.
 // Assumes validated settings and camera.
 GtaoConstants gtaoConstants(const GtaoSettings& settings, const Camera& camera, int frameIndex = 0,
                             bool interleaved = false);
@@ -63,6 +65,9 @@ struct GtaoPixel {
 // The kernel for one pixel of a G-buffer of the constants' size. Sky pixels give visibility 1 and a zero
 // bent normal. Hot path: no checks.
 GtaoPixel gtaoPixel(const GtaoConstants& constants, const GBuffer& gbuffer, int x, int y);
+// The same with the interleave index (0..15) given, for grids that are not the G-buffer's own (half
+// resolution evaluates full-resolution pixel (2x, 2y) with the pattern of low-resolution pixel (x, y)).
+GtaoPixel gtaoPixel(const GtaoConstants& constants, const GBuffer& gbuffer, int x, int y, int interleave);
 
 struct GtaoResult {
     Image visibility;  // 1 channel, [0, 1]; sky 1

@@ -41,7 +41,7 @@ struct GtaoConstants {
     int stepsPerSide;          // samples on each side of the slice, >= 1
     int weighting;             // GTAO_WEIGHTING_*
     int thicknessMode;         // GTAO_THICKNESS_*
-    int interleaved;           // 1: one slice per pixel, direction from the 4x4 pattern and frame rotation
+    int interleaved;           // 1: slices rotated by the 4x4 pattern and the frame's rotation (of 6)
     int noiseMode;             // 0: fixed slice angles and step offsets; 1: per-pixel hashed jitter
     int frameIndex;            // selects the temporal rotation (of 6) and the jitter
     int pad0;                  // keeps the size a multiple of 16 bytes

@@ -104,7 +104,7 @@ ArcWeights arc(const GtaoConstants& c, float t0, float t1, float n) {
 
 void GtaoSettings::validate() const {
     auto check = [](bool ok, const char* field, const char* range) {
-        if (!ok) fail(std::string("gtao ") + field, std::string("must be in ") + range);
+        if (!ok) fail(std::string("gtao-") + field, std::string("must be in ") + range);
     };
     check(radius > 0.0f && radius <= 1e4f, "radius", "(0, 1e4] m");
     check(falloffStart >= 0.0f && falloffStart <= 1.0f, "falloff-start", "[0, 1] (a fraction of the radius)");
@@ -162,7 +162,7 @@ GtaoConstants gtaoConstants(const GtaoSettings& s, const Camera& camera, int fra
     c.stepPower = s.stepPower;
     c.thicknessBlend = s.thickness == GtaoThickness::Heuristic ? s.thicknessBlend : 0.0f;
     c.bitmaskThickness = s.bitmaskThickness;
-    c.sliceCount = interleaved ? 1 : s.sliceCount;
+    c.sliceCount = s.sliceCount;
     c.stepsPerSide = s.stepsPerSide;
     c.weighting = s.weighting == GtaoWeighting::Uniform ? GTAO_WEIGHTING_UNIFORM : GTAO_WEIGHTING_COSINE;
     c.thicknessMode = s.thickness == GtaoThickness::Bitmask    ? GTAO_THICKNESS_BITMASK
@@ -175,6 +175,10 @@ GtaoConstants gtaoConstants(const GtaoSettings& s, const Camera& camera, int fra
 }
 
 GtaoPixel gtaoPixel(const GtaoConstants& c, const GBuffer& g, int x, int y) {
+    return gtaoPixel(c, g, x, y, interleaveIndex(x, y));
+}
+
+GtaoPixel gtaoPixel(const GtaoConstants& c, const GBuffer& g, int x, int y, int interleave) {
     GtaoPixel out;
     const float depth = g.depth.at(x, y);
     if (!(depth < 1e30f)) return out;
@@ -188,9 +192,7 @@ GtaoPixel gtaoPixel(const GtaoConstants& c, const GBuffer& g, int x, int y) {
     if (screenRadius < c.minStepPixels) return out;
 
     float sliceJitter = 0.5f, stepJitter = 0.5f;
-    int interleave = 0;
     if (c.interleaved) {
-        interleave = interleaveIndex(x, y);
         const int rotation = ((c.frameIndex % kGtaoRotations) + kGtaoRotations) % kGtaoRotations;
         // 16 pattern directions, each rotation shifts them by 1/6 of their spacing: 96 in all.
         sliceJitter = (float(interleave) + (float(rotation) + 0.5f) / float(kGtaoRotations)) / 16.0f;
@@ -205,7 +207,7 @@ GtaoPixel gtaoPixel(const GtaoConstants& c, const GBuffer& g, int x, int y) {
     Vec3 bent{};
     const float minS = c.minStepPixels / screenRadius;
     for (int slice = 0; slice < c.sliceCount; ++slice) {
-        const float phi = c.interleaved ? sliceJitter * kPi : (float(slice) + sliceJitter) / float(c.sliceCount) * kPi;
+        const float phi = (float(slice) + sliceJitter) / float(c.sliceCount) * kPi;
         const float cosPhi = std::cos(phi), sinPhi = std::sin(phi);
         // Screen y grows downwards, view y upwards.
         const Vec3 direction{cosPhi, sinPhi, 0.0f};

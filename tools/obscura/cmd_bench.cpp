@@ -123,6 +123,7 @@ void addBenchCommand(CLI::App& app) {
     trace->add_flag("--json", o->json, "Print JSON instead of a table");
     trace->callback([o] { runTrace(*o); });
     addAlchemyBench(*bench);
+    addGtaoBench(*bench);
 }
 
 } // namespace obscura::cli

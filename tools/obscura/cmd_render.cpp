@@ -2,6 +2,7 @@
 #include "ao_options.h"
 #include "cli_common.h"
 #include "commands.h"
+#include "gtao_cli.h"
 
 #include "obscura/alchemy.h"
 #include "obscura/camera_io.h"
@@ -43,6 +44,7 @@ struct RenderOptions {
     AlchemyFlags alchemy;  // --ao alchemy
     BlurFlags blur;
     CLI::Option* radiusOption = nullptr;
+    GtaoOptions gtao;
 };
 
 const std::map<std::string, trace::Falloff> kFalloffs = {
@@ -74,6 +76,10 @@ void run(const RenderOptions& o) {
         alchemy = o.alchemy.settings(o.radiusOption->count() > 0 ? o.radius : std::string());
         alchemy.seed = o.seed;
         blur = o.blur.settings();
+    }
+    if (o.ao == "gtao") {
+        o.gtao.validate(o.aovDir);
+        o.gtao.settings(aoSettings.radius);  // throws on a bad value before any work
     }
 
     ThreadLimit limit(o.threads);
@@ -114,8 +120,17 @@ void run(const RenderOptions& o) {
         gbuffer = ssao::cropGuardBand(gbuffer, camera, alchemy.guardBand);
         ao = ssao::bilateralFilter(raw, gbuffer, blur);
     }
+    GtaoFrame gtao;
+    if (o.ao == "gtao") {
+        trace::GBufferSettings gs;
+        gs.supersample = o.supersample;
+        gtao = renderGtaoFrames(o.gtao, aoSettings.radius, *tracer, camera, gs, o.aovDir, showProgress);
+        gbuffer = gtao.gbuffer;
+        camera = gbuffer.camera;
+        ao = gtao.visibility;
+    }
 
-    render::Frame frame = render::shade(gbuffer, sh, ao, environment);
+    render::Frame frame = o.ao == "gtao" ? shadeGtao(gtao, sh, environment) : render::shade(gbuffer, sh, ao, environment);
     render::ShadeSettings shading;
     shading.exposure = o.exposure;
     shading.tonemap = kTonemaps.at(o.tonemap);
@@ -142,6 +157,7 @@ void run(const RenderOptions& o) {
         std::printf(" (%s, r = %g m, intensity %g, contrast %g, %d samples, blur %s)",
                     alchemy.formulation == ssao::AlchemyFormulation::Paper ? "paper" : "chapter", double(alchemy.radius),
                     double(alchemy.intensity), double(alchemy.contrast), alchemy.samples, o.blur.mode.c_str());
+    if (o.ao == "gtao") std::printf(" (%s, r = %s m, %d frame(s))", o.gtao.quality.c_str(), o.radius.c_str(), o.gtao.frames);
     std::printf(", %.2f s\n", secondsSince(start));
 }
 
@@ -155,8 +171,8 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_option("-o,--output", o->output, "Output image: .png (tonemapped sRGB) or .exr (linear radiance)")
         ->capture_default_str();
     cmd->add_option("--ao", o->ao,
-                    "Ambient occlusion: none, raytraced (Monte Carlo ground truth) or alchemy (screen space)")
-        ->check(CLI::IsMember({"none", "raytraced", "alchemy"}))
+                    "Ambient occlusion: none, raytraced (Monte Carlo ground truth), alchemy or gtao (screen space)")
+        ->check(CLI::IsMember({"none", "raytraced", "alchemy", "gtao"}))
         ->capture_default_str();
     o->radiusOption = cmd->add_option("--ao-radius", o->radius,
                                       "Occlusion radius r in meters, or inf (alchemy: finite, default 0.5 or the preset's)")
@@ -185,6 +201,7 @@ void addRenderCommand(CLI::App& app) {
     o->camera.add(*cmd);
     o->alchemy.add(*cmd, false);
     o->blur.add(*cmd);
+    o->gtao.add(*cmd);
     cmd->callback([o] { run(*o); });
 }
 

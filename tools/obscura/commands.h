@@ -14,5 +14,6 @@ void addBenchCommand(CLI::App& app);
 void addAoCommand(CLI::App& app);
 void addCompareCommand(CLI::App& app);
 void addAlchemyBench(CLI::App& bench);
+void addGtaoBench(CLI::App& bench);  // `bench gtao`, registered by addBenchCommand
 
 } // namespace obscura::cli

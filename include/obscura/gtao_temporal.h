@@ -1,0 +1,66 @@
+// Spatio-temporal GTAO (Jimenez et al. 2016, §4.1): each pixel searches its slices rotated by its place in
+// a 4x4 interleave pattern and by one of 6 per-frame rotations; a depth- and normal-aware 4x4
+// reconstruction gathers the 16 pattern directions, and an exponential accumulation buffer, reprojected
+// from the previous frame with disocclusion rejection, gathers the 6 rotations: 96 directions per slice.
+// Also a spatial-only mode (no history) and half-resolution evaluation with depth-aware upsampling.
+//
+// Reprojection is computed from the two cameras and the current depth, which is exact for static scenes
+// (moving objects would need the G-buffer's motion vectors). Rejection tests the reprojected depth against
+// the previous frame's depth buffer and the world-space normals against each other.
+//
+// Errors: validate() and GtaoTemporal::frame() throw obscura::Error naming the bad setting or buffer.
+#pragma once
+
+#include "obscura/gbuffer.h"
+#include "obscura/gtao.h"
+#include "obscura/image.h"
+
+namespace obscura::ssao {
+
+struct GtaoTemporalSettings {
+    bool temporal = true;         // accumulate over frames; false = spatial-only (16 directions per slice)
+    bool halfResolution = false;  // evaluate on every other pixel in x and y, then upsample by depth
+    float depthSigma = 0.05f;     // reconstruction and upsampling depth tolerance / centre depth, (0, 1]
+    float rejectDepth = 0.03f;    // history is rejected where reprojected depth differs by more than this
+                                  // fraction of it, (0, 1]
+    float rejectNormalCos = 0.9f; // ... or where the normals' cosine is below this, [-1, 1]
+    int maxHistory = 24;          // blend weight of the new frame is 1 / min(frames + 1, maxHistory),
+                                  // [1, 1024]: 24 = 4 cycles of the 6 rotations
+
+    void validate() const;        // throws obscura::Error("gtao-<field>: ...")
+};
+
+// Depth- and normal-aware gather of the 4x4 interleave: a 5x5 window whose edge rows and columns weigh 1/2,
+// so each of the 16 pattern classes has the same spatial weight; taps weigh by ssao::tapWeight (the
+// shared cross-bilateral weight). `values` has 1 or 3 channels (3: vectors, renormalised), `depth` and
+// `normal` are the grid's own (1 and 3 channels, same size). Sky pixels keep their value.
+Image reconstructInterleaved(const Image& values, const Image& depth, const Image& normal, float depthSigma);
+
+// Depth-aware upsampling of a half-resolution image (pixel (x, y) taken at full-resolution (2x, 2y)) to the
+// G-buffer's size: bilinear weights times the depth weight of each low-resolution tap.
+Image upsampleDepthAware(const Image& low, const Image& lowDepth, const GBuffer& full, float depthSigma);
+
+class GtaoTemporal {
+public:
+    // Validates both settings (throws obscura::Error).
+    GtaoTemporal(const GtaoSettings& settings, const GtaoTemporalSettings& temporal);
+
+    // Computes the next frame from its G-buffer (the camera may move; the size must stay) and returns the
+    // accumulated result (visibility and view-space bent normal).
+    const GtaoResult& frame(const GBuffer& gbuffer);
+    // Frames accumulated per pixel in the last result: 1 where history was rejected or absent.
+    const Image& historyLength() const { return historyLength_; }
+    int framesRendered() const { return frame_; }
+
+private:
+    GtaoSettings settings_;
+    GtaoTemporalSettings temporal_;
+    int frame_ = 0;
+    GtaoResult result_;
+    Image bentWorld_;  // accumulated bent normals in world space, so they survive camera motion
+    Image historyLength_;
+    Camera previousCamera_;
+    Image previousDepth_, previousNormalWorld_;
+};
+
+} // namespace obscura::ssao

@@ -1,0 +1,228 @@
+// Spatio-temporal GTAO: Jimenez et al. 2016, §4.1 (4x4 interleave with bilateral reconstruction, 6
+// rotations with reprojection into an exponential accumulation buffer, half-resolution evaluation).
+#include "obscura/gtao_temporal.h"
+
+#include "obscura/bilateral.h"
+#include "obscura/error.h"
+#include "obscura/parallel.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace obscura::ssao {
+
+namespace {
+
+bool finiteDepth(float d) { return d < 1e30f; }
+
+Vec3 vec3At(const Image& image, int x, int y) { return {image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2)}; }
+void setVec3(Image& image, int x, int y, Vec3 v) {
+    image.at(x, y, 0) = v.x;
+    image.at(x, y, 1) = v.y;
+    image.at(x, y, 2) = v.z;
+}
+
+void forRows(int height, const std::function<void(int)>& row) {
+    parallelFor(std::size_t(height), [&](std::size_t begin, std::size_t end) {
+        for (std::size_t y = begin; y < end; ++y) row(int(y));
+    });
+}
+
+} // namespace
+
+void GtaoTemporalSettings::validate() const {
+    auto check = [](bool ok, const char* field, const char* range) {
+        if (!ok) fail(std::string("gtao-") + field, std::string("must be in ") + range);
+    };
+    check(depthSigma > 0.0f && depthSigma <= 1.0f, "depth-sigma", "(0, 1]");
+    check(rejectDepth > 0.0f && rejectDepth <= 1.0f, "reject-depth", "(0, 1]");
+    check(rejectNormalCos >= -1.0f && rejectNormalCos <= 1.0f, "reject-normal-cos", "[-1, 1]");
+    check(maxHistory >= 1 && maxHistory <= 1024, "max-history", "[1, 1024]");
+}
+
+Image reconstructInterleaved(const Image& values, const Image& depth, const Image& normal, float depthSigma) {
+    Image out = values;
+    const int w = values.width, h = values.height, channels = values.channels;
+    forRows(h, [&](int y) {
+        for (int x = 0; x < w; ++x) {
+            const float d = depth.at(x, y);
+            if (!finiteDepth(d)) continue;
+            const Vec3 n = vec3At(normal, x, y);
+            const float sigma = depthSigma * d;
+            const float invTwoSigma2 = 1.0f / (2.0f * sigma * sigma);
+            float sum[3] = {0, 0, 0}, weightSum = 0.0f;
+            for (int dy = -2; dy <= 2; ++dy) {
+                const int yy = y + dy;
+                if (yy < 0 || yy >= h) continue;
+                for (int dx = -2; dx <= 2; ++dx) {
+                    const int xx = x + dx;
+                    if (xx < 0 || xx >= w) continue;
+                    const float di = depth.at(xx, yy);
+                    if (!finiteDepth(di)) continue;
+                    // Half weight on the outer ring: every class of the 4x4 pattern weighs the same.
+                    const float spatial = (dx == -2 || dx == 2 ? 0.5f : 1.0f) * (dy == -2 || dy == 2 ? 0.5f : 1.0f);
+                    const float wt = tapWeight(spatial, d, n, di, vec3At(normal, xx, yy), invTwoSigma2, true);
+                    for (int c = 0; c < channels; ++c) sum[c] += wt * values.at(xx, yy, c);
+                    weightSum += wt;
+                }
+            }
+            if (!(weightSum > 0.0f)) continue;
+            if (channels == 3) {
+                const Vec3 v = normalize(Vec3{sum[0], sum[1], sum[2]});
+                if (dot(v, v) > 0.0f) setVec3(out, x, y, v);
+            } else {
+                for (int c = 0; c < channels; ++c) out.at(x, y, c) = sum[c] / weightSum;
+            }
+        }
+    });
+    return out;
+}
+
+Image upsampleDepthAware(const Image& low, const Image& lowDepth, const GBuffer& full, float depthSigma) {
+    const int w = full.width(), h = full.height(), channels = low.channels;
+    Image out(w, h, channels, channels == 1 ? 1.0f : 0.0f);
+    forRows(h, [&](int y) {
+        for (int x = 0; x < w; ++x) {
+            const float d = full.depth.at(x, y);
+            if (!finiteDepth(d)) continue;
+            const float gx = 0.5f * float(x), gy = 0.5f * float(y);
+            const int x0 = std::min(int(gx), low.width - 1), y0 = std::min(int(gy), low.height - 1);
+            const int x1 = std::min(x0 + 1, low.width - 1), y1 = std::min(y0 + 1, low.height - 1);
+            const float fx = gx - float(x0), fy = gy - float(y0);
+            const int tx[4] = {x0, x1, x0, x1}, ty[4] = {y0, y0, y1, y1};
+            const float bilinear[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
+            const float sigma = depthSigma * d;
+            const float invTwoSigma2 = 1.0f / (2.0f * sigma * sigma);
+            float sum[3] = {0, 0, 0}, weightSum = 0.0f, bestDiff = 1e30f;
+            int best = -1;
+            for (int t = 0; t < 4; ++t) {
+                const float di = lowDepth.at(tx[t], ty[t]);
+                if (!finiteDepth(di)) continue;
+                if (std::fabs(di - d) < bestDiff) {
+                    bestDiff = std::fabs(di - d);
+                    best = t;
+                }
+                if (bilinear[t] <= 0.0f) continue;
+                const float wt = tapWeight(bilinear[t], d, {}, di, {}, invTwoSigma2, false);
+                for (int c = 0; c < channels; ++c) sum[c] += wt * low.at(tx[t], ty[t], c);
+                weightSum += wt;
+            }
+            if (best < 0) continue;
+            // No tap on this surface (a thin feature between the samples): take the closest in depth.
+            if (!(weightSum > 1e-4f)) {
+                for (int c = 0; c < channels; ++c) out.at(x, y, c) = low.at(tx[best], ty[best], c);
+                continue;
+            }
+            for (int c = 0; c < channels; ++c) out.at(x, y, c) = sum[c] / weightSum;
+            if (channels == 3) setVec3(out, x, y, normalize(vec3At(out, x, y)));
+        }
+    });
+    return out;
+}
+
+GtaoTemporal::GtaoTemporal(const GtaoSettings& settings, const GtaoTemporalSettings& temporal)
+    : settings_(settings), temporal_(temporal) {
+    settings_.validate();
+    temporal_.validate();
+}
+
+const GtaoResult& GtaoTemporal::frame(const GBuffer& g) {
+    const int w = g.width(), h = g.height();
+    if (g.depth.width != w || g.depth.height != h || g.normal.width != w || g.normal.height != h ||
+        g.normal.channels != 3)
+        fail("gtao temporal", "G-buffer images do not match its camera's size");
+    if (frame_ > 0 && (w != previousDepth_.width || h != previousDepth_.height))
+        fail("gtao temporal", "frame size changed from " + std::to_string(previousDepth_.width) + "x" +
+                                  std::to_string(previousDepth_.height) + " to " + std::to_string(w) + "x" +
+                                  std::to_string(h));
+
+    // 1. One interleaved evaluation per grid pixel (the full image, or every other pixel in x and y).
+    const GtaoConstants constants = gtaoConstants(settings_, g.camera, frame_, true);
+    const int step = temporal_.halfResolution ? 2 : 1;
+    const int gw = (w + step - 1) / step, gh = (h + step - 1) / step;
+    Image rawVisibility(gw, gh, 1, 1.0f), rawBent(gw, gh, 3, 0.0f), gridDepth(gw, gh, 1), gridNormal(gw, gh, 3);
+    forRows(gh, [&](int y) {
+        for (int x = 0; x < gw; ++x) {
+            const int fx = x * step, fy = y * step;
+            GtaoPixel p = gtaoPixel(constants, g, fx, fy, interleaveIndex(x, y));
+            rawVisibility.at(x, y) = p.visibility;
+            setVec3(rawBent, x, y, p.bentNormal);
+            gridDepth.at(x, y) = g.depth.at(fx, fy);
+            setVec3(gridNormal, x, y, g.viewNormal(fx, fy));
+        }
+    });
+
+    // 2. Spatial gather of the 16 pattern directions; 3. back to full resolution.
+    Image visibility = reconstructInterleaved(rawVisibility, gridDepth, gridNormal, temporal_.depthSigma);
+    Image bent = reconstructInterleaved(rawBent, gridDepth, gridNormal, temporal_.depthSigma);
+    if (step == 2) {
+        visibility = upsampleDepthAware(visibility, gridDepth, g, temporal_.depthSigma);
+        bent = upsampleDepthAware(bent, gridDepth, g, temporal_.depthSigma);
+    }
+
+    // 4. Reprojection and exponential accumulation, in world space for the bent normals.
+    const Mat4 worldFromView = g.camera.worldFromView();
+    const Mat4 viewFromWorld = g.camera.viewFromWorld();
+    const Mat4 previousViewFromWorld = previousCamera_.viewFromWorld();
+    const bool useHistory = temporal_.temporal && frame_ > 0;
+    Image newBentWorld(w, h, 3, 0.0f), newLength(w, h, 1, 1.0f), normalWorld(w, h, 3, 0.0f);
+    forRows(h, [&](int y) {
+        for (int x = 0; x < w; ++x) {
+            if (g.isSky(x, y)) continue;
+            const Vec3 nWorld = normalize(transformVector(worldFromView, g.viewNormal(x, y)));
+            setVec3(normalWorld, x, y, nWorld);
+            Vec3 currentBent = normalize(transformVector(worldFromView, vec3At(bent, x, y)));
+            setVec3(newBentWorld, x, y, currentBent);
+            if (!useHistory) continue;
+            const Vec3 world = transformPoint(worldFromView, g.viewPosition(x, y));
+            float expectedDepth = 0.0f;
+            const Vec2 prev = previousCamera_.pixelFromView(transformPoint(previousViewFromWorld, world), &expectedDepth);
+            if (!(expectedDepth > 0.0f)) continue;
+            const float gx = prev.x - 0.5f, gy = prev.y - 0.5f;
+            const int x0 = int(std::floor(gx)), y0 = int(std::floor(gy));
+            const float fx = gx - float(x0), fy = gy - float(y0);
+            float weightSum = 0.0f, historyVisibility = 0.0f, historyLength = 0.0f;
+            Vec3 historyBent{};
+            for (int t = 0; t < 4; ++t) {
+                const int tx = x0 + (t & 1), ty = y0 + (t >> 1);
+                const float bw = ((t & 1) ? fx : 1.0f - fx) * ((t >> 1) ? fy : 1.0f - fy);
+                if (bw <= 0.0f || tx < 0 || ty < 0 || tx >= w || ty >= h) continue;
+                const float pd = previousDepth_.at(tx, ty);
+                // Disocclusion: the previous frame saw another surface there, or one facing elsewhere.
+                if (!finiteDepth(pd) || std::fabs(pd - expectedDepth) > temporal_.rejectDepth * expectedDepth) continue;
+                if (dot(vec3At(previousNormalWorld_, tx, ty), nWorld) < temporal_.rejectNormalCos) continue;
+                weightSum += bw;
+                historyVisibility += bw * result_.visibility.at(tx, ty);
+                historyBent += vec3At(bentWorld_, tx, ty) * bw;
+                historyLength += bw * historyLength_.at(tx, ty);
+            }
+            // Less than a quarter of the footprint confirmed: too little to trust.
+            if (weightSum < 0.25f) continue;
+            historyVisibility /= weightSum;
+            historyLength /= weightSum;
+            historyBent = historyBent / weightSum;
+            const float alpha = 1.0f / std::min(historyLength + 1.0f, float(temporal_.maxHistory));
+            visibility.at(x, y) = historyVisibility + (visibility.at(x, y) - historyVisibility) * alpha;
+            Vec3 blended = normalize(historyBent + (currentBent - historyBent) * alpha);
+            if (dot(blended, blended) > 0.0f) setVec3(newBentWorld, x, y, blended);
+            newLength.at(x, y) = std::min(historyLength + 1.0f, float(temporal_.maxHistory));
+        }
+    });
+
+    result_.visibility = std::move(visibility);
+    result_.bentNormal = Image(w, h, 3, 0.0f);
+    forRows(h, [&](int y) {
+        for (int x = 0; x < w; ++x)
+            if (!g.isSky(x, y))
+                setVec3(result_.bentNormal, x, y, normalize(transformVector(viewFromWorld, vec3At(newBentWorld, x, y))));
+    });
+    bentWorld_ = std::move(newBentWorld);
+    historyLength_ = std::move(newLength);
+    previousCamera_ = g.camera;
+    previousDepth_ = g.depth;
+    previousNormalWorld_ = std::move(normalWorld);
+    ++frame_;
+    return result_;
+}
+
+} // namespace obscura::ssao

@@ -1,0 +1,101 @@
+// `obscura render --ao gtao`: the AOVs it promises, the frame loop, and one-line errors with no output.
+#include "obscura/image_io.h"
+
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <sys/wait.h>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Result {
+    int code = -1;
+    std::string out;
+};
+
+Result run(const std::string& args) {
+    std::string cmd = std::string(OBSCURA_CLI) + " " + args + " 2>&1";
+    Result r;
+    FILE* pipe = popen(cmd.c_str(), "r");
+    if (!pipe) return r;
+    std::array<char, 4096> buf{};
+    std::size_t n;
+    while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
+    int status = pclose(pipe);
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return r;
+}
+
+class GtaoCli : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir = fs::temp_directory_path() / ("obscura_gtao_cli_" + std::to_string(getpid()) + "_" +
+                                           ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::remove_all(dir);
+        fs::create_directories(dir);
+    }
+    void TearDown() override { fs::remove_all(dir); }
+    std::string path(const std::string& name) const { return (dir / name).string(); }
+    fs::path dir;
+};
+
+} // namespace
+
+TEST_F(GtaoCli, WritesFrameAndAovs) {
+    Result r = run("render well --ao gtao --ao-quality low --size 64x48 --ao-output all --multibounce "
+                   "--specular-occlusion cone -q -o " + path("f.png") + " --aov-dir " + path("aov"));
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_TRUE(fs::exists(path("f.png")));
+    for (const char* name : {"ao.exr", "bent_normal.exr", "ao_multibounce.exr", "specular_occlusion.exr"})
+        EXPECT_TRUE(fs::exists(path("aov/") + name)) << name;
+    obscura::Image ao = obscura::readExr(path("aov/ao.exr"));
+    obscura::Image mb = obscura::readExr(path("aov/ao_multibounce.exr"));
+    ASSERT_EQ(ao.width, 64);
+    ASSERT_EQ(mb.channels, 3);
+    float lo = 1.0f;
+    for (int y = 0; y < 48; ++y)
+        for (int x = 0; x < 64; ++x) {
+            lo = std::min(lo, ao.at(x, y));
+            EXPECT_GE(mb.at(x, y, 0), ao.at(x, y) - 1e-6f);  // G(A, rho) >= A
+        }
+    EXPECT_LT(lo, 0.5f);  // the well's floor is occluded
+}
+
+TEST_F(GtaoCli, FramesWriteEveryFrame) {
+    Result r = run("render corner --ao gtao --frames 3 --size 48x32 -q -o " + path("f.exr") + " --aov-dir " + path("aov"));
+    ASSERT_EQ(r.code, 0) << r.out;
+    for (const char* name : {"ao_0000.exr", "ao_0001.exr", "ao_0002.exr", "ao.exr", "camera.json"})
+        EXPECT_TRUE(fs::exists(path("aov/") + name)) << name;
+    // The last frame's ao.exr is frame 2's.
+    obscura::Image last = obscura::readExr(path("aov/ao.exr")), two = obscura::readExr(path("aov/ao_0002.exr"));
+    EXPECT_EQ(last.pixels, two.pixels);
+}
+
+TEST_F(GtaoCli, BadInputFailsWithOneLine) {
+    struct Case {
+        std::string args, needle;
+    };
+    const Case cases[] = {{"--ao-radius inf", "--ao-radius"},
+                          {"--frames 0", "--frames"},
+                          {"--roughness 2", "--roughness"},
+                          {"--ao-output all", "--aov-dir"},
+                          {"--gtao-falloff-start 1.5", "--gtao-falloff-start"},
+                          {"--gtao-half-res --gtao-mode full", "--gtao-half-res"}};
+    for (const Case& c : cases) {
+        Result r = run("render plane --ao gtao --size 32x32 -q -o " + path("f.png") + " " + c.args);
+        EXPECT_EQ(r.code, 1) << c.args << ": " << r.out;
+        EXPECT_EQ(r.out.rfind("obscura: error: ", 0), 0u) << r.out;
+        EXPECT_NE(r.out.find(c.needle), std::string::npos) << r.out;
+        EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
+        EXPECT_FALSE(fs::exists(path("f.png"))) << c.args;
+    }
+    Result r = run("render plane --ao gtao --ao-quality extreme -o " + path("f.png"));
+    EXPECT_EQ(r.code, 2) << r.out;
+}

@@ -1,0 +1,167 @@
+// `obscura render --ao gtao`: options, the camera path for --frames, and shading with multi-bounce.
+#include "gtao_cli.h"
+
+#include "cli_common.h"
+
+#include "obscura/error.h"
+#include "obscura/image_io.h"
+#include "obscura/multibounce.h"
+#include "obscura/specular_occlusion.h"
+
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <filesystem>
+
+namespace obscura::cli {
+
+namespace {
+
+const std::map<std::string, ssao::SpecularOcclusionMode> kSpecularModes = {
+    {"lut4", ssao::SpecularOcclusionMode::Lut4},
+    {"lut3", ssao::SpecularOcclusionMode::Lut3},
+    {"cone", ssao::SpecularOcclusionMode::Cone}};
+
+// Frame k of the built-in path: the camera turned k * 0.5 degrees about the vertical through its target,
+// slow enough for the history to follow and fast enough to disocclude something over a few frames.
+Camera pathCamera(const Camera& base, int k) {
+    Camera c = base;
+    const float angle = 0.5f * kPi / 180.0f * float(k);
+    const Mat4 turn = Mat4::rotation({0.0f, 1.0f, 0.0f}, angle);
+    c.position = base.target + transformVector(turn, base.position - base.target);
+    return c;
+}
+
+std::string numbered(const std::string& dir, const char* name, int frame) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "_%04d.exr", frame);
+    return (std::filesystem::path(dir) / (std::string(name) + buffer)).string();
+}
+
+} // namespace
+
+void GtaoOptions::add(CLI::App& app) {
+    app.add_option("--ao-quality", quality, "GTAO preset (slices x steps per side): low 1x2, medium 2x2, high 3x3, ultra 9x3")
+        ->check(CLI::IsMember({"low", "medium", "high", "ultra"}))
+        ->capture_default_str();
+    app.add_option("--ao-output", output,
+                   "GTAO images written to --aov-dir: visibility (ao.exr), bent-normal (also bent_normal.exr), all "
+                   "(also ao_multibounce.exr and specular_occlusion.exr when enabled)")
+        ->check(CLI::IsMember({"visibility", "bent-normal", "all"}))
+        ->capture_default_str();
+    app.add_flag("--multibounce", multibounce, "GTAO: near-field interreflection G(A, albedo) per colour channel");
+    app.add_option("--specular-occlusion", specular,
+                   "GTAO: specular occlusion from the bent-normal cone: none, lut4 (4-D GGX table), lut3 (3-D, "
+                   "bent normal = normal), cone (cone-cone intersection)")
+        ->check(CLI::IsMember({"none", "lut4", "lut3", "cone"}))
+        ->capture_default_str();
+    app.add_option("--roughness", roughness, "GTAO specular occlusion: GGX roughness of every surface, [0, 1]")
+        ->capture_default_str();
+    app.add_option("--frames", frames, "GTAO: frames rendered along the built-in camera path (the last is written), [1, 1000]")
+        ->capture_default_str();
+    app.add_option("--gtao-mode", mode,
+                   "GTAO: full (every slice each frame), spatial (4x4 interleave, no history), temporal (interleave + "
+                   "history), auto (full for one frame, temporal for more)")
+        ->check(CLI::IsMember({"auto", "full", "spatial", "temporal"}))
+        ->capture_default_str();
+    app.add_flag("--gtao-half-res", halfResolution, "GTAO spatial/temporal: evaluate at half resolution, upsample by depth");
+    app.add_option("--gtao-thickness", thickness, "GTAO thin occluders: none, heuristic (eq. 9), bitmask")
+        ->check(CLI::IsMember({"none", "heuristic", "bitmask"}))
+        ->capture_default_str();
+    app.add_option("--gtao-falloff-start", falloffStart, "GTAO: fraction of the radius where the linear fade starts, [0, 1]")
+        ->capture_default_str();
+}
+
+ssao::GtaoSettings GtaoOptions::settings(float radius) const {
+    ssao::GtaoSettings s;
+    ssao::applyQuality(s, ssao::parseQuality(quality));
+    if (!(radius > 0.0f && radius <= 1e4f)) fail("--ao-radius", "GTAO needs a finite radius in (0, 1e4] m");
+    s.radius = radius;
+    s.falloffStart = falloffStart;
+    s.thickness = thickness == "heuristic" ? ssao::GtaoThickness::Heuristic
+                  : thickness == "bitmask" ? ssao::GtaoThickness::Bitmask
+                                           : ssao::GtaoThickness::None;
+    try {
+        s.validate();
+    } catch (const Error& e) {
+        throw Error("--" + std::string(e.what()));
+    }
+    return s;
+}
+
+void GtaoOptions::validate(const std::string& aovDir) const {
+    if (frames < 1 || frames > 1000) fail("--frames", "must be in [1, 1000]");
+    if (!(roughness >= 0.0f && roughness <= 1.0f)) fail("--roughness", "must be in [0, 1]");
+    if (!(falloffStart >= 0.0f && falloffStart <= 1.0f)) fail("--gtao-falloff-start", "must be in [0, 1]");
+    if (output != "visibility" && aovDir.empty()) fail("--ao-output", "'" + output + "' needs --aov-dir");
+    if (halfResolution && mode == "full") fail("--gtao-half-res", "needs --gtao-mode spatial or temporal");
+}
+
+GtaoFrame renderGtaoFrames(const GtaoOptions& o, float radius, const trace::Tracer& tracer, const Camera& camera,
+                           const trace::GBufferSettings& gbufferSettings, const std::string& aovDir, bool progress) {
+    const ssao::GtaoSettings settings = o.settings(radius);
+    const std::string mode = o.mode == "auto" ? (o.frames > 1 ? "temporal" : "full") : o.mode;
+    ssao::GtaoTemporalSettings temporalSettings;
+    temporalSettings.temporal = mode == "temporal";
+    temporalSettings.halfResolution = o.halfResolution;
+    ssao::GtaoTemporal temporal(settings, temporalSettings);
+    const bool bent = o.output != "visibility";
+    const bool all = o.output == "all";
+
+    GtaoFrame f;
+    Progress p("GTAO frames", progress && o.frames > 1);
+    for (int k = 0; k < o.frames; ++k) {
+        f.gbuffer = trace::renderGBuffer(tracer, pathCamera(camera, k), gbufferSettings);
+        ssao::GtaoResult r;
+        if (mode == "full")
+            r = ssao::computeGtao(f.gbuffer, ssao::gtaoConstants(settings, f.gbuffer.camera, k));
+        else
+            r = temporal.frame(f.gbuffer);
+        f.visibility = std::move(r.visibility);
+        f.bentNormal = std::move(r.bentNormal);
+        if (o.multibounce) {
+            f.multibounce = Image(f.gbuffer.width(), f.gbuffer.height(), 3, 1.0f);
+            for (int y = 0; y < f.gbuffer.height(); ++y)
+                for (int x = 0; x < f.gbuffer.width(); ++x) {
+                    if (f.gbuffer.isSky(x, y)) continue;
+                    Vec3 albedo{f.gbuffer.albedo.at(x, y, 0), f.gbuffer.albedo.at(x, y, 1), f.gbuffer.albedo.at(x, y, 2)};
+                    Vec3 g = ssao::multiBounce(f.visibility.at(x, y), albedo);
+                    for (int c = 0; c < 3; ++c) f.multibounce.at(x, y, c) = g[c];
+                }
+        }
+        if (o.specular != "none")
+            f.specular = ssao::computeSpecularOcclusion(f.gbuffer, f.visibility, f.bentNormal,
+                                                        kSpecularModes.at(o.specular), o.roughness);
+        if (!aovDir.empty()) {
+            const bool last = k + 1 == o.frames;
+            auto write = [&](const char* name, const Image& image) {
+                if (image.empty()) return;
+                if (o.frames > 1) writeExr(numbered(aovDir, name, k), image);
+                // The last frame's ao.exr is written by `render` with the other AOVs.
+                if (last && std::string(name) != "ao")
+                    writeExr((std::filesystem::path(aovDir) / (std::string(name) + ".exr")).string(), image);
+            };
+            write("ao", f.visibility);
+            if (bent) write("bent_normal", f.bentNormal);
+            if (all) {
+                write("ao_multibounce", f.multibounce);
+                write("specular_occlusion", f.specular);
+            }
+        }
+        p(double(k + 1) / double(o.frames));
+    }
+    return f;
+}
+
+render::Frame shadeGtao(const GtaoFrame& f, const render::SH9& sh, const Image& environment) {
+    if (f.multibounce.empty()) return render::shade(f.gbuffer, sh, f.visibility, environment);
+    render::Frame frame = render::shade(f.gbuffer, sh, Image(), environment);
+    for (int y = 0; y < f.gbuffer.height(); ++y)
+        for (int x = 0; x < f.gbuffer.width(); ++x) {
+            if (f.gbuffer.isSky(x, y)) continue;
+            for (int c = 0; c < 3; ++c) frame.color.at(x, y, c) *= f.multibounce.at(x, y, c);
+        }
+    return frame;
+}
+
+} // namespace obscura::cli

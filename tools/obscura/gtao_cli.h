@@ -1,0 +1,57 @@
+// The GTAO options of `obscura render --ao gtao` and the frame loop behind them (kept out of
+// cmd_render.cpp, which only forwards to it).
+#pragma once
+
+#include "obscura/gbuffer.h"
+#include "obscura/gtao.h"
+#include "obscura/gtao_temporal.h"
+#include "obscura/image.h"
+#include "obscura/render.h"
+#include "obscura/trace.h"
+
+#include <string>
+
+namespace CLI {
+class App;
+}
+
+namespace obscura::cli {
+
+struct GtaoOptions {
+    std::string quality = "high";
+    std::string output = "visibility";  // visibility, bent-normal, all: which AOVs go to --aov-dir
+    bool multibounce = false;
+    std::string specular = "none";      // none, lut4, lut3, cone
+    float roughness = 0.5f;
+    int frames = 1;
+    std::string mode = "auto";          // auto, full, spatial, temporal
+    bool halfResolution = false;
+    std::string thickness = "none";
+    float falloffStart = 1.0f;
+
+    void add(CLI::App& app);
+    // The settings for radius r; throws obscura::Error naming the flag for a bad value.
+    ssao::GtaoSettings settings(float radius) const;
+    // Checks that need no scene; throws obscura::Error naming the flag.
+    void validate(const std::string& aovDir) const;
+};
+
+struct GtaoFrame {
+    GBuffer gbuffer;        // the last frame's
+    Image visibility;       // 1 channel
+    Image bentNormal;       // 3 channels, view space
+    Image multibounce;      // 3 channels G(A, albedo), empty unless --multibounce
+    Image specular;         // 1 channel, empty unless --specular-occlusion
+};
+
+// Renders the frames along the built-in camera path (frame k: the camera turned k * 0.5 degrees about the
+// vertical through its target) and returns the last. With an AOV directory and several frames, each
+// frame's AOVs are written as NAME_0000.exr ...; the last frame's also without the number.
+GtaoFrame renderGtaoFrames(const GtaoOptions& options, float radius, const trace::Tracer& tracer, const Camera& camera,
+                           const trace::GBufferSettings& gbufferSettings, const std::string& aovDir, bool progress);
+
+// Shaded frame with the GTAO result: albedo x lighting x AO, or x G(A, albedo) per channel with
+// multi-bounce.
+render::Frame shadeGtao(const GtaoFrame& frame, const render::SH9& sh, const Image& environment);
+
+} // namespace obscura::cli
