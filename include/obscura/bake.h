@@ -135,6 +135,14 @@ struct StageTimes {
     double total() const { return processGeometry + sample + bvhBuild + trace + solve + write; }
 };
 
+// Bare Embree on a uniform subset of the bake's own rays (bake_bench.h), when asked for.
+struct RawTraceResult {
+    std::size_t stride = 0;               // every stride-th sample's rays; 0: not measured
+    std::uint64_t rays = 0, hits = 0;
+    double seconds = 0;                   // wall time of the traversal alone
+    double mrays() const { return seconds > 0 ? double(rays) / seconds * 1e-6 : 0.0; }
+};
+
 struct BakeResult {
     int channels = 0;
     // Per scene instance, one entry per vertex of its mesh in the file's order (offsets instanceFirst),
@@ -146,6 +154,7 @@ struct BakeResult {
     std::uint64_t rays = 0;
     SolveStats solve;
     StageTimes times;
+    RawTraceResult raw;
     double mraysPerSecond() const { return times.trace > 0 ? double(rays) / times.trace * 1e-6 : 0.0; }
 };
 
@@ -153,7 +162,9 @@ struct BakeResult {
 using StageProgress = std::function<void(const std::string& stage, double fraction)>;
 
 // Runs every stage on the scene (validated settings; throws obscura::Error on bad settings or an Embree
-// failure). Times every stage but "write", which is the caller's.
-BakeResult bakeScene(const Scene& scene, const BakeSettings& settings, const StageProgress& progress = {});
+// failure). Times every stage but "write", which is the caller's. With rawEmbreeStride > 0, also traces
+// every rawEmbreeStride-th sample's rays with bare Embree after the trace stage (BakeResult::raw).
+BakeResult bakeScene(const Scene& scene, const BakeSettings& settings, const StageProgress& progress = {},
+                     std::size_t rawEmbreeStride = 0);
 
 } // namespace obscura::bake

@@ -10,6 +10,8 @@
 #include "obscura/trace.h"
 #include "obscura/trace_stream.h"
 
+#include "bake/ray_setup.h"
+
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -51,15 +53,12 @@ RayResults traceSamples(const trace::Tracer& tracer, const SampleSet& samples, c
     const CosineHemisphereSet directions(rays);
     const trace::HitStream stream(tracer);
     float a[2] = {0, 0}, d[2] = {0, 0};
-    float maxDistance = 0;
     for (std::size_t c = 0; c < channels; ++c) {
         d[c] = settings.distances[c];
         a[c] = std::log(0.5f) / d[c];
-        maxDistance = std::max(maxDistance, d[c]);
     }
     const bool occlusion = settings.mode == Mode::Occlusion;
-    // Beyond 24 d the exponential weight exp(a t) is below 2^-24, under float resolution of A.
-    const float tfar = occlusion ? maxDistance : 24.0f * maxDistance;
+    const float tfar = detail::rayFar(settings);
     const auto backLimit = int(std::floor(double(settings.backFaceLimit) * rays));
 
     std::atomic<std::size_t> done{0}, invalid{0};
@@ -70,16 +69,9 @@ RayResults traceSamples(const trace::Tracer& tracer, const SampleSet& samples, c
         std::vector<std::uint8_t> back(rayCount);
         std::size_t localInvalid = 0;
         for (std::size_t s = begin; s < end; ++s) {
-            const Vec3 p = samples.positions[s], n = samples.normals[s];
-            Vec3 tx, bx;
-            orthonormalBasis(n, tx, bx);
-            const Vec3 origin = p + n * tracer.selfHitOffset(p);
-            const auto shift = CosineHemisphereSet::shift(hashCombine(settings.seed, std::uint32_t(s)));
-            for (int i = 0; i < rays; ++i) {
-                const Vec3 l = directions.direction(i, shift);
-                dirs[std::size_t(i)] = tx * l.x + bx * l.y + n * l.z;
-            }
-            stream.closestHits(origin, dirs.data(), rays, tfar, t.data(), back.data());
+            const detail::SampleFrame frame = detail::sampleFrame(tracer, samples, s, settings.seed);
+            for (int i = 0; i < rays; ++i) dirs[std::size_t(i)] = frame.direction(directions, i);
+            stream.closestHits(frame.origin, dirs.data(), rays, tfar, t.data(), back.data());
             int backCount = 0;
             double sum[2] = {0, 0};
             for (int i = 0; i < rays; ++i) {

@@ -11,5 +11,6 @@ void addRenderCommand(CLI::App& app);
 void addGBufferCommand(CLI::App& app);
 void addScenesCommand(CLI::App& app);
 void addBenchCommand(CLI::App& app);
+void addBakeCommand(CLI::App& app);
 
 } // namespace obscura::cli

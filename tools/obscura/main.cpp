@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
     obscura::cli::addGBufferCommand(app);
     obscura::cli::addScenesCommand(app);
     obscura::cli::addBenchCommand(app);
+    obscura::cli::addBakeCommand(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
