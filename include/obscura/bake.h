@@ -140,7 +140,10 @@ struct RawTraceResult {
     std::size_t stride = 0;               // every stride-th sample's rays; 0: not measured
     std::uint64_t rays = 0, hits = 0;
     double seconds = 0;                   // wall time of the traversal alone
+    double bakeSeconds = 0;               // the bake's own path (ray setup, packets, kernel) on the same rays,
+                                          // in batches alternating with the bare ones
     double mrays() const { return seconds > 0 ? double(rays) / seconds * 1e-6 : 0.0; }
+    double bakeMrays() const { return bakeSeconds > 0 ? double(rays) / bakeSeconds * 1e-6 : 0.0; }
 };
 
 struct BakeResult {
