@@ -128,6 +128,11 @@ struct SolveStats {
 std::vector<float> solveVertexValues(const WeldedMesh& mesh, const SampleSet& samples, const RayResults& results,
                                      float alpha, SolveStats* stats = nullptr);
 
+// Smoothness of a piecewise-linear result: the area-weighted RMS jump of the normal derivative across interior
+// edges (faces unfolded), sqrt(sum_e (A1+A2) s_e^2 / sum_e (A1+A2)), 1/m; the quantity R penalises. `values`
+// holds welded vertices x channels.
+double gradientJump(const WeldedMesh& mesh, const std::vector<float>& values, int channels, int channel);
+
 // ---- the whole bake ----------------------------------------------------------------------------
 
 struct StageTimes {

@@ -122,6 +122,7 @@ void addBenchCommand(CLI::App& app) {
     trace->add_option("--threads", o->threads, "Worker threads (0 = all cores)")->capture_default_str();
     trace->add_flag("--json", o->json, "Print JSON instead of a table");
     trace->callback([o] { runTrace(*o); });
+    addBakeBenchCommands(*bench);
 }
 
 } // namespace obscura::cli

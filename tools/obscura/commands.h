@@ -12,5 +12,6 @@ void addGBufferCommand(CLI::App& app);
 void addScenesCommand(CLI::App& app);
 void addBenchCommand(CLI::App& app);
 void addBakeCommand(CLI::App& app);
+void addBakeBenchCommands(CLI::App& bench);  // `bench bake-quality`, added by addBenchCommand
 
 } // namespace obscura::cli
