@@ -13,10 +13,11 @@
 // with R_px = r * focal / depth (clamped to a maximum) and phi a rotation per 4 x 4 pixel class. Samples off
 // the buffer or on sky are dropped (they count in s: unseen space is empty, as the paper assumes).
 //
-// The ray-traced integral this estimates (trace::ambientObscurance with trace::Falloff::Alchemy) is
-// given by rayTracedEquivalent(): for the paper, eq. 10 is the uniform-direction estimator of
+// The ray-traced integral it approximates (trace::ambientObscurance with trace::Falloff::Alchemy) is
+// given by rayTracedEquivalent(): were its samples uniform directions, eq. 10 would estimate
 // A = 1 - (1/pi) Integral g(t) cos dw with g(t) = sigma t / (t^2 + eps) ~ sigma u t / max(u, t)^2 / u,
-// u = sqrt(eps); for the chapter, g(t) = pi scale c t / max(c, t)^2.
+// u = sqrt(eps); for the chapter, g(t) = pi scale c t / max(c, t)^2. Screen-space samples and unseen
+// occluders make it an approximation; docs/QUALITY.md measures how close.
 //
 // Errors: AlchemySettings::validate(), alchemyConstants() and alchemyAO() throw obscura::Error for bad
 // settings or buffers. alchemyPixel() is the hot path and checks nothing.

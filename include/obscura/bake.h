@@ -128,11 +128,27 @@ struct SolveStats {
 std::vector<float> solveVertexValues(const WeldedMesh& mesh, const SampleSet& samples, const RayResults& results,
                                      float alpha, SolveStats* stats = nullptr);
 
+// Smoothness of a piecewise-linear result: the area-weighted RMS jump of the normal derivative across interior
+// edges (faces unfolded), sqrt(sum_e (A1+A2) s_e^2 / sum_e (A1+A2)), 1/m; the quantity R penalises. `values`
+// holds welded vertices x channels.
+double gradientJump(const WeldedMesh& mesh, const std::vector<float>& values, int channels, int channel);
+
 // ---- the whole bake ----------------------------------------------------------------------------
 
 struct StageTimes {
     double processGeometry = 0, sample = 0, bvhBuild = 0, trace = 0, solve = 0, write = 0;  // seconds
     double total() const { return processGeometry + sample + bvhBuild + trace + solve + write; }
+};
+
+// Bare Embree on a uniform subset of the bake's own rays (bake_bench.h), when asked for.
+struct RawTraceResult {
+    std::size_t stride = 0;               // every stride-th sample's rays; 0: not measured
+    std::uint64_t rays = 0, hits = 0;
+    double seconds = 0;                   // wall time of the traversal alone
+    double bakeSeconds = 0;               // the bake's own path (ray setup, packets, kernel) on the same rays,
+                                          // in batches alternating with the bare ones
+    double mrays() const { return seconds > 0 ? double(rays) / seconds * 1e-6 : 0.0; }
+    double bakeMrays() const { return bakeSeconds > 0 ? double(rays) / bakeSeconds * 1e-6 : 0.0; }
 };
 
 struct BakeResult {
@@ -146,6 +162,7 @@ struct BakeResult {
     std::uint64_t rays = 0;
     SolveStats solve;
     StageTimes times;
+    RawTraceResult raw;
     double mraysPerSecond() const { return times.trace > 0 ? double(rays) / times.trace * 1e-6 : 0.0; }
 };
 
@@ -153,7 +170,9 @@ struct BakeResult {
 using StageProgress = std::function<void(const std::string& stage, double fraction)>;
 
 // Runs every stage on the scene (validated settings; throws obscura::Error on bad settings or an Embree
-// failure). Times every stage but "write", which is the caller's.
-BakeResult bakeScene(const Scene& scene, const BakeSettings& settings, const StageProgress& progress = {});
+// failure). Times every stage but "write", which is the caller's. With rawEmbreeStride > 0, also traces
+// every rawEmbreeStride-th sample's rays with bare Embree after the trace stage (BakeResult::raw).
+BakeResult bakeScene(const Scene& scene, const BakeSettings& settings, const StageProgress& progress = {},
+                     std::size_t rawEmbreeStride = 0);
 
 } // namespace obscura::bake

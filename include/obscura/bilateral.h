@@ -50,7 +50,8 @@ struct BilateralSettings {
 // the full kernel is 1 within a few ulps. radius in [1, 32] (asserted).
 std::vector<float> gaussianHalfKernel(int radius);
 
-// Weight of a tap with spatial weight `spatial` at depth di, normal ni, relative to a centre at depth d
+// Weight of a tap (the definition; the filter's vectorised loops evaluate the same expression with a
+// polynomial exp, relative error < 2e-5) with spatial weight `spatial` at depth di, normal ni, relative to a centre at depth d
 // (finite) with normal n. invTwoSigmaD2 = 1 / (2 (depthSigma d)^2). Sky taps (di = +inf) weigh 0.
 inline float tapWeight(float spatial, float d, Vec3 n, float di, Vec3 ni, float invTwoSigmaD2, bool useNormal) {
     float dd = di - d;

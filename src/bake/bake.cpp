@@ -2,6 +2,8 @@
 // Sloan et al. 2013, with the welded values handed back in the file's vertex order per instance.
 #include "obscura/bake.h"
 
+#include "obscura/bake_bench.h"
+
 #include "obscura/error.h"
 #include "obscura/trace.h"
 
@@ -19,7 +21,8 @@ double now() {
 
 } // namespace
 
-BakeResult bakeScene(const Scene& scene, const BakeSettings& settings, const StageProgress& progress) {
+BakeResult bakeScene(const Scene& scene, const BakeSettings& settings, const StageProgress& progress,
+                     std::size_t rawEmbreeStride) {
     settings.validate();
     auto report = [&](const char* stage, double f) {
         if (progress) progress(stage, f);
@@ -51,6 +54,12 @@ BakeResult bakeScene(const Scene& scene, const BakeSettings& settings, const Sta
     const RayResults rays = traceSamples(tracer, samples, settings, [&](double f) { report("trace", f); });
     double t4 = now();
     r.times.trace = t4 - t3;
+    if (rawEmbreeStride > 0) {
+        report("raw Embree check", 0.0);
+        r.raw = benchRawEmbree(tracer, samples, settings, rawEmbreeStride);
+        report("raw Embree check", 1.0);
+        t4 = now();  // not part of any stage
+    }
 
     report("least-squares solve", 0.0);
     const std::vector<float> welded = solveVertexValues(mesh, samples, rays, settings.alpha, &r.solve);

@@ -8,7 +8,8 @@
 #include "obscura/parallel.h"
 #include "obscura/sampling.h"
 #include "obscura/trace.h"
-#include "obscura/trace_stream.h"
+
+#include "bake/ray_setup.h"
 
 #include <algorithm>
 #include <atomic>
@@ -37,6 +38,77 @@ void BakeSettings::validate() const {
         fail("--weld-tolerance", "must be in [0, 0.01] (relative to the scene diagonal), got " + std::to_string(weldTolerance));
 }
 
+namespace detail {
+
+SampleTracer::SampleTracer(const trace::Tracer& tracer, const BakeSettings& settings)
+    : tracer_(tracer), settings_(settings), directions_(settings.rays), stream_(tracer) {
+    for (std::size_t c = 0; c < settings.distances.size(); ++c) {
+        d_[c] = settings.distances[c];
+        a_[c] = std::log(0.5f) / d_[c];
+    }
+    const float dmax = *std::max_element(settings.distances.begin(), settings.distances.end());
+    // Occlusion needs hits within the largest d; beyond 24 d the exponential weight exp(a t) is below
+    // 2^-24, under float resolution of A.
+    tfar_ = settings.mode == Mode::Occlusion ? dmax : 24.0f * dmax;
+    // Ray order for packets: by azimuth sector, then by sin^2(theta), so 8 neighbours point alike. The
+    // shift rotates every azimuth alike and moves sin^2 modulo 1, so neighbours stay mostly neighbours.
+    const int rays = settings.rays;
+    const int sectors = std::max(1, rays / 16);
+    std::vector<std::pair<std::pair<int, float>, int>> keys;
+    for (int i = 0; i < rays; ++i) {
+        const Vec3 l = directions_.direction(i, CosineHemisphereSet::Shift{0.0f, 1.0f, 0.0f});
+        const float phi = std::atan2(l.y, l.x) + kPi;  // [0, 2 pi]
+        const int sector = std::min(sectors - 1, int(phi / (2.0f * kPi) * float(sectors)));
+        keys.push_back({{sector, l.x * l.x + l.y * l.y}, i});
+    }
+    std::sort(keys.begin(), keys.end());
+    for (const auto& k : keys) order_.push_back(k.second);
+}
+
+SampleTracer::Scratch SampleTracer::scratch() const {
+    const auto n = std::size_t(settings_.rays);
+    Scratch s;
+    s.directions.resize(n);
+    s.t.resize(n);
+    s.back.resize(n);
+    return s;
+}
+
+SampleFrame SampleTracer::frame(const SampleSet& samples, std::size_t s) const {
+    SampleFrame f;
+    const Vec3 p = samples.positions[s];
+    f.n = samples.normals[s];
+    orthonormalBasis(f.n, f.t, f.b);
+    f.origin = p + f.n * tracer_.selfHitOffset(p);
+    f.shift = CosineHemisphereSet::shift(hashCombine(settings_.seed, std::uint32_t(s)));
+    return f;
+}
+
+int SampleTracer::trace(const SampleSet& samples, std::size_t s, Scratch& scratch, float* values) const {
+    const SampleFrame f = frame(samples, s);
+    const auto rays = std::size_t(settings_.rays);
+    for (std::size_t i = 0; i < rays; ++i) scratch.directions[i] = direction(f, i);
+    stream_.closestHits(f.origin, scratch.directions.data(), settings_.rays, tfar_, scratch.t.data(), scratch.back.data());
+    const std::size_t channels = settings_.distances.size();
+    const bool occlusion = settings_.mode == Mode::Occlusion;
+    int backCount = 0;
+    double sum[2] = {0, 0};
+    for (std::size_t i = 0; i < rays; ++i) {
+        const float ti = scratch.t[i];
+        backCount += scratch.back[i];
+        for (std::size_t c = 0; c < channels; ++c) {
+            if (occlusion)
+                sum[c] += ti >= d_[c] ? 1.0 : 0.0;
+            else
+                sum[c] += std::isfinite(ti) ? double(1.0f - std::exp(a_[c] * ti)) : 1.0;
+        }
+    }
+    for (std::size_t c = 0; c < channels; ++c) values[c] = float(sum[c] / double(rays));
+    return backCount;
+}
+
+} // namespace detail
+
 RayResults traceSamples(const trace::Tracer& tracer, const SampleSet& samples, const BakeSettings& settings,
                         const Progress& progress) {
     RayResults r;
@@ -46,54 +118,14 @@ RayResults traceSamples(const trace::Tracer& tracer, const SampleSet& samples, c
     r.values.assign(count * channels, 1.0f);
     r.valid.assign(count, 1);
 
-    const int rays = settings.rays;
-    const auto rayCount = std::size_t(rays);
-    const CosineHemisphereSet directions(rays);
-    const trace::HitStream stream(tracer);
-    float a[2] = {0, 0}, d[2] = {0, 0};
-    float maxDistance = 0;
-    for (std::size_t c = 0; c < channels; ++c) {
-        d[c] = settings.distances[c];
-        a[c] = std::log(0.5f) / d[c];
-        maxDistance = std::max(maxDistance, d[c]);
-    }
-    const bool occlusion = settings.mode == Mode::Occlusion;
-    // Beyond 24 d the exponential weight exp(a t) is below 2^-24, under float resolution of A.
-    const float tfar = occlusion ? maxDistance : 24.0f * maxDistance;
-    const auto backLimit = int(std::floor(double(settings.backFaceLimit) * rays));
-
+    const detail::SampleTracer sampleTracer(tracer, settings);
+    const auto backLimit = int(std::floor(double(settings.backFaceLimit) * settings.rays));
     std::atomic<std::size_t> done{0}, invalid{0};
-    const std::size_t grain = 64;
     parallelFor(count, [&](std::size_t begin, std::size_t end) {
-        std::vector<Vec3> dirs(rayCount);
-        std::vector<float> t(rayCount);
-        std::vector<std::uint8_t> back(rayCount);
+        detail::SampleTracer::Scratch scratch = sampleTracer.scratch();
         std::size_t localInvalid = 0;
         for (std::size_t s = begin; s < end; ++s) {
-            const Vec3 p = samples.positions[s], n = samples.normals[s];
-            Vec3 tx, bx;
-            orthonormalBasis(n, tx, bx);
-            const Vec3 origin = p + n * tracer.selfHitOffset(p);
-            const auto shift = CosineHemisphereSet::shift(hashCombine(settings.seed, std::uint32_t(s)));
-            for (int i = 0; i < rays; ++i) {
-                const Vec3 l = directions.direction(i, shift);
-                dirs[std::size_t(i)] = tx * l.x + bx * l.y + n * l.z;
-            }
-            stream.closestHits(origin, dirs.data(), rays, tfar, t.data(), back.data());
-            int backCount = 0;
-            double sum[2] = {0, 0};
-            for (int i = 0; i < rays; ++i) {
-                const float ti = t[std::size_t(i)];
-                backCount += back[std::size_t(i)];
-                for (std::size_t c = 0; c < channels; ++c) {
-                    if (occlusion)
-                        sum[c] += ti >= d[c] ? 1.0 : 0.0;
-                    else
-                        sum[c] += std::isfinite(ti) ? double(1.0f - std::exp(a[c] * ti)) : 1.0;
-                }
-            }
-            for (std::size_t c = 0; c < channels; ++c) r.values[s * channels + c] = float(sum[c] / rays);
-            if (backCount > backLimit) {
+            if (sampleTracer.trace(samples, s, scratch, &r.values[s * channels]) > backLimit) {
                 r.valid[s] = 0;
                 ++localInvalid;
             }
@@ -101,8 +133,8 @@ RayResults traceSamples(const trace::Tracer& tracer, const SampleSet& samples, c
         invalid += localInvalid;
         const std::size_t finished = done += end - begin;
         if (progress) progress(double(finished) / double(count));
-    }, grain);
-    r.rays = std::uint64_t(count) * std::uint64_t(rays);
+    }, 64);
+    r.rays = std::uint64_t(count) * std::uint64_t(settings.rays);
     r.invalidSamples = invalid;
     return r;
 }

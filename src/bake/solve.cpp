@@ -6,6 +6,8 @@
 
 #include "obscura/error.h"
 
+#include "bake/edges.h"
+
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 
@@ -88,35 +90,14 @@ std::vector<float> solveVertexValues(const WeldedMesh& mesh, const SampleSet& sa
         if (unknown[v] == kUnused) unknown[v] = n++;
     if (n == 0) return out;
 
-    // Half-edges sorted by their undirected edge: (edge key, triangle * 3 + opposite corner).
-    std::vector<std::pair<std::uint64_t, std::uint32_t>> halfEdges;
-    halfEdges.reserve(3 * triangles);
-    for (std::size_t t = 0; t < triangles; ++t)
-        for (std::uint32_t k = 0; k < 3; ++k) {
-            const std::uint32_t a = unknown[mesh.indices[3 * t + (k + 1) % 3]], b = unknown[mesh.indices[3 * t + (k + 2) % 3]];
-            halfEdges.emplace_back(pairKey(a, b), std::uint32_t(3 * t + k));
-        }
-    std::sort(halfEdges.begin(), halfEdges.end());
-
     // Pattern: every mesh edge, plus (c, d) across each interior edge, plus the diagonal.
+    const std::vector<std::pair<std::uint32_t, std::uint32_t>> interior = detail::interiorEdges(mesh);
     std::vector<std::uint64_t> keys;
-    keys.reserve(halfEdges.size() + halfEdges.size() / 2 + n);
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> interior;  // the two half-edges of each interior edge
-    for (std::size_t i = 0; i < halfEdges.size();) {
-        std::size_t j = i;
-        while (j < halfEdges.size() && halfEdges[j].first == halfEdges[i].first) ++j;
-        keys.push_back(halfEdges[i].first);
-        // Exactly two faces: a manifold interior edge. Boundary and non-manifold edges are not regularised.
-        if (j - i == 2) {
-            const std::uint32_t c = unknown[mesh.indices[halfEdges[i].second]], d = unknown[mesh.indices[halfEdges[i + 1].second]];
-            if (c != d) {
-                interior.emplace_back(halfEdges[i].second, halfEdges[i + 1].second);
-                keys.push_back(pairKey(c, d));
-            }
-        }
-        i = j;
-    }
-    halfEdges = {};
+    keys.reserve(3 * triangles + interior.size() + n);
+    for (std::size_t t = 0; t < triangles; ++t)
+        for (std::size_t k = 0; k < 3; ++k)
+            keys.push_back(pairKey(unknown[mesh.indices[3 * t + k]], unknown[mesh.indices[3 * t + (k + 1) % 3]]));
+    for (auto [h1, h2] : interior) keys.push_back(pairKey(unknown[mesh.indices[h1]], unknown[mesh.indices[h2]]));
     LowerMatrix system(n, keys);
     keys = {};
 
@@ -154,28 +135,12 @@ std::vector<float> solveVertexValues(const WeldedMesh& mesh, const SampleSet& sa
     }
 
     // Regulariser: D_e x = (A1 + A2) * (normal derivative on face 1 - on face 2), faces unfolded about the edge.
-    for (auto [h1, h2] : interior) {
-        const std::size_t t1 = h1 / 3;
-        const std::uint32_t k1 = h1 % 3;
-        const std::uint32_t ga = mesh.indices[3 * t1 + (k1 + 1) % 3], gb = mesh.indices[3 * t1 + (k1 + 2) % 3];
-        const std::uint32_t gc = mesh.indices[h1], gd = mesh.indices[h2];
-        const Vec3d a = toD(mesh.positions[ga]), e = sub(toD(mesh.positions[gb]), a);
-        const double len = lengthD(e);
-        const Vec3d u{e.x / len, e.y / len, e.z / len};
-        auto unfold = [&](std::uint32_t g, double& x, double& h) {
-            const Vec3d q = sub(toD(mesh.positions[g]), a);
-            x = dotD(q, u);
-            h = lengthD(Vec3d{q.x - x * u.x, q.y - x * u.y, q.z - x * u.z});
-        };
-        double xc, hc, xd, hd;
-        unfold(gc, xc, hc);
-        unfold(gd, xd, hd);
-        if (!(hc > 0.0) || !(hd > 0.0)) continue;
-        // a = (0,0), b = (len,0), c = (xc, hc) and d = (xd, -hd): the y-derivatives of the hat functions.
-        const double areas = 0.5 * len * (hc + hd);
-        const double coef[4] = {areas * ((xc - len) / (len * hc) - (len - xd) / (len * hd)),
-                                areas * (-xc / (len * hc) - xd / (len * hd)), areas / hc, areas / hd};
-        const std::uint32_t idx[4] = {unknown[ga], unknown[gb], unknown[gc], unknown[gd]};
+    for (const auto& edge : interior) {
+        std::uint32_t vertex[4];
+        double coef[4], sumArea;
+        if (!detail::edgeRow(mesh, edge, vertex, coef, sumArea)) continue;
+        std::uint32_t idx[4];
+        for (int i = 0; i < 4; ++i) idx[i] = unknown[vertex[i]];
         for (int i = 0; i < 4; ++i)
             for (int j = 0; j < 4; ++j)
                 if (idx[i] >= idx[j]) system.add(idx[i], idx[j], double(alpha) * coef[i] * coef[j]);
@@ -207,6 +172,80 @@ std::vector<float> solveVertexValues(const WeldedMesh& mesh, const SampleSet& sa
         stats->nonZeros = system.nonZeros();
     }
     return out;
+}
+
+namespace detail {
+
+std::vector<std::pair<std::uint32_t, std::uint32_t>> interiorEdges(const WeldedMesh& mesh) {
+    // Half-edges sorted by their undirected edge: (edge key, triangle * 3 + opposite corner).
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> halfEdges;
+    halfEdges.reserve(mesh.indices.size());
+    for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
+        for (std::uint32_t k = 0; k < 3; ++k)
+            halfEdges.emplace_back(pairKey(mesh.indices[3 * t + (k + 1) % 3], mesh.indices[3 * t + (k + 2) % 3]),
+                                   std::uint32_t(3 * t + k));
+    std::sort(halfEdges.begin(), halfEdges.end());
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> interior;
+    for (std::size_t i = 0; i < halfEdges.size();) {
+        std::size_t j = i;
+        while (j < halfEdges.size() && halfEdges[j].first == halfEdges[i].first) ++j;
+        // Exactly two faces: a manifold interior edge. Boundary and non-manifold edges are not regularised.
+        if (j - i == 2 && mesh.indices[halfEdges[i].second] != mesh.indices[halfEdges[i + 1].second])
+            interior.emplace_back(halfEdges[i].second, halfEdges[i + 1].second);
+        i = j;
+    }
+    return interior;
+}
+
+bool edgeRow(const WeldedMesh& mesh, std::pair<std::uint32_t, std::uint32_t> edge, std::uint32_t vertex[4],
+             double coef[4], double& sumArea) {
+    const auto [h1, h2] = edge;
+    const std::size_t t1 = h1 / 3;
+    const std::uint32_t k1 = h1 % 3;
+    const std::uint32_t ga = mesh.indices[3 * t1 + (k1 + 1) % 3], gb = mesh.indices[3 * t1 + (k1 + 2) % 3];
+    const std::uint32_t gc = mesh.indices[h1], gd = mesh.indices[h2];
+    const Vec3d a = toD(mesh.positions[ga]), e = sub(toD(mesh.positions[gb]), a);
+    const double len = lengthD(e);
+    if (!(len > 0.0)) return false;
+    const Vec3d u{e.x / len, e.y / len, e.z / len};
+    auto unfold = [&](std::uint32_t g, double& x, double& h) {
+        const Vec3d q = sub(toD(mesh.positions[g]), a);
+        x = dotD(q, u);
+        h = lengthD(Vec3d{q.x - x * u.x, q.y - x * u.y, q.z - x * u.z});
+    };
+    double xc, hc, xd, hd;
+    unfold(gc, xc, hc);
+    unfold(gd, xd, hd);
+    if (!(hc > 0.0) || !(hd > 0.0)) return false;
+    // a = (0,0), b = (len,0), c = (xc, hc) and d = (xd, -hd): the y-derivatives of the hat functions are
+    // (xc - len)/(len hc), -xc/(len hc), 1/hc on face 1 and (len - xd)/(len hd), xd/(len hd), -1/hd on face 2.
+    sumArea = 0.5 * len * (hc + hd);
+    coef[0] = sumArea * ((xc - len) / (len * hc) - (len - xd) / (len * hd));
+    coef[1] = sumArea * (-xc / (len * hc) - xd / (len * hd));
+    coef[2] = sumArea / hc;
+    coef[3] = sumArea / hd;
+    vertex[0] = ga;
+    vertex[1] = gb;
+    vertex[2] = gc;
+    vertex[3] = gd;
+    return true;
+}
+
+} // namespace detail
+
+double gradientJump(const WeldedMesh& mesh, const std::vector<float>& values, int channels, int channel) {
+    double weighted = 0, area = 0;
+    for (const auto& edge : detail::interiorEdges(mesh)) {
+        std::uint32_t vertex[4];
+        double coef[4], sumArea;
+        if (!detail::edgeRow(mesh, edge, vertex, coef, sumArea)) continue;
+        double d = 0;
+        for (int i = 0; i < 4; ++i) d += coef[i] * double(values[std::size_t(vertex[i]) * std::size_t(channels) + std::size_t(channel)]);
+        const double jump = d / sumArea;  // 1/m
+        weighted += sumArea * jump * jump;
+        area += sumArea;
+    }
+    return area > 0 ? std::sqrt(weighted / area) : 0.0;
 }
 
 } // namespace obscura::bake

@@ -8,6 +8,7 @@
 #include "obscura/sampling.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 
 namespace obscura::ssao {
@@ -38,9 +39,9 @@ void AlchemySettings::validate() const {
     checkRange(bias >= 0.0f && bias <= 1.0f, "bias", "[0, 1] m", double(bias));
     checkRange(epsilon > 0.0f && epsilon <= 1.0f, "epsilon", "(0, 1] m^2", double(epsilon));
     checkRange(samples >= 1 && samples <= kAlchemyMaxSamples, "samples", "[1, 1024]", samples);
-    checkRange(maxRadiusPixels >= 1.0f && maxRadiusPixels <= 4096.0f, "max-radius", "[1, 4096] px",
+    checkRange(maxRadiusPixels >= 1.0f && maxRadiusPixels <= 4096.0f, "max-radius-px", "[1, 4096] px",
                double(maxRadiusPixels));
-    checkRange(lodRadiusPixels >= 0.0f && lodRadiusPixels <= 4096.0f, "lod-radius", "[0, 4096] px",
+    checkRange(lodRadiusPixels >= 0.0f && lodRadiusPixels <= 4096.0f, "lod-radius-px", "[0, 4096] px",
                double(lodRadiusPixels));
     // The level of detail keeps one offset table per sample count; 256 counts x 16 classes is 4 MB.
     if (lodRadiusPixels > 0.0f && samples > 256) fail("samples", "at most 256 with the level of detail on");
@@ -256,6 +257,7 @@ OBSCURA_TARGET_CLONES void alchemyRow(const AlchemyConstants& k, const AlchemyIn
                                       int y, int x0, int x1, float* out) {
     constexpr int kMax = 64;
     const int n = x1 - x0;
+    assert(n >= 0 && n <= kMax);
     float fx[kMax], cx[kMax], cy[kMax], cz[kMax], nx[kMax], ny[kMax], nz[kMax], rpx[kMax], shift[kMax], sum[kMax];
     const std::size_t rowStart = std::size_t(y) * std::size_t(k.width);
     const bool paper = k.formulation == kAlchemyPaper;

@@ -131,6 +131,9 @@ TEST_F(AlchemyCli, RenderRejectsBadAlchemyFlags) {
     expectFailure(base + " --ao-radius inf", {"--ao-radius", "finite"});
     expectFailure(base + " --ao-preset loud", {"--ao-preset"}, 2);
     expectFailure(base + " --blur box", {"--blur"}, 2);
+    expectFailure(base + " --ao-max-radius-px 0", {"--ao-max-radius"});
+    expectFailure(base + " --ao-lod-radius-px -3", {"--ao-lod-radius"});
+    expectFailure(base + " --ao-lod-radius-px 8 --ao-samples 300", {"--ao-samples", "level of detail"});
 }
 
 TEST_F(AlchemyCli, CompareReportsMetricsAndWritesThePicture) {

@@ -9,8 +9,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 namespace obscura::ssao {
 namespace {
@@ -231,6 +233,31 @@ TEST(Alchemy, LevelOfDetailOnlyChangesDistantPixels) {
     s.lodRadiusPixels = 1.0f;  // below every pixel's R_px here: no pixel loses samples
     Image lod = alchemyAO(g, s);
     EXPECT_EQ(full.pixels, lod.pixels);
+    // With a threshold inside the range of R_px (the median), pixels at or above it keep every sample
+    // (same bits) and some distant pixels get fewer samples (different values).
+    const float focal = cam.focalPixels();
+    std::vector<float> radii;
+    for (int y = 0; y < cam.height; ++y)
+        for (int x = 0; x < cam.width; ++x)
+            if (!g.isSky(x, y)) radii.push_back(s.radius * focal / g.depth.at(x, y));
+    std::nth_element(radii.begin(), radii.begin() + std::ptrdiff_t(radii.size() / 2), radii.end());
+    const float threshold = radii[radii.size() / 2];
+    s.lodRadiusPixels = threshold;
+    lod = alchemyAO(g, s);
+    int reduced = 0, kept = 0;
+    for (int y = 0; y < cam.height; ++y)
+        for (int x = 0; x < cam.width; ++x) {
+            if (g.isSky(x, y)) continue;
+            const float rpx = s.radius * focal / g.depth.at(x, y);
+            if (rpx >= threshold) {
+                ++kept;
+                ASSERT_EQ(lod.at(x, y), full.at(x, y)) << x << "," << y;
+            } else {
+                reduced += lod.at(x, y) != full.at(x, y);
+            }
+        }
+    EXPECT_GT(kept, 100);
+    EXPECT_GT(reduced, 10);
 }
 
 // The row-batched fast path (alchemyRow, used by alchemyAO) performs alchemyPixel's operations in the same

@@ -56,6 +56,13 @@ void AlchemyFlags::add(CLI::App& app, bool withRadius) {
     app.add_option("--ao-guard-band", guardBand,
                    "Pixels of extra G-buffer on each side so occluders just off screen count, [0, 1024]")
         ->capture_default_str();
+    app.add_option("--ao-max-radius-px", maxRadiusPixels,
+                   "Largest screen radius of the Alchemy sample disc in pixels, [1, 4096]")
+        ->capture_default_str();
+    app.add_option("--ao-lod-radius-px", lodRadiusPixels,
+                   "Fewer samples with distance: pixels whose disc is smaller than this many px get proportionally "
+                   "fewer samples (at least 1/4), [0, 4096]; 0 = off")
+        ->capture_default_str();
     app.add_flag("--ao-normals-from-depth", normalsFromDepth, "Rebuild normals from depth instead of the G-buffer's");
 }
 
@@ -76,6 +83,8 @@ ssao::AlchemySettings AlchemyFlags::settings(const std::string& radiusText) cons
     if (biasOption && biasOption->count() > 0) s.bias = bias;
     if (samplesOption && samplesOption->count() > 0) s.samples = samples;
     s.guardBand = guardBand;
+    s.maxRadiusPixels = maxRadiusPixels;
+    s.lodRadiusPixels = lodRadiusPixels;
     s.normalsFromDepth = normalsFromDepth;
     s.seed = seed;
     try {

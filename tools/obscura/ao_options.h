@@ -29,10 +29,11 @@ struct AlchemyFlags {
     float intensity = 1.0f, contrast = 1.0f, bias = 1e-4f;
     int samples = 12;
     int guardBand = 0;
+    float maxRadiusPixels = 256.0f, lodRadiusPixels = 0.0f;
     bool normalsFromDepth = false;
     unsigned seed = 0;
     // Registers --ao-preset, --ao-formulation, --ao-intensity, --ao-contrast, --ao-bias, --ao-samples,
-    // --ao-guard-band, --ao-normals-from-depth; and --ao-radius when `withRadius` (render has its own).
+    // --ao-guard-band, --ao-max-radius-px, --ao-lod-radius-px, --ao-normals-from-depth; and --ao-radius when `withRadius` (render has its own).
     void add(CLI::App& app, bool withRadius);
     // Preset first, then every flag given explicitly. `radiusText` is the --ao-radius value when the
     // command registered it itself (empty: not given). Validated; errors name the flag.

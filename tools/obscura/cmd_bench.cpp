@@ -124,6 +124,7 @@ void addBenchCommand(CLI::App& app) {
     trace->callback([o] { runTrace(*o); });
     addAlchemyBench(*bench);
     addGtaoBench(*bench);
+    addBakeBenchCommands(*bench);
 }
 
 } // namespace obscura::cli

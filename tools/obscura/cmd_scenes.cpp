@@ -1,17 +1,53 @@
-// `obscura scenes`: the built-in scenes, one line each.
+// `obscura scenes`: the built-in scenes, one line each; with --generate, writes a generated scene to glTF.
+#include "cli_common.h"
 #include "commands.h"
 
 #include "obscura/builtin_scenes.h"
+#include "obscura/error.h"
+#include "obscura/gltf_writer.h"
 
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
+#include <memory>
 
 namespace obscura::cli {
 
+namespace {
+
+struct GenerateOptions {
+    std::string kind, output;
+    std::size_t triangles = 1000000;
+    std::uint32_t seed = 1;
+};
+
+void generate(const GenerateOptions& o) {
+    if (o.kind != "level") fail("--generate", "unknown generator \"" + o.kind + "\" (available: level)");
+    if (o.output.empty()) fail("--output", "--generate needs -o FILE.glb (or .gltf)");
+    if (o.triangles < 4000 || o.triangles > 200000000)
+        fail("--triangles", "must be in [4000, 200000000], got " + std::to_string(o.triangles));
+    checkOutputPath("--output", o.output, {".glb", ".gltf"});
+    Scene scene = generateLevel(o.triangles, o.seed);
+    writeGltf(scene, o.output);
+    std::printf("%s: level with %zu triangles (%zu meshes, %zu instances), seed %u\n", o.output.c_str(),
+                scene.triangleCount(), scene.meshes.size(), scene.instances.size(), o.seed);
+}
+
+} // namespace
+
 void addScenesCommand(CLI::App& app) {
-    CLI::App* cmd = app.add_subcommand("scenes", "List the built-in scenes (use a name wherever a scene file goes)");
-    cmd->callback([] {
+    CLI::App* cmd = app.add_subcommand("scenes", "List the built-in scenes (use a name wherever a scene file goes), or "
+                                                 "write a generated one with --generate");
+    auto o = std::make_shared<GenerateOptions>();
+    cmd->add_option("--generate", o->kind, "Write a generated scene instead of listing: level (terrain, buildings, props)");
+    cmd->add_option("--triangles", o->triangles, "Triangle budget of the generated scene, [4000, 2e8]")->capture_default_str();
+    cmd->add_option("--seed", o->seed, "Seed of the generated scene (same seed, same file)")->capture_default_str();
+    cmd->add_option("-o,--output", o->output, "Output .glb or .gltf for --generate");
+    cmd->callback([o] {
+        if (!o->kind.empty()) {
+            generate(*o);
+            return;
+        }
         for (const std::string& name : builtinSceneNames()) {
             BuiltinScene s = makeBuiltinScene(name);
             std::printf("%-9s %s (%zu triangles)\n", name.c_str(), s.description.c_str(), s.scene.triangleCount());

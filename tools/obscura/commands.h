@@ -15,5 +15,7 @@ void addAoCommand(CLI::App& app);
 void addCompareCommand(CLI::App& app);
 void addAlchemyBench(CLI::App& bench);
 void addGtaoBench(CLI::App& bench);  // `bench gtao`, registered by addBenchCommand
+void addBakeCommand(CLI::App& app);
+void addBakeBenchCommands(CLI::App& bench);  // `bench bake-quality`, added by addBenchCommand
 
 } // namespace obscura::cli

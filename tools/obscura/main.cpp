@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
     obscura::cli::addBenchCommand(app);
     obscura::cli::addAoCommand(app);
     obscura::cli::addCompareCommand(app);
+    obscura::cli::addBakeCommand(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -1,0 +1,161 @@
+// Output of a bake: glTF attributes, PLY quality and CSV, with the artist's blend and remap (Sloan et al.
+// 2013 §3: "blended long and short AO values, currently 97% using the long radius and 3% using the short
+// radius ... remapped to give the artist more control").
+#include "obscura/bake_io.h"
+
+#include "obscura/error.h"
+#include "obscura/image_io.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+
+namespace obscura::bake {
+
+namespace {
+
+float channel(const BakeResult& r, std::size_t vertex, int c) {
+    return r.values[vertex * std::size_t(r.channels) + std::size_t(std::min(c, r.channels - 1))];
+}
+
+struct Writer {
+    std::FILE* f;
+    const std::string& path;
+    void put(const void* data, std::size_t bytes) {
+        if (std::fwrite(data, 1, bytes, f) != bytes) fail(path, "write failed (disk full?)");
+    }
+};
+
+} // namespace
+
+void ArtistControls::validate() const {
+    if (!(blend >= 0.0f && blend <= 1.0f)) fail("--blend", "must be in [0, 1], got " + std::to_string(blend));
+    if (!(gamma > 0.0f && gamma <= 16.0f)) fail("--gamma", "must be in (0, 16], got " + std::to_string(gamma));
+    if (!(low >= 0.0f && low <= 1.0f)) fail("--remap-min", "must be in [0, 1], got " + std::to_string(low));
+    if (!(high >= 0.0f && high <= 1.0f)) fail("--remap-max", "must be in [0, 1], got " + std::to_string(high));
+}
+
+float ArtistControls::shade(float shortAO, float longAO) const {
+    const float b = std::clamp(blended(shortAO, longAO), 0.0f, 1.0f);
+    return low + (high - low) * std::pow(b, gamma);
+}
+
+InstanceAttributes bakedAttributes(const BakeResult& r, const ArtistControls& controls) {
+    InstanceAttributes a;
+    a.first = r.instanceFirst;
+    const std::size_t n = r.instanceFirst.back();
+    VertexAttribute color{"COLOR_0", 3, {}}, shortAO{"_AO_SHORT", 1, {}}, longAO{"_AO_LONG", 1, {}};
+    color.data.resize(3 * n);
+    shortAO.data.resize(n);
+    if (r.channels > 1) longAO.data.resize(n);
+    for (std::size_t v = 0; v < n; ++v) {
+        const float s = channel(r, v, 0), l = channel(r, v, 1);
+        const float g = controls.shade(s, l);
+        color.data[3 * v] = color.data[3 * v + 1] = color.data[3 * v + 2] = g;
+        shortAO.data[v] = s;
+        if (r.channels > 1) longAO.data[v] = l;
+    }
+    a.attributes.push_back(std::move(color));
+    a.attributes.push_back(std::move(shortAO));
+    if (r.channels > 1) a.attributes.push_back(std::move(longAO));
+    return a;
+}
+
+void writeBakeOutput(const std::string& inputPath, const Scene& scene, const BakeResult& result,
+                     const ArtistControls& controls, const std::string& path) {
+    const std::string ext = fileExtension(path);
+    if (ext == ".glb" || ext == ".gltf") {
+        const std::string in = fileExtension(inputPath);
+        const InstanceAttributes a = bakedAttributes(result, controls);
+        if (in == ".glb" || in == ".gltf")
+            writeGltfWithAttributes(inputPath, scene, path, a);
+        else
+            writeGltf(scene, path, &a);
+    } else if (ext == ".ply") {
+        writeBakedPly(scene, result, controls, path);
+    } else if (ext == ".csv") {
+        writeBakedCsv(scene, result, controls, path);
+    } else {
+        fail(path, "unsupported output format '" + ext + "' (expected .glb, .gltf, .ply or .csv)");
+    }
+}
+
+void writeBakedPly(const Scene& scene, const BakeResult& r, const ArtistControls& controls, const std::string& path) {
+    std::size_t vertices = r.instanceFirst.back(), faces = 0;
+    for (const Instance& inst : scene.instances) faces += scene.meshes[inst.mesh].triangleCount();
+    if (vertices > 0xffffffffu) fail(path, "too many vertices for PLY int indices");
+    writeAtomically(path, [&](const std::string& temp) {
+        std::FILE* f = std::fopen(temp.c_str(), "wb");
+        if (!f) fail(path, "cannot open for writing");
+        struct Closer {
+            std::FILE* f;
+            ~Closer() { std::fclose(f); }
+        } closer{f};
+        Writer w{f, path};
+        const std::string header =
+            "ply\nformat binary_little_endian 1.0\ncomment obscura bake: quality = blended and remapped obscurance\n"
+            "element vertex " + std::to_string(vertices) +
+            "\nproperty float x\nproperty float y\nproperty float z\nproperty float quality\nproperty float ao_short\n"
+            "property float ao_long\nproperty uchar red\nproperty uchar green\nproperty uchar blue\n"
+            "element face " + std::to_string(faces) + "\nproperty list uchar int vertex_indices\nend_header\n";
+        w.put(header.data(), header.size());
+        unsigned char record[27];
+        for (std::size_t i = 0; i < scene.instances.size(); ++i) {
+            const Instance& inst = scene.instances[i];
+            const Mesh& mesh = scene.meshes[inst.mesh];
+            for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+                const std::size_t k = r.instanceFirst[i] + v;
+                const Vec3 p = transformPoint(inst.worldFromObject, mesh.positions[v]);
+                const float s = channel(r, k, 0), l = channel(r, k, 1), q = controls.shade(s, l);
+                const float fields[6] = {p.x, p.y, p.z, q, s, l};
+                std::memcpy(record, fields, sizeof fields);
+                const auto grey = static_cast<unsigned char>(std::lround(std::clamp(q, 0.0f, 1.0f) * 255.0f));
+                record[24] = record[25] = record[26] = grey;
+                w.put(record, sizeof record);
+            }
+        }
+        unsigned char face[13];
+        face[0] = 3;
+        for (std::size_t i = 0; i < scene.instances.size(); ++i) {
+            const Instance& inst = scene.instances[i];
+            const Mesh& mesh = scene.meshes[inst.mesh];
+            const bool mirrored = determinant3(inst.worldFromObject) < 0.0f;
+            for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
+                std::int32_t idx[3];
+                for (int k = 0; k < 3; ++k) idx[k] = std::int32_t(r.instanceFirst[i] + mesh.indices[3 * t + std::size_t(k)]);
+                if (mirrored) std::swap(idx[1], idx[2]);
+                std::memcpy(face + 1, idx, sizeof idx);
+                w.put(face, sizeof face);
+            }
+        }
+        if (std::fflush(f) != 0) fail(path, "write failed (disk full?)");
+    });
+}
+
+void writeBakedCsv(const Scene& scene, const BakeResult& r, const ArtistControls& controls, const std::string& path) {
+    writeAtomically(path, [&](const std::string& temp) {
+        std::FILE* f = std::fopen(temp.c_str(), "wb");
+        if (!f) fail(path, "cannot open for writing");
+        struct Closer {
+            std::FILE* f;
+            ~Closer() { std::fclose(f); }
+        } closer{f};
+        bool ok = std::fputs("index,x,y,z,short,long,blended\n", f) >= 0;
+        for (std::size_t i = 0; i < scene.instances.size() && ok; ++i) {
+            const Instance& inst = scene.instances[i];
+            const Mesh& mesh = scene.meshes[inst.mesh];
+            for (std::size_t v = 0; v < mesh.positions.size() && ok; ++v) {
+                const std::size_t k = r.instanceFirst[i] + v;
+                const Vec3 p = transformPoint(inst.worldFromObject, mesh.positions[v]);
+                const float s = channel(r, k, 0), l = channel(r, k, 1);
+                ok = std::fprintf(f, "%zu,%.9g,%.9g,%.9g,%.7g,%.7g,%.7g\n", k, double(p.x), double(p.y), double(p.z),
+                                  double(s), double(l), double(controls.blended(s, l))) > 0;
+            }
+        }
+        if (!ok || std::fflush(f) != 0) fail(path, "write failed (disk full?)");
+    });
+}
+
+} // namespace obscura::bake

@@ -1,0 +1,181 @@
+// `obscura bake` and `obscura scenes --generate` end to end: outputs carry what they promise, the input
+// is never touched, bad input gives one line and no output.
+#include "obscura/scene_io.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <unistd.h>
+
+#include <array>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Result {
+    int code = -1;
+    std::string out;  // stdout and stderr together
+};
+
+Result run(const std::string& args) {
+    std::string cmd = std::string(OBSCURA_CLI) + " " + args + " 2>&1";
+    Result r;
+    FILE* pipe = popen(cmd.c_str(), "r");
+    if (!pipe) return r;
+    std::array<char, 4096> buf{};
+    std::size_t n;
+    while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
+    int status = pclose(pipe);
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return r;
+}
+
+std::string data(const std::string& name) { return std::string(OBSCURA_TEST_DATA) + "/" + name; }
+
+std::string readBytes(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+nlohmann::json glbJson(const std::string& path) {
+    std::string bytes = readBytes(path);
+    if (bytes.size() < 20) return {};
+    std::uint32_t length;
+    std::memcpy(&length, bytes.data() + 12, 4);
+    return nlohmann::json::parse(bytes.substr(20, length));
+}
+
+class BakeCli : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir = fs::temp_directory_path() / ("obscura_bake_cli_" + std::to_string(getpid()) + "_" +
+                                           ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::remove_all(dir);
+        fs::create_directories(dir);
+    }
+    void TearDown() override { fs::remove_all(dir); }
+    std::string path(const std::string& name) const { return (dir / name).string(); }
+    void expectFailure(const std::string& args, const std::vector<std::string>& needles, int code = 1) {
+        std::size_t before = std::distance(fs::directory_iterator(dir), fs::directory_iterator{});
+        Result r = run(args);
+        EXPECT_EQ(r.code, code) << args << "\n" << r.out;
+        EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << "not one line: " << r.out;
+        EXPECT_EQ(r.out.rfind("obscura: error: ", 0), 0u) << r.out;
+        for (const std::string& n : needles) EXPECT_NE(r.out.find(n), std::string::npos) << "'" << n << "' not in: " << r.out;
+        std::size_t after = std::distance(fs::directory_iterator(dir), fs::directory_iterator{});
+        EXPECT_EQ(after, before) << "output or temporary left behind by: " << args;
+    }
+    fs::path dir;
+};
+
+const std::string kFast = " --rays 8 --max-samples-per-face 4 -q ";
+
+} // namespace
+
+TEST_F(BakeCli, GeneratedLevelBakesToGlbWithAttributesPerInstance) {
+    Result g = run("scenes --generate level --triangles 6000 --seed 3 -o " + path("level.glb"));
+    ASSERT_EQ(g.code, 0) << g.out;
+    Result g2 = run("scenes --generate level --triangles 6000 --seed 3 -o " + path("level2.glb"));
+    ASSERT_EQ(g2.code, 0) << g2.out;
+    EXPECT_EQ(readBytes(path("level.glb")), readBytes(path("level2.glb"))) << "same seed, same file";
+    obscura::Scene level = obscura::loadScene(path("level.glb"));
+    EXPECT_GE(level.triangleCount(), 6000u);
+    EXPECT_LT(level.triangleCount(), 7000u);
+    EXPECT_GT(level.instances.size(), level.meshes.size()) << "props stay instanced in the generated file";
+
+    const std::string input = readBytes(path("level.glb"));
+    Result r = run("bake " + path("level.glb") + " -o " + path("baked.glb") + " --report " + path("bake.json") + kFast);
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_EQ(r.out.find('\r'), std::string::npos) << "no progress bar when stderr is not a terminal";
+    EXPECT_EQ(readBytes(path("level.glb")), input) << "input modified";
+    nlohmann::json j = glbJson(path("baked.glb"));
+    ASSERT_TRUE(j.contains("nodes"));
+    EXPECT_EQ(j["meshes"].size(), j["nodes"].size()) << "each instance baked into a mesh of its own";
+    for (const auto& mesh : j["meshes"])
+        for (const auto& prim : mesh["primitives"]) {
+            const auto& a = prim["attributes"];
+            ASSERT_TRUE(a.contains("COLOR_0") && a.contains("_AO_SHORT") && a.contains("_AO_LONG")) << a.dump();
+            const auto count = j["accessors"][a["POSITION"].get<int>()]["count"];
+            EXPECT_EQ(j["accessors"][a["COLOR_0"].get<int>()]["count"], count);
+            EXPECT_EQ(j["accessors"][a["_AO_LONG"].get<int>()]["type"], "SCALAR");
+        }
+    obscura::Scene baked = obscura::loadScene(path("baked.glb"));
+    EXPECT_EQ(baked.triangleCount(), level.triangleCount());
+
+    nlohmann::json report = nlohmann::json::parse(readBytes(path("bake.json")));
+    for (const char* key : {"samples", "rays", "invalid_samples", "mrays_per_s", "stage_seconds"}) EXPECT_TRUE(report.contains(key)) << key;
+    for (const char* key : {"process_geometry", "sample", "bvh_build", "trace", "least_squares_solve", "write"})
+        EXPECT_TRUE(report["stage_seconds"].contains(key)) << key;
+    EXPECT_EQ(report["rays"].get<std::uint64_t>(), report["samples"].get<std::uint64_t>() * 8);
+}
+
+TEST_F(BakeCli, GltfInputKeepsItsNodesAndGetsAttributes) {
+    Result r = run("bake " + data("hierarchy.gltf") + " -o " + path("h.gltf") + kFast);
+    ASSERT_EQ(r.code, 0) << r.out;
+    nlohmann::json in = nlohmann::json::parse(readBytes(data("hierarchy.gltf")));
+    nlohmann::json out = nlohmann::json::parse(readBytes(path("h.gltf")));
+    ASSERT_EQ(out["nodes"].size(), in["nodes"].size());
+    for (std::size_t i = 0; i < in["nodes"].size(); ++i) EXPECT_EQ(out["nodes"][i].value("name", ""), in["nodes"][i].value("name", ""));
+    for (const auto& mesh : out["meshes"])
+        for (const auto& prim : mesh["primitives"]) EXPECT_TRUE(prim["attributes"].contains("COLOR_0")) << prim.dump();
+    EXPECT_EQ(obscura::loadScene(path("h.gltf")).triangleCount(), obscura::loadScene(data("hierarchy.gltf")).triangleCount());
+}
+
+TEST_F(BakeCli, OcclusionToPlyAndCsv) {
+    Result r = run("bake " + data("cube.obj") + " --mode occlusion --distance 2 -o " + path("cube.ply") + kFast);
+    ASSERT_EQ(r.code, 0) << r.out;
+    const std::string ply = readBytes(path("cube.ply"));
+    EXPECT_NE(ply.find("property float quality"), std::string::npos);
+    obscura::Scene back = obscura::loadScene(path("cube.ply"));
+    EXPECT_EQ(back.triangleCount(), 12u);
+    r = run("bake " + data("cube.obj") + " -o " + path("cube.csv") + kFast);
+    ASSERT_EQ(r.code, 0) << r.out;
+    std::ifstream csv(path("cube.csv"));
+    std::string header, line;
+    std::getline(csv, header);
+    EXPECT_EQ(header, "index,x,y,z,short,long,blended");
+    int rows = 0;
+    while (std::getline(csv, line)) {
+        ++rows;
+        float x, y, z, s, l, b;
+        int i;
+        ASSERT_EQ(std::sscanf(line.c_str(), "%d,%f,%f,%f,%f,%f,%f", &i, &x, &y, &z, &s, &l, &b), 7) << line;
+        // A lone cube: every face sees an open hemisphere, nothing occludes it.
+        EXPECT_NEAR(s, 1.0f, 1e-6f);
+        EXPECT_NEAR(b, 0.97f * l + 0.03f * s, 1e-5f);
+    }
+    EXPECT_EQ(rows, int(obscura::loadScene(data("cube.obj")).meshes[0].positions.size() +
+                        obscura::loadScene(data("cube.obj")).meshes[1].positions.size()));
+}
+
+TEST_F(BakeCli, BadInputIsOneLineAndNoOutput) {
+    const std::string out = " -o " + path("o.glb");
+    expectFailure("bake " + path("missing.glb") + out + kFast, {"missing.glb", "no such file"});
+    expectFailure("bake " + data("bad_json.gltf") + out + kFast, {"bad_json.gltf"});
+    expectFailure("bake " + data("cube.obj") + out + " --rays 0 -q", {"--rays"});
+    expectFailure("bake " + data("cube.obj") + out + " --blend 1.5 -q", {"--blend"});
+    expectFailure("bake " + data("cube.obj") + out + " --distances 2,3,4 -q", {"--distances"});
+    expectFailure("bake " + data("cube.obj") + out + " --distances -1 -q", {"--distances"});
+    expectFailure("bake " + data("cube.obj") + out + " --alpha -1 -q", {"--alpha"});
+    expectFailure("bake " + data("cube.obj") + out + " --mode fuzzy -q", {"--mode"});
+    expectFailure("bake " + data("cube.obj") + " -o " + path("o.png") + kFast, {"o.png", "unsupported output format"});
+    expectFailure("bake " + data("cube.obj") + " -o " + path("nodir/o.glb") + kFast, {"does not exist"});
+    fs::copy_file(data("quad.glb"), path("quad.glb"));
+    const std::string before = readBytes(path("quad.glb"));
+    Result r = run("bake " + path("quad.glb") + " -o " + path("quad.glb") + kFast);
+    EXPECT_EQ(r.code, 1) << r.out;
+    EXPECT_NE(r.out.find("input"), std::string::npos) << r.out;
+    EXPECT_EQ(readBytes(path("quad.glb")), before);
+    expectFailure("scenes --generate maze -o " + path("m.glb"), {"--generate"});
+    expectFailure("scenes --generate level --triangles 10 -o " + path("m.glb"), {"--triangles"});
+}
