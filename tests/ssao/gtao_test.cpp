@@ -7,6 +7,7 @@
 #include "obscura/error.h"
 #include "obscura/gtao.h"
 #include "obscura/mesh_builder.h"
+#include "obscura/parallel.h"
 #include "obscura/trace.h"
 
 #include <gtest/gtest.h>
@@ -181,4 +182,19 @@ TEST(Gtao, BadSettingsAndBuffersThrow) {
     Camera other = g.camera;
     other.width = 33;
     EXPECT_THROW(computeGtao(g, gtaoConstants(GtaoSettings{}, other)), Error);
+}
+
+TEST(Gtao, SameBitsOnAnyThreadCount) {
+    BuiltinScene s = makeBuiltinScene("demo");
+    GBuffer g = render(s.scene, s.camera, 96, 64);
+    GtaoSettings settings;
+    settings.jitter = true;
+    GtaoResult many = computeGtao(g, settings);
+    GtaoResult one;
+    {
+        ThreadLimit limit(1);
+        one = computeGtao(g, settings);
+    }
+    EXPECT_EQ(many.visibility.pixels, one.visibility.pixels);
+    EXPECT_EQ(many.bentNormal.pixels, one.bentNormal.pixels);
 }
