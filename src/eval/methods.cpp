@@ -3,6 +3,7 @@
 
 #include "obscura/alchemy.h"
 #include "obscura/error.h"
+#include "obscura/gtao.h"
 
 #include <algorithm>
 
@@ -28,6 +29,31 @@ AoMethod alchemy(const char* name, const char* description, ssao::AlchemyFormula
             [f](const MethodOptions& o, int rays) { return ssao::rayTracedEquivalent(alchemySettings(f, o), rays); }};
 }
 
+// GTAO with a preset; `samples` > 0 sets the slice count to samples / (2 x steps per side), the horizon
+// samples per pixel being 2 x slices x steps. Its integral is binary AO of the same radius (default 1 m).
+ssao::GtaoSettings gtaoSettings(ssao::GtaoQuality quality, const MethodOptions& o) {
+    ssao::GtaoSettings s;
+    ssao::applyQuality(s, quality);
+    if (o.radius > 0.0f) s.radius = o.radius;
+    if (o.samples > 0) s.sliceCount = std::clamp(o.samples / (2 * s.stepsPerSide), 1, 64);
+    return s;
+}
+
+AoMethod gtao(const char* name, const char* description, ssao::GtaoQuality quality) {
+    return {name, description,
+            [quality](const GBuffer& g, const MethodOptions& o) {
+                ssao::GtaoResult r = ssao::computeGtao(g, gtaoSettings(quality, o));
+                return ssao::bilateralFilter(r.visibility, g, o.blur);
+            },
+            [quality](const MethodOptions& o, int rays) {
+                trace::ObscuranceSettings ref;
+                ref.falloff = trace::Falloff::Binary;
+                ref.radius = gtaoSettings(quality, o).radius;
+                ref.rays = rays;
+                return ref;
+            }};
+}
+
 } // namespace
 
 const std::vector<AoMethod>& aoMethods() {
@@ -36,6 +62,9 @@ const std::vector<AoMethod>& aoMethods() {
                 ssao::AlchemyFormulation::Paper),
         alchemy("alchemy-chapter", "Alchemy AO as the IBL chapter writes it (c = 0.1 R, bias subtracted)",
                 ssao::AlchemyFormulation::Chapter),
+        gtao("gtao", "GTAO, Jimenez et al. 2016, high preset (3 slices x 3 steps per side, r 1 m, binary AO)",
+             ssao::GtaoQuality::High),
+        gtao("gtao-ultra", "GTAO, ultra preset (9 slices x 3 steps per side, r 1 m, binary AO)", ssao::GtaoQuality::Ultra),
     };
     return methods;
 }

@@ -61,9 +61,10 @@ bool samplePosition(const GtaoConstants& c, const GBuffer& g, float sx, float sy
     const float nearest = g.depth.at(ix, iy);
     if (!(nearest < 1e30f)) return false;
     const float gx = sx - 0.5f, gy = sy - 0.5f;
-    // At the border the quad is shifted inwards: extrapolating an affine function is still exact.
-    const int x0 = std::clamp(int(std::floor(gx)), 0, c.width - 2), y0 = std::clamp(int(std::floor(gy)), 0, c.height - 2);
     if (c.width > 1 && c.height > 1) {
+        // At the border the quad is shifted inwards: extrapolating an affine function is still exact.
+        const int x0 = std::clamp(int(std::floor(gx)), 0, c.width - 2);
+        const int y0 = std::clamp(int(std::floor(gy)), 0, c.height - 2);
         const float d00 = g.depth.at(x0, y0), d10 = g.depth.at(x0 + 1, y0);
         const float d01 = g.depth.at(x0, y0 + 1), d11 = g.depth.at(x0 + 1, y0 + 1);
         if (d00 < 1e30f && d10 < 1e30f && d01 < 1e30f && d11 < 1e30f) {
@@ -277,8 +278,11 @@ GtaoPixel gtaoPixel(const GtaoConstants& c, const GBuffer& g, int x, int y, int 
         } else {
             float h0 = -std::acos(std::clamp(horizonCos1, -1.0f, 1.0f));
             float h1 = std::acos(std::clamp(horizonCos0, -1.0f, 1.0f));
-            h0 = n + std::clamp(h0 - n, -kHalfPi, kHalfPi);
-            h1 = n + std::clamp(h1 - n, -kHalfPi, kHalfPi);
+            // Samples on the surface's own plane come back within float noise of its horizon (up to 5e-4 rad
+            // where acos is steep); they are that horizon, so an open surface integrates exactly like `open`.
+            // Snapping moves A by at most 2e-3^2 / 2, the integrand vanishing at the hemisphere's edge.
+            h0 = h0 - n < -kHalfPi + 2e-3f ? n - kHalfPi : std::min(h0, n + kHalfPi);
+            h1 = h1 - n > kHalfPi - 2e-3f ? n + kHalfPi : std::max(h1, n - kHalfPi);
             ArcWeights w = arc(c, h0, h1, n);
             sliceVisibility = w.visibility;
             alongV = w.alongV;
@@ -287,11 +291,11 @@ GtaoPixel gtaoPixel(const GtaoConstants& c, const GBuffer& g, int x, int y, int 
         // eq. 8: the projected normal's length restores the cosine against the true normal.
         const float normalScale = c.weighting == GTAO_WEIGHTING_UNIFORM ? 1.0f : projectedLength;
         visibility += normalScale * sliceVisibility;
-        // The slice's value with nothing in the way: n sin n + cos n (cosine), 1 (uniform).
-        unoccluded += normalScale * (c.weighting == GTAO_WEIGHTING_UNIFORM ? 1.0f : n * std::sin(n) + std::cos(n));
-        // Control variate for the bent normal: subtract the slice's unoccluded mean direction, whose
-        // average over phi is known, (2/3) N, and add that back after the loop.
+        // The slice with nothing in the way: n sin n + cos n (cosine), 1 (uniform), computed by the same
+        // arithmetic as an open arc so that an open surface gives exactly 1. Its bent-normal part is a control
+        // variate: subtracted here, its average over phi, (2/3) N, added back after the loop.
         const ArcWeights open = arc(c, n - kHalfPi, n + kHalfPi, n);
+        unoccluded += normalScale * open.visibility;
         bent += (v * (alongV - open.alongV) + t * (alongT - open.alongT)) * projectedLength;
     }
     // Eq. 8 averages over phi, where the unoccluded values average to exactly 1; dividing by their sum

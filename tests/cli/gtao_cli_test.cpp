@@ -99,3 +99,12 @@ TEST_F(GtaoCli, BadInputFailsWithOneLine) {
     Result r = run("render plane --ao gtao --ao-quality extreme -o " + path("f.png"));
     EXPECT_EQ(r.code, 2) << r.out;
 }
+
+TEST_F(GtaoCli, CompareMeasuresGtaoAgainstRayTracedAo) {
+    Result r = run("compare well --methods gtao,gtao-ultra --size 48x48 --camera-from 0,3,0 --camera-to 0,-2,0 "
+                   "--camera-up 0,0,-1 --rays 64 -q --json -o " + path("c.png"));
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_NE(r.out.find("\"gtao\""), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("\"gtao-ultra\""), std::string::npos) << r.out;
+    EXPECT_TRUE(fs::exists(path("c.png")));
+}
