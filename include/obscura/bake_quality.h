@@ -8,10 +8,14 @@
 
 namespace obscura::bake {
 
-// Splits every triangle into k^2 (k = ceil(longest edge / maxEdge), at most maxSplits) by a barycentric grid,
-// normals interpolated. Neighbours with different k meet at T-junctions, which welding leaves as cracks:
-// fine for a measurement, not a remesher.
-Scene refineScene(const Scene& scene, float maxEdge, int maxSplits);
+// Splits triangles at their edge midpoints until the longest edge is at most maxEdge * (1 + grading * r),
+// r (m) the distance to `focus`, so a huge floor is fine near the objects on it and coarse far away.
+// Triangles come out as soup (welding joins them); neighbours split to different depths meet at
+// T-junctions, which welding leaves as cracks: fine for a measurement, not a remesher.
+Scene refineScene(const Scene& scene, float maxEdge, const Bounds& focus, float grading);
+// The world bounds of the instances whose own bounding-box diagonal is at most `largest` (m): the objects,
+// without the floors and walls that frame them; the whole scene's bounds if there are none.
+Bounds refinementFocus(const Scene& scene, float largest);
 
 struct QualityChannel {
     double distance = 0;                   // d, m

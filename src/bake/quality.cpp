@@ -17,35 +17,92 @@
 
 namespace obscura::bake {
 
-Scene refineScene(const Scene& scene, float maxEdge, int maxSplits) {
+namespace {
+
+float distanceToBounds(const Bounds& b, Vec3 p) {
+    const Vec3 d = max(max(b.lo - p, p - b.hi), Vec3{});
+    return length(d);
+}
+
+struct Refiner {
+    float maxEdge, grading;
+    Bounds focus;
+    Mesh* out;
+
+    void split(const Vec3 p[3], const Vec3 n[3], int depth) {
+        const float longest = std::max({length(p[1] - p[0]), length(p[2] - p[1]), length(p[0] - p[2])});
+        float d = std::min({distanceToBounds(focus, p[0]), distanceToBounds(focus, p[1]), distanceToBounds(focus, p[2])});
+        // A triangle straddling the focus box has all corners outside it but is close: use its centre too.
+        d = std::min(d, distanceToBounds(focus, (p[0] + p[1] + p[2]) / 3.0f));
+        if (longest <= maxEdge * (1.0f + grading * d) || depth >= 20) {
+            const auto base = std::uint32_t(out->positions.size());
+            for (int k = 0; k < 3; ++k) {
+                out->positions.push_back(p[k]);
+                out->normals.push_back(n[k]);
+            }
+            out->indices.insert(out->indices.end(), {base, base + 1, base + 2});
+            return;
+        }
+        const Vec3 m[3] = {(p[0] + p[1]) * 0.5f, (p[1] + p[2]) * 0.5f, (p[2] + p[0]) * 0.5f};
+        const Vec3 mn[3] = {normalize(n[0] + n[1]), normalize(n[1] + n[2]), normalize(n[2] + n[0])};
+        const Vec3 t0[3] = {p[0], m[0], m[2]}, n0[3] = {n[0], mn[0], mn[2]};
+        const Vec3 t1[3] = {m[0], p[1], m[1]}, n1[3] = {mn[0], n[1], mn[1]};
+        const Vec3 t2[3] = {m[2], m[1], p[2]}, n2[3] = {mn[2], mn[1], n[2]};
+        const Vec3 t3[3] = {m[0], m[1], m[2]}, n3[3] = {mn[0], mn[1], mn[2]};
+        split(t0, n0, depth + 1);
+        split(t1, n1, depth + 1);
+        split(t2, n2, depth + 1);
+        split(t3, n3, depth + 1);
+    }
+};
+
+} // namespace
+
+Bounds refinementFocus(const Scene& scene, float largest) {
+    Bounds focus;
+    for (const Instance& inst : scene.instances) {
+        Scene one;
+        one.meshes.push_back(scene.meshes[inst.mesh]);
+        one.instances.push_back({0, inst.worldFromObject, {}});
+        const Bounds b = one.bounds();
+        if (length(b.size()) <= largest) {
+            focus.extend(b.lo);
+            focus.extend(b.hi);
+        }
+    }
+    return focus.empty() ? scene.bounds() : focus;
+}
+
+Scene refineScene(const Scene& scene, float maxEdge, const Bounds& focus, float grading) {
     Scene out;
     out.instances = scene.instances;
-    for (const Mesh& mesh : scene.meshes) {
+    for (std::size_t mi = 0; mi < scene.meshes.size(); ++mi) {
+        const Mesh& mesh = scene.meshes[mi];
         Mesh m;
         m.name = mesh.name;
         m.baseColor = mesh.baseColor;
+        // The focus is in world space; a mesh placed once is refined as placed (instanced meshes with the
+        // first instance's transform, which is what matters for the built-in scenes' small props).
+        Mat4 objectFromWorld = Mat4::identity();
+        for (const Instance& inst : scene.instances)
+            if (inst.mesh == mi) {
+                invert(inst.worldFromObject, objectFromWorld);
+                break;
+            }
+        Bounds local;
+        for (int c = 0; c < 8; ++c)
+            local.extend(transformPoint(objectFromWorld, {(c & 1) ? focus.hi.x : focus.lo.x, (c & 2) ? focus.hi.y : focus.lo.y,
+                                                          (c & 4) ? focus.hi.z : focus.lo.z}));
+        Refiner r{maxEdge, grading, local, &m};
         const bool normals = mesh.normals.size() == mesh.positions.size();
         for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
             const std::uint32_t* v = &mesh.indices[3 * t];
             const Vec3 p[3] = {mesh.positions[v[0]], mesh.positions[v[1]], mesh.positions[v[2]]};
-            const float longest = std::max({length(p[1] - p[0]), length(p[2] - p[1]), length(p[0] - p[2])});
-            const int k = std::clamp(int(std::ceil(longest / maxEdge)), 1, maxSplits);
-            const auto base = std::uint32_t(m.positions.size());
-            auto at = [&](int i, int j) { return base + std::uint32_t(j * (k + 1) - j * (j - 1) / 2 + i); };
-            for (int j = 0; j <= k; ++j)
-                for (int i = 0; i + j <= k; ++i) {
-                    const float b1 = float(i) / float(k), b2 = float(j) / float(k), b0 = 1.0f - b1 - b2;
-                    m.positions.push_back(p[0] * b0 + p[1] * b1 + p[2] * b2);
-                    if (normals)
-                        m.normals.push_back(normalize(mesh.normals[v[0]] * b0 + mesh.normals[v[1]] * b1 + mesh.normals[v[2]] * b2));
-                }
-            for (int j = 0; j < k; ++j)
-                for (int i = 0; i + j < k; ++i) {
-                    m.indices.insert(m.indices.end(), {at(i, j), at(i + 1, j), at(i, j + 1)});
-                    if (i + j + 1 < k) m.indices.insert(m.indices.end(), {at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)});
-                }
+            const Vec3 face = normalize(cross(p[1] - p[0], p[2] - p[0]));
+            const Vec3 n[3] = {normals ? mesh.normals[v[0]] : face, normals ? mesh.normals[v[1]] : face,
+                               normals ? mesh.normals[v[2]] : face};
+            r.split(p, n, 0);
         }
-        computeSmoothNormals(m);
         out.meshes.push_back(std::move(m));
     }
     return out;

@@ -1,5 +1,5 @@
 // `obscura bench bake-quality`: baked vertices against dense ray tracing at every vertex, and per-vertex
-// point sampling with the same ray budget, on built-in scenes refined to a maximum edge length.
+// point sampling with the same ray budget, on built-in scenes refined to a maximum edge length near their objects (instances under 20 m across).
 #include "cli_common.h"
 #include "commands.h"
 
@@ -21,7 +21,7 @@ namespace {
 struct QualityOptions {
     std::string scenes = "spheres,stairs,demo", distances = "2,300";
     float maxEdge = 0.1f;
-    int maxSplits = 16;
+    float grading = 1.0f;
     int referenceRays = 4096;
     int rays = 256;
     int threads = 0;
@@ -31,7 +31,7 @@ struct QualityOptions {
 void runQuality(const QualityOptions& o) {
     ThreadLimit limit(o.threads);
     if (!(o.maxEdge > 0.0f)) fail("--max-edge", "must be > 0");
-    if (o.maxSplits < 1 || o.maxSplits > 1024) fail("--max-splits", "must be in [1, 1024]");
+    if (!(o.grading >= 0.0f && o.grading <= 100.0f)) fail("--grading", "must be in [0, 100] per m");
     if (o.referenceRays < 1 || o.referenceRays > (1 << 20)) fail("--reference-rays", "must be in [1, 1048576]");
     bake::BakeSettings settings;
     settings.rays = o.rays;
@@ -47,7 +47,7 @@ void runQuality(const QualityOptions& o) {
     std::stringstream in(o.scenes);
     for (std::string name; std::getline(in, name, ',');) {
         BuiltinScene b = makeBuiltinScene(name);
-        Scene refined = bake::refineScene(b.scene, o.maxEdge, o.maxSplits);
+        Scene refined = bake::refineScene(b.scene, o.maxEdge, bake::refinementFocus(b.scene, 20.0f), o.grading);
         bake::QualityResult q = bake::compareWithDense(refined, settings, o.referenceRays);
         for (const bake::QualityChannel& c : q.channels) {
             if (!o.json)
@@ -77,7 +77,7 @@ void runQuality(const QualityOptions& o) {
     report["reference_rays"] = o.referenceRays;
     report["rays_per_sample"] = o.rays;
     report["max_edge_m"] = o.maxEdge;
-    report["max_splits"] = o.maxSplits;
+    report["grading_per_m"] = o.grading;
     if (o.json) std::printf("%s\n", report.dump(2).c_str());
 }
 
@@ -90,7 +90,8 @@ void addBakeBenchCommands(CLI::App& bench) {
     cmd->add_option("--scenes", o->scenes, "Comma-separated built-in scenes")->capture_default_str();
     cmd->add_option("--distances", o->distances, "Half distances d in m")->capture_default_str();
     cmd->add_option("--max-edge", o->maxEdge, "Refine triangles to this edge length, m")->capture_default_str();
-    cmd->add_option("--max-splits", o->maxSplits, "At most this many splits per triangle edge")->capture_default_str();
+    cmd->add_option("--grading", o->grading, "Edge length grows by this factor per m from the objects (floors far away stay coarse)")
+        ->capture_default_str();
     cmd->add_option("--reference-rays", o->referenceRays, "Rays per vertex of the dense reference")->capture_default_str();
     cmd->add_option("--rays", o->rays, "Rays per bake sample and per point-sampled vertex")->capture_default_str();
     cmd->add_option("--threads", o->threads, "Worker threads (0 = all cores)")->capture_default_str();
