@@ -50,11 +50,13 @@ Vec3 viewPosition(const GtaoConstants& c, float px, float py, float depth) {
 float fract(float v) { return v - std::floor(v); }
 
 // View-space point of the depth buffer at continuous image position (sx, sy). Inverse depth is affine in
-// the image over a plane, so where the four nearest pixels agree with one plane (their bilinear cross term
+// the image over a plane, so where a 2x2 quad of pixels agrees with one plane (its bilinear cross term
 // vanishes) it is interpolated, and the point lies on the slice line exactly; at grazing angles snapping
 // to a pixel centre would move the point off the slice by many metres of depth and find false horizons.
-// Across an edge or a silhouette the nearest pixel's own point is used instead. False for sky or for
-// (sx, sy) in the centre pixel (cx, cy).
+// The quad around (sx, sy) is tried first, then the four quads shifted by one pixel that still hold the
+// nearest pixel (extrapolating an affine function is exact too): that keeps the interpolation at a
+// surface's edge against the sky and at the image border. Across an edge or a silhouette the nearest
+// pixel's own point is used. False for sky or for (sx, sy) in the centre pixel (cx, cy).
 bool samplePosition(const GtaoConstants& c, const GBuffer& g, float sx, float sy, int cx, int cy, Vec3& out) {
     const int ix = int(sx), iy = int(sy);
     if (ix == cx && iy == cy) return false;
@@ -62,20 +64,23 @@ bool samplePosition(const GtaoConstants& c, const GBuffer& g, float sx, float sy
     if (!(nearest < 1e30f)) return false;
     const float gx = sx - 0.5f, gy = sy - 0.5f;
     if (c.width > 1 && c.height > 1) {
-        // At the border the quad is shifted inwards: extrapolating an affine function is still exact.
-        const int x0 = std::clamp(int(std::floor(gx)), 0, c.width - 2);
-        const int y0 = std::clamp(int(std::floor(gy)), 0, c.height - 2);
-        const float d00 = g.depth.at(x0, y0), d10 = g.depth.at(x0 + 1, y0);
-        const float d01 = g.depth.at(x0, y0 + 1), d11 = g.depth.at(x0 + 1, y0 + 1);
-        if (d00 < 1e30f && d10 < 1e30f && d01 < 1e30f && d11 < 1e30f) {
-            const float w00 = 1.0f / d00, w10 = 1.0f / d10, w01 = 1.0f / d01, w11 = 1.0f / d11;
+        static constexpr int kShifts[5][2] = {{0, 0}, {0, 1}, {0, -1}, {1, 0}, {-1, 0}};
+        const int bx = int(std::floor(gx)), by = int(std::floor(gy));
+        for (const auto& shift : kShifts) {
+            const int x0 = std::clamp(bx + shift[0], 0, c.width - 2);
+            const int y0 = std::clamp(by + shift[1], 0, c.height - 2);
+            if (ix < x0 || ix > x0 + 1 || iy < y0 || iy > y0 + 1) continue;
+            // Inverse depths: 0 for sky, which fails the test below.
+            const float w00 = 1.0f / g.depth.at(x0, y0), w10 = 1.0f / g.depth.at(x0 + 1, y0);
+            const float w01 = 1.0f / g.depth.at(x0, y0 + 1), w11 = 1.0f / g.depth.at(x0 + 1, y0 + 1);
+            if (!(w00 > 0.0f && w10 > 0.0f && w01 > 0.0f && w11 > 0.0f)) continue;
             const float cross = std::fabs(w00 + w11 - w10 - w01);
-            if (cross <= 1e-4f * std::max(std::max(w00, w10), std::max(w01, w11))) {
-                const float fx = gx - float(x0), fy = gy - float(y0);
-                const float w = (w00 * (1.0f - fx) + w10 * fx) * (1.0f - fy) + (w01 * (1.0f - fx) + w11 * fx) * fy;
-                out = viewPosition(c, sx, sy, 1.0f / w);
-                return true;
-            }
+            if (cross > 1e-4f * std::max(std::max(w00, w10), std::max(w01, w11))) continue;
+            const float fx = gx - float(x0), fy = gy - float(y0);
+            const float w = (w00 * (1.0f - fx) + w10 * fx) * (1.0f - fy) + (w01 * (1.0f - fx) + w11 * fx) * fy;
+            if (!(w > 0.0f)) continue;
+            out = viewPosition(c, sx, sy, 1.0f / w);
+            return true;
         }
     }
     out = viewPosition(c, float(ix) + 0.5f, float(iy) + 0.5f, nearest);
