@@ -7,8 +7,9 @@
 // the error below is GTAO's own: horizon sampling between the steps (it only ever misses occluders, so the
 // error is a positive bias), slice count and the pixels at silhouettes.
 //
-// Measured at 128x128, r = 1 m (MAE; see docs/QUALITY.md; the test runs 96x96, within 0.002): ultra 9x3 gives 0.024-0.028 (0.016-0.022 with
-// a linear step distribution), 9x8 gives 0.011-0.015 and 9x32 0.004-0.013; more slices change nothing,
+// Measured at 128x128, r = 1 m (MAE; see docs/QUALITY.md; the test runs 96x96, within 0.002): ultra 9x3
+// gives 0.024-0.028 (0.017-0.028 with a linear step distribution), 9x8 gives 0.011-0.016 and 9x32
+// 0.004-0.013; more slices change nothing,
 // so the 3 steps per side of the ultra preset are what keeps it above the 0.02. The bounds below
 // are the 0.02 for 9x8 and 0.03 for ultra.
 #include "ssao/gtao_scenes.h"
