@@ -3,7 +3,8 @@
 //
 // The reference is a Monte Carlo estimate with N = 1024 stratified rays per pixel: its per-pixel standard
 // error is at most sqrt(A (1 - A) / N) <= 0.016 but, averaged over the image (most pixels are open and have
-// no error at all), two references with different seeds differ by a mean absolute 0.0007 (measured), so
+// no error at all), two 2048-ray references with different seeds differ by a mean absolute 0.0005
+// (measured; about 0.0007 expected at 1024 rays), so
 // the error below is GTAO's own: horizon sampling between the steps (it only ever misses occluders, so the
 // error is a positive bias), slice count and the pixels at silhouettes.
 //
