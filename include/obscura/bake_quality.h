@@ -11,7 +11,8 @@ namespace obscura::bake {
 // Splits triangles at their edge midpoints until the longest edge is at most maxEdge * (1 + grading * r),
 // r (m) the distance to `focus`, so a huge floor is fine near the objects on it and coarse far away.
 // Triangles come out as soup (welding joins them); neighbours split to different depths meet at
-// T-junctions, which welding leaves as cracks: fine for a measurement, not a remesher.
+// T-junctions, which welding leaves as cracks: fine for a measurement, not a remesher. Throws
+// obscura::Error past 20 M triangles.
 Scene refineScene(const Scene& scene, float maxEdge, const Bounds& focus, float grading);
 // The world bounds of the instances whose own bounding-box diagonal is at most `largest` (m): the objects,
 // without the floors and walls that frame them; the whole scene's bounds if there are none.

@@ -29,12 +29,18 @@ struct Refiner {
     Bounds focus;
     Mesh* out;
 
+    std::size_t* budget;  // triangles left over all meshes
+
     void split(const Vec3 p[3], const Vec3 n[3], int depth) {
         const float longest = std::max({length(p[1] - p[0]), length(p[2] - p[1]), length(p[0] - p[2])});
         float d = std::min({distanceToBounds(focus, p[0]), distanceToBounds(focus, p[1]), distanceToBounds(focus, p[2])});
         // A triangle straddling the focus box has all corners outside it but is close: use its centre too.
         d = std::min(d, distanceToBounds(focus, (p[0] + p[1] + p[2]) / 3.0f));
         if (longest <= maxEdge * (1.0f + grading * d) || depth >= 20) {
+            // Slivers that touch the focus along their whole length (a fan of 1 km triangles around a hole)
+            // would split without end; stop with a message instead of exhausting memory.
+            if ((*budget)-- == 0)
+                fail("--max-edge", "refinement would exceed 20 M triangles; use a larger edge or more grading");
             const auto base = std::uint32_t(out->positions.size());
             for (int k = 0; k < 3; ++k) {
                 out->positions.push_back(p[k]);
@@ -74,6 +80,7 @@ Bounds refinementFocus(const Scene& scene, float largest) {
 }
 
 Scene refineScene(const Scene& scene, float maxEdge, const Bounds& focus, float grading) {
+    std::size_t budget = 20000000;
     Scene out;
     out.instances = scene.instances;
     for (std::size_t mi = 0; mi < scene.meshes.size(); ++mi) {
@@ -93,7 +100,7 @@ Scene refineScene(const Scene& scene, float maxEdge, const Bounds& focus, float 
         for (int c = 0; c < 8; ++c)
             local.extend(transformPoint(objectFromWorld, {(c & 1) ? focus.hi.x : focus.lo.x, (c & 2) ? focus.hi.y : focus.lo.y,
                                                           (c & 4) ? focus.hi.z : focus.lo.z}));
-        Refiner r{maxEdge, grading, local, &m};
+        Refiner r{maxEdge, grading, local, &m, &budget};
         const bool normals = mesh.normals.size() == mesh.positions.size();
         for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
             const std::uint32_t* v = &mesh.indices[3 * t];

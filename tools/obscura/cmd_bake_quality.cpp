@@ -73,6 +73,7 @@ void runQuality(const QualityOptions& o) {
                                         {"gradient_jump_reference", c.referenceJump},
                                         {"seconds", q.seconds}});
         }
+        std::fflush(stdout);  // a long run shows each scene as it finishes
     }
     report["reference_rays"] = o.referenceRays;
     report["rays_per_sample"] = o.rays;
