@@ -1,67 +1,27 @@
 // The obscura command line: each bad-input class gives one line naming the file or flag, a non-zero exit
 // and no output file; good runs write what they promise.
+#include "cli/cli_harness.h"
+
 #include <gtest/gtest.h>
 
 #include <unistd.h>
 
-#include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
-#include <sys/wait.h>
 
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Result {
-    int code = -1;
-    std::string out;  // stdout and stderr together
-};
+using Result = obscura::clitest::CliResult;
 
-Result run(const std::string& args) {
-    std::string cmd = std::string(OBSCURA_CLI) + " " + args + " 2>&1";
-    Result r;
-    FILE* pipe = popen(cmd.c_str(), "r");
-    if (!pipe) return r;
-    std::array<char, 4096> buf{};
-    std::size_t n;
-    while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
-    int status = pclose(pipe);
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return r;
-}
+Result run(const std::string& args) { return obscura::clitest::runCli(args); }
 
 std::string data(const std::string& name) { return std::string(OBSCURA_TEST_DATA) + "/" + name; }
 
-class Cli : public ::testing::Test {
-protected:
-    void SetUp() override {
-        dir = fs::temp_directory_path() /
-              ("obscura_cli_" + std::to_string(getpid()) + "_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-        fs::remove_all(dir);
-        fs::create_directories(dir);
-    }
-    void TearDown() override { fs::remove_all(dir); }
-    std::string path(const std::string& name) const { return (dir / name).string(); }
-    void write(const std::string& name, const std::string& bytes) const {
-        std::ofstream(path(name), std::ios::binary) << bytes;
-    }
-    // Runs a command that must fail: one line mentioning every `needles`, a non-zero exit, and nothing left
-    // in the scratch directory but the inputs that were put there.
-    void expectFailure(const std::string& args, const std::vector<std::string>& needles, int code = 1) {
-        std::size_t before = std::distance(fs::directory_iterator(dir), fs::directory_iterator{});
-        Result r = run(args);
-        EXPECT_EQ(r.code, code) << args << "\n" << r.out;
-        EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << "not one line: " << r.out;
-        EXPECT_EQ(r.out.rfind("obscura: error: ", 0), 0u) << r.out;
-        for (const std::string& n : needles) EXPECT_NE(r.out.find(n), std::string::npos) << "'" << n << "' not in: " << r.out;
-        std::size_t after = std::distance(fs::directory_iterator(dir), fs::directory_iterator{});
-        EXPECT_EQ(after, before) << "output or temporary left behind by: " << args;
-    }
-    fs::path dir;
-};
+class Cli : public obscura::clitest::CliTest {};
 
 const std::string kFast = " --size 32x18 --ao-rays 4 -q ";
 

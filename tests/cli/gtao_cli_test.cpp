@@ -1,50 +1,25 @@
 // `obscura render --ao gtao`: the AOVs it promises, the frame loop, and one-line errors with no output.
 #include "obscura/image_io.h"
 
+#include "cli/cli_harness.h"
+
 #include <gtest/gtest.h>
 
 #include <unistd.h>
 
-#include <array>
 #include <cstdio>
 #include <filesystem>
 #include <string>
-#include <sys/wait.h>
 
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Result {
-    int code = -1;
-    std::string out;
-};
+using Result = obscura::clitest::CliResult;
 
-Result run(const std::string& args) {
-    std::string cmd = std::string(OBSCURA_CLI) + " " + args + " 2>&1";
-    Result r;
-    FILE* pipe = popen(cmd.c_str(), "r");
-    if (!pipe) return r;
-    std::array<char, 4096> buf{};
-    std::size_t n;
-    while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
-    int status = pclose(pipe);
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return r;
-}
+Result run(const std::string& args) { return obscura::clitest::runCli(args); }
 
-class GtaoCli : public ::testing::Test {
-protected:
-    void SetUp() override {
-        dir = fs::temp_directory_path() / ("obscura_gtao_cli_" + std::to_string(getpid()) + "_" +
-                                           ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir);
-        fs::create_directories(dir);
-    }
-    void TearDown() override { fs::remove_all(dir); }
-    std::string path(const std::string& name) const { return (dir / name).string(); }
-    fs::path dir;
-};
+class GtaoCli : public obscura::clitest::CliTest {};
 
 } // namespace
 
