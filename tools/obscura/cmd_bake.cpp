@@ -113,6 +113,7 @@ void runBake(BakeOptions& o) {
     j["distances_m"] = s.distances;
     j["rays_per_sample"] = s.rays;
     j["alpha"] = s.alpha;
+    j["crease_angle_deg"] = s.creaseAngle;
     j["samples_per_face"] = {s.minSamplesPerFace, s.maxSamplesPerFace};
     j["sample_density_per_m2"] = s.sampleDensity;
     j["blend"] = o.controls.blend;
@@ -204,6 +205,9 @@ void addBakeCommand(CLI::App& app) {
     cmd->add_option("--back-face-limit", o->settings.backFaceLimit, "Invalidate samples with more back-facing hits, [0, 1]")
         ->capture_default_str();
     cmd->add_option("--weld-tolerance", o->settings.weldTolerance, "Weld distance relative to the scene diagonal, [0, 0.01]")
+        ->capture_default_str();
+    cmd->add_option("--crease-angle", o->settings.creaseAngle,
+                    "Faces meeting at a larger angle, degrees, keep separate vertex values, [0, 180]; 180 never splits")
         ->capture_default_str();
     cmd->add_option("--seed", o->settings.seed, "Random seed")->capture_default_str();
     cmd->add_option("--blend", o->controls.blend, "Weight of the short distance in the blend, [0, 1]")->capture_default_str();
