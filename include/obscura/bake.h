@@ -33,6 +33,14 @@ enum class Mode {
     Occlusion,
 };
 
+enum class LinearSolver {
+    Auto,            // CHOLMOD where the build has it, else SimplicialLDLT
+    Cholmod,         // CHOLMOD supernodal Cholesky; throws obscura::Error in a build without CHOLMOD
+    SimplicialLDLT,  // Eigen's simplicial LDL^T (the fallback; slow past ~1M unknowns)
+};
+// Whether this build links CHOLMOD (SuiteSparse).
+bool cholmodAvailable();
+
 struct BakeSettings {
     Mode mode = Mode::Obscurance;
     std::vector<float> distances{2.0f, 300.0f};  // d per channel: m, (0, 1e6]; 1 or 2 (short, long); the seed's 2 and 300
@@ -45,6 +53,7 @@ struct BakeSettings {
     float weldTolerance = 1e-6f;      // weld distance relative to the scene's bounding-box diagonal: [0, 1e-2]
     float creaseAngle = 60.0f;        // degrees, [0, 180]: faces meeting at a larger dihedral angle keep their
                                       // own vertex values (a hard edge); 180 welds across every edge
+    LinearSolver linearSolver = LinearSolver::Auto;  // the least-squares factorisation; results agree to 1e-6
     std::uint32_t seed = 0;           // any value; the same seed gives the same bits on any thread count
 
     void validate() const;  // throws obscura::Error naming the flag-style field ("--rays: ...")
@@ -136,13 +145,6 @@ struct SolveStats {
 // A vertex with no valid sample takes its value through R; one reached by neither (an isolated, fully
 // invalid part) takes the mean of all valid samples, through a 1e-9 relative diagonal term that also
 // keeps the factorisation definite. Returns welded vertices x channels (unused vertices get 1).
-enum class LinearSolver {
-    Auto,            // CHOLMOD where the build has it, else SimplicialLDLT
-    Cholmod,         // CHOLMOD supernodal Cholesky; throws obscura::Error in a build without CHOLMOD
-    SimplicialLDLT,  // Eigen's simplicial LDL^T (the fallback; slow past ~1M unknowns)
-};
-// Whether this build links CHOLMOD (SuiteSparse).
-bool cholmodAvailable();
 
 std::vector<float> solveVertexValues(const WeldedMesh& mesh, const SampleSet& samples, const RayResults& results,
                                      float alpha, SolveStats* stats = nullptr, LinearSolver solver = LinearSolver::Auto);

@@ -62,7 +62,7 @@ BakeResult bakeScene(const Scene& scene, const BakeSettings& settings, const Sta
     }
 
     report("least-squares solve", 0.0);
-    const std::vector<float> welded = solveVertexValues(mesh, samples, rays, settings.alpha, &r.solve);
+    const std::vector<float> welded = solveVertexValues(mesh, samples, rays, settings.alpha, &r.solve, settings.linearSolver);
     report("least-squares solve", 1.0);
     r.times.solve = now() - t4;
 
