@@ -33,6 +33,14 @@ enum class Mode {
     Occlusion,
 };
 
+enum class LinearSolver {
+    Auto,            // CHOLMOD where the build has it, else SimplicialLDLT
+    Cholmod,         // CHOLMOD supernodal Cholesky; throws obscura::Error in a build without CHOLMOD
+    SimplicialLDLT,  // Eigen's simplicial LDL^T (the fallback; slow past ~1M unknowns)
+};
+// Whether this build links CHOLMOD (SuiteSparse).
+bool cholmodAvailable();
+
 struct BakeSettings {
     Mode mode = Mode::Obscurance;
     std::vector<float> distances{2.0f, 300.0f};  // d per channel: m, (0, 1e6]; 1 or 2 (short, long); the seed's 2 and 300
@@ -43,6 +51,9 @@ struct BakeSettings {
     float sampleDensity = 4.0f;       // samples per m^2 between the two caps: (0, 1e6]; ~3.7 per face on the seed's level
     float backFaceLimit = 0.25f;      // a sample whose back-facing hit fraction exceeds this is invalid: [0, 1]; §2.1
     float weldTolerance = 1e-6f;      // weld distance relative to the scene's bounding-box diagonal: [0, 1e-2]
+    float creaseAngle = 60.0f;        // degrees, [0, 180]: faces meeting at a larger dihedral angle keep their
+                                      // own vertex values (a hard edge); 180 welds across every edge
+    LinearSolver linearSolver = LinearSolver::Auto;  // the least-squares factorisation; results agree to 1e-6
     std::uint32_t seed = 0;           // any value; the same seed gives the same bits on any thread count
 
     void validate() const;  // throws obscura::Error naming the flag-style field ("--rays: ...")
@@ -51,14 +62,22 @@ struct BakeSettings {
 
 // ---- stage 1: weld -----------------------------------------------------------------------------
 
-// The scene flattened to world space and welded by position, for the solve. Each instance is baked on its
-// own (instanced meshes get per-instance values). Vertex and triangle order follow the scene's instance
-// order, then the mesh's order, so the result does not depend on threads.
+// The scene flattened to world space and welded by position within smoothing groups, for the solve. Each
+// instance is baked on its own (instanced meshes get per-instance values). Vertex and triangle order follow
+// the scene's instance order, then the mesh's order, so the result does not depend on threads.
+//
+// Hard creases: around each position-welded vertex, faces that share an edge through it and whose normals
+// differ by at most the crease angle form one smoothing group; each group gets its own copy of the vertex
+// (same position). The regulariser then has no edge across a crease, and each side of a 90-degree step keeps
+// the value of the hemisphere it sees. A file vertex maps to the copy of the first kept face (in file order)
+// that uses it; where one file vertex serves faces on both sides of a crease, its output is that face's side.
+// glTF and OBJ files with hard edges already split them into separate file vertices, so there the map is
+// exact.
 struct WeldedMesh {
     std::vector<Vec3> positions;            // world space, m; one per welded vertex
     std::vector<std::uint32_t> indices;     // 3 per kept triangle, into positions, the file's winding
     std::vector<std::size_t> instanceFirst; // per instance + 1: offset of its vertices in vertexMap
-    std::vector<std::uint32_t> vertexMap;   // per (instance, mesh vertex): its welded vertex
+    std::vector<std::uint32_t> vertexMap;   // per (instance, mesh vertex): its welded vertex (copy, see above)
     std::size_t inputTriangles = 0;
     std::size_t droppedTriangles = 0;       // degenerate after welding (repeated vertex or zero area)
 
@@ -66,8 +85,9 @@ struct WeldedMesh {
 };
 
 // Welds vertices closer than `tolerance` (m) to an earlier one. A vertex joins the first welded vertex
-// found within tolerance in its own or a neighbouring grid cell, so chains do not collapse.
-WeldedMesh weldScene(const Scene& scene, float tolerance);
+// found within tolerance in its own or a neighbouring grid cell, so chains do not collapse. Then splits
+// each welded vertex into one copy per smoothing group (creaseAngle, degrees; 180: no split).
+WeldedMesh weldScene(const Scene& scene, float tolerance, float creaseAngle = 180.0f);
 
 // ---- stage 2: samples --------------------------------------------------------------------------
 
@@ -125,8 +145,9 @@ struct SolveStats {
 // A vertex with no valid sample takes its value through R; one reached by neither (an isolated, fully
 // invalid part) takes the mean of all valid samples, through a 1e-9 relative diagonal term that also
 // keeps the factorisation definite. Returns welded vertices x channels (unused vertices get 1).
+
 std::vector<float> solveVertexValues(const WeldedMesh& mesh, const SampleSet& samples, const RayResults& results,
-                                     float alpha, SolveStats* stats = nullptr);
+                                     float alpha, SolveStats* stats = nullptr, LinearSolver solver = LinearSolver::Auto);
 
 // Smoothness of a piecewise-linear result: the area-weighted RMS jump of the normal derivative across interior
 // edges (faces unfolded), sqrt(sum_e (A1+A2) s_e^2 / sum_e (A1+A2)), 1/m; the quantity R penalises. `values`

@@ -33,7 +33,7 @@ BakeResult bakeScene(const Scene& scene, const BakeSettings& settings, const Sta
     double t0 = now();
     report("process geometry", 0.0);
     const float diagonal = length(scene.bounds().size());
-    const WeldedMesh mesh = weldScene(scene, settings.weldTolerance * diagonal);
+    const WeldedMesh mesh = weldScene(scene, settings.weldTolerance * diagonal, settings.creaseAngle);
     if (mesh.triangleCount() == 0) fail("bake", "no triangles left after welding");
     report("process geometry", 1.0);
     double t1 = now();
@@ -62,7 +62,7 @@ BakeResult bakeScene(const Scene& scene, const BakeSettings& settings, const Sta
     }
 
     report("least-squares solve", 0.0);
-    const std::vector<float> welded = solveVertexValues(mesh, samples, rays, settings.alpha, &r.solve);
+    const std::vector<float> welded = solveVertexValues(mesh, samples, rays, settings.alpha, &r.solve, settings.linearSolver);
     report("least-squares solve", 1.0);
     r.times.solve = now() - t4;
 

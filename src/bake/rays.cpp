@@ -36,6 +36,8 @@ void BakeSettings::validate() const {
         fail("--back-face-limit", "must be in [0, 1], got " + std::to_string(backFaceLimit));
     if (!(weldTolerance >= 0.0f && weldTolerance <= 1e-2f))
         fail("--weld-tolerance", "must be in [0, 0.01] (relative to the scene diagonal), got " + std::to_string(weldTolerance));
+    if (!(creaseAngle >= 0.0f && creaseAngle <= 180.0f))
+        fail("--crease-angle", "must be in [0, 180] degrees, got " + std::to_string(creaseAngle));
 }
 
 namespace detail {

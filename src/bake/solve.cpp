@@ -1,7 +1,9 @@
 // Least-squares vertex baking (Kavan, Bargteil, Sloan 2011, as used by Sloan et al. 2013 §2.1): the
 // per-vertex values x of a piecewise-linear g that best fit the sampled signal f over the surface, with an
 // edge regulariser that penalises jumps of the gradient across edges and leaves linear signals alone.
-// One sparse LDL^T factorisation of (M + alpha R) serves every channel (both distances).
+// One sparse factorisation of (M + alpha R) serves every channel (both distances): CHOLMOD's supernodal
+// Cholesky where the build found CHOLMOD (dense BLAS on supernodes: an order of magnitude faster on a
+// game level than a simplicial factorisation), else Eigen's SimplicialLDLT.
 #include "obscura/bake.h"
 
 #include "obscura/error.h"
@@ -10,6 +12,9 @@
 
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
+#ifdef OBSCURA_HAVE_CHOLMOD
+#include <Eigen/CholmodSupport>
+#endif
 
 #include <algorithm>
 #include <cmath>
@@ -75,10 +80,27 @@ private:
     std::vector<double> values_;
 };
 
+template <class Solver>
+Eigen::MatrixXd factorAndSolve(Solver& solver, const Eigen::SparseMatrix<double>& a, const Eigen::MatrixXd& rhs) {
+    solver.compute(a);
+    if (solver.info() != Eigen::Success) fail("least-squares solve", "factorisation failed (" + std::to_string(a.rows()) + " unknowns)");
+    Eigen::MatrixXd x = solver.solve(rhs);
+    if (solver.info() != Eigen::Success) fail("least-squares solve", "back-substitution failed");
+    return x;
+}
+
 } // namespace
 
+bool cholmodAvailable() {
+#ifdef OBSCURA_HAVE_CHOLMOD
+    return true;
+#else
+    return false;
+#endif
+}
+
 std::vector<float> solveVertexValues(const WeldedMesh& mesh, const SampleSet& samples, const RayResults& results,
-                                     float alpha, SolveStats* stats) {
+                                     float alpha, SolveStats* stats, LinearSolver linearSolver) {
     const std::size_t triangles = mesh.triangleCount();
     const auto channels = std::size_t(results.channels);
     std::vector<float> out(mesh.positions.size() * channels, 1.0f);
@@ -157,11 +179,20 @@ std::vector<float> solveVertexValues(const WeldedMesh& mesh, const SampleSet& sa
         }
     }
 
-    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower> solver;
-    solver.compute(system.matrix());
-    if (solver.info() != Eigen::Success) fail("least-squares solve", "factorisation failed (" + std::to_string(n) + " unknowns)");
-    const Eigen::MatrixXd x = solver.solve(rhs);
-    if (solver.info() != Eigen::Success) fail("least-squares solve", "back-substitution failed");
+    if (linearSolver == LinearSolver::Cholmod && !cholmodAvailable())
+        fail("least-squares solve", "CHOLMOD was asked for but this build has none");
+    Eigen::MatrixXd x;
+#ifdef OBSCURA_HAVE_CHOLMOD
+    if (linearSolver != LinearSolver::SimplicialLDLT) {
+        // Only the lower triangle is stored; Eigen hands CHOLMOD the matrix as symmetric-lower (stype -1).
+        Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> solver;
+        x = factorAndSolve(solver, system.matrix(), rhs);
+    }
+#endif
+    if (x.size() == 0) {
+        Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower> solver;
+        x = factorAndSolve(solver, system.matrix(), rhs);
+    }
 
     for (std::size_t v = 0; v < mesh.positions.size(); ++v)
         if (unknown[v] != kUnused)

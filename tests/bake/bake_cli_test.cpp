@@ -168,6 +168,8 @@ TEST_F(BakeCli, BadInputIsOneLineAndNoOutput) {
     expectFailure("bake " + data("cube.obj") + out + " --distances -1 -q", {"--distances"});
     expectFailure("bake " + data("cube.obj") + out + " --alpha -1 -q", {"--alpha"});
     expectFailure("bake " + data("cube.obj") + out + " --mode fuzzy -q", {"--mode"});
+    expectFailure("bake " + data("cube.obj") + out + " --crease-angle 200 -q", {"--crease-angle"});
+    expectFailure("bake " + data("cube.obj") + out + " --linear-solver qr -q", {"--linear-solver"});
     expectFailure("bake " + data("cube.obj") + " -o " + path("o.png") + kFast, {"o.png", "unsupported output format"});
     expectFailure("bake " + data("cube.obj") + " -o " + path("nodir/o.glb") + kFast, {"does not exist"});
     fs::copy_file(data("quad.glb"), path("quad.glb"));

@@ -21,7 +21,7 @@ struct Staged {
 
 Staged stage(const Scene& scene, const BakeSettings& settings) {
     Staged s;
-    s.mesh = weldScene(scene, settings.weldTolerance * length(scene.bounds().size()));
+    s.mesh = weldScene(scene, settings.weldTolerance * length(scene.bounds().size()), settings.creaseAngle);
     s.samples = generateSamples(s.mesh, settings);
     s.results.channels = settings.channels();
     s.results.values.assign(s.samples.size() * std::size_t(s.results.channels), 0.0f);

@@ -24,7 +24,7 @@ namespace obscura::cli {
 namespace {
 
 struct BakeOptions {
-    std::string input, output, report, mode = "obscurance", distances = "2,300";
+    std::string input, output, report, mode = "obscurance", distances = "2,300", solver = "auto";
     float distance = 0.0f;
     bake::BakeSettings settings;
     bake::ArtistControls controls;
@@ -63,6 +63,10 @@ void runBake(BakeOptions& o) {
     if (o.mode == "occlusion") s.mode = bake::Mode::Occlusion;
     else if (o.mode == "obscurance") s.mode = bake::Mode::Obscurance;
     else fail("--mode", "expected obscurance or occlusion, got \"" + o.mode + "\"");
+    if (o.solver == "auto") s.linearSolver = bake::LinearSolver::Auto;
+    else if (o.solver == "cholmod") s.linearSolver = bake::LinearSolver::Cholmod;
+    else if (o.solver == "ldlt") s.linearSolver = bake::LinearSolver::SimplicialLDLT;
+    else fail("--linear-solver", "expected auto, cholmod or ldlt, got \"" + o.solver + "\"");
     s.distances = o.distance > 0.0f ? std::vector<float>{o.distance} : parseDistances(o.distances);
     s.validate();
     o.controls.validate();
@@ -113,6 +117,8 @@ void runBake(BakeOptions& o) {
     j["distances_m"] = s.distances;
     j["rays_per_sample"] = s.rays;
     j["alpha"] = s.alpha;
+    j["crease_angle_deg"] = s.creaseAngle;
+    j["linear_solver"] = o.solver;
     j["samples_per_face"] = {s.minSamplesPerFace, s.maxSamplesPerFace};
     j["sample_density_per_m2"] = s.sampleDensity;
     j["blend"] = o.controls.blend;
@@ -204,6 +210,12 @@ void addBakeCommand(CLI::App& app) {
     cmd->add_option("--back-face-limit", o->settings.backFaceLimit, "Invalidate samples with more back-facing hits, [0, 1]")
         ->capture_default_str();
     cmd->add_option("--weld-tolerance", o->settings.weldTolerance, "Weld distance relative to the scene diagonal, [0, 0.01]")
+        ->capture_default_str();
+    cmd->add_option("--crease-angle", o->settings.creaseAngle,
+                    "Faces meeting at a larger angle, degrees, keep separate vertex values, [0, 180]; 180 never splits")
+        ->capture_default_str();
+    cmd->add_option("--linear-solver", o->solver,
+                    "Least-squares factorisation: auto (CHOLMOD if built with it), cholmod, ldlt (Eigen SimplicialLDLT)")
         ->capture_default_str();
     cmd->add_option("--seed", o->settings.seed, "Random seed")->capture_default_str();
     cmd->add_option("--blend", o->controls.blend, "Weight of the short distance in the blend, [0, 1]")->capture_default_str();

@@ -24,6 +24,7 @@ struct QualityOptions {
     float grading = 1.0f;
     int referenceRays = 4096;
     int rays = 256;
+    float creaseAngle = 60.0f;
     int threads = 0;
     bool json = false;
 };
@@ -35,6 +36,7 @@ void runQuality(const QualityOptions& o) {
     if (o.referenceRays < 1 || o.referenceRays > (1 << 20)) fail("--reference-rays", "must be in [1, 1048576]");
     bake::BakeSettings settings;
     settings.rays = o.rays;
+    settings.creaseAngle = o.creaseAngle;
     settings.distances.clear();
     std::stringstream ds(o.distances);
     for (std::string item; std::getline(ds, item, ',');) settings.distances.push_back(parseRadius("--distances", item));
@@ -95,6 +97,7 @@ void addBakeBenchCommands(CLI::App& bench) {
         ->capture_default_str();
     cmd->add_option("--reference-rays", o->referenceRays, "Rays per vertex of the dense reference")->capture_default_str();
     cmd->add_option("--rays", o->rays, "Rays per bake sample and per point-sampled vertex")->capture_default_str();
+    cmd->add_option("--crease-angle", o->creaseAngle, "Bake's crease angle, degrees, [0, 180]")->capture_default_str();
     cmd->add_option("--threads", o->threads, "Worker threads (0 = all cores)")->capture_default_str();
     cmd->add_flag("--json", o->json, "Print JSON instead of a table");
     cmd->callback([o] { runQuality(*o); });
