@@ -1,5 +1,6 @@
 // `obscura bake` and `obscura scenes --generate` end to end: outputs carry what they promise, the input
 // is never touched, bad input gives one line and no output.
+#include "cli/cli_harness.h"
 #include "obscura/scene_io.h"
 
 #include <gtest/gtest.h>
@@ -7,36 +8,20 @@
 
 #include <unistd.h>
 
-#include <array>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
-#include <sys/wait.h>
 
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Result {
-    int code = -1;
-    std::string out;  // stdout and stderr together
-};
+using Result = obscura::clitest::CliResult;
 
-Result run(const std::string& args) {
-    std::string cmd = std::string(OBSCURA_CLI) + " " + args + " 2>&1";
-    Result r;
-    FILE* pipe = popen(cmd.c_str(), "r");
-    if (!pipe) return r;
-    std::array<char, 4096> buf{};
-    std::size_t n;
-    while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
-    int status = pclose(pipe);
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return r;
-}
+Result run(const std::string& args) { return obscura::clitest::runCli(args); }
 
 std::string data(const std::string& name) { return std::string(OBSCURA_TEST_DATA) + "/" + name; }
 
@@ -55,28 +40,7 @@ nlohmann::json glbJson(const std::string& path) {
     return nlohmann::json::parse(bytes.substr(20, length));
 }
 
-class BakeCli : public ::testing::Test {
-protected:
-    void SetUp() override {
-        dir = fs::temp_directory_path() / ("obscura_bake_cli_" + std::to_string(getpid()) + "_" +
-                                           ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir);
-        fs::create_directories(dir);
-    }
-    void TearDown() override { fs::remove_all(dir); }
-    std::string path(const std::string& name) const { return (dir / name).string(); }
-    void expectFailure(const std::string& args, const std::vector<std::string>& needles, int code = 1) {
-        std::size_t before = std::distance(fs::directory_iterator(dir), fs::directory_iterator{});
-        Result r = run(args);
-        EXPECT_EQ(r.code, code) << args << "\n" << r.out;
-        EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << "not one line: " << r.out;
-        EXPECT_EQ(r.out.rfind("obscura: error: ", 0), 0u) << r.out;
-        for (const std::string& n : needles) EXPECT_NE(r.out.find(n), std::string::npos) << "'" << n << "' not in: " << r.out;
-        std::size_t after = std::distance(fs::directory_iterator(dir), fs::directory_iterator{});
-        EXPECT_EQ(after, before) << "output or temporary left behind by: " << args;
-    }
-    fs::path dir;
-};
+class BakeCli : public obscura::clitest::CliTest {};
 
 const std::string kFast = " --rays 8 --max-samples-per-face 4 -q ";
 
