@@ -36,6 +36,12 @@ struct Camera {
     // View-space position of the point at linear depth `depth` seen through image position (px, py),
     // in continuous pixel coordinates (a pixel centre is x + 0.5). Hot-path: no checks.
     Vec3 viewFromPixel(float px, float py, float depth) const;
+    // viewFromPixel as the per-axis affine map that screen-space kernels keep in their constants:
+    // x = (px * mulX + addX) * depth, y = (py * mulY + addY) * depth, z = -depth.
+    struct PixelToView {
+        float mulX, addX, mulY, addY;
+    };
+    PixelToView viewFromPixelAffine() const;
     // Unit view-space direction through image position (px, py).
     Vec3 viewRayDirection(float px, float py) const;
     // Continuous pixel coordinates of a view-space point, and its depth (-z).

@@ -28,6 +28,22 @@ struct Writer {
     }
 };
 
+// Opens the temporary file `temp` of `path`, runs write(f), and checks that everything reached the disk:
+// the buffered tail surfaces its errors only at fflush or fclose. Any failure throws naming `path`.
+template <typename Write>
+void writeFile(const std::string& path, const std::string& temp, Write&& write) {
+    std::FILE* f = std::fopen(temp.c_str(), "wb");
+    if (!f) fail(path, "cannot open for writing");
+    try {
+        write(f);
+    } catch (...) {
+        std::fclose(f);
+        throw;
+    }
+    const bool flushed = std::fflush(f) == 0;
+    if (std::fclose(f) != 0 || !flushed) fail(path, "write failed (disk full?)");
+}
+
 } // namespace
 
 void ArtistControls::validate() const {
@@ -86,13 +102,7 @@ void writeBakedPly(const Scene& scene, const BakeResult& r, const ArtistControls
     std::size_t vertices = r.instanceFirst.back(), faces = 0;
     for (const Instance& inst : scene.instances) faces += scene.meshes[inst.mesh].triangleCount();
     if (vertices > 0xffffffffu) fail(path, "too many vertices for PLY int indices");
-    writeAtomically(path, [&](const std::string& temp) {
-        std::FILE* f = std::fopen(temp.c_str(), "wb");
-        if (!f) fail(path, "cannot open for writing");
-        struct Closer {
-            std::FILE* f;
-            ~Closer() { std::fclose(f); }
-        } closer{f};
+    writeAtomically(path, [&](const std::string& temp) { writeFile(path, temp, [&](std::FILE* f) {
         Writer w{f, path};
         const std::string header =
             "ply\nformat binary_little_endian 1.0\ncomment obscura bake: quality = blended and remapped obscurance\n"
@@ -130,18 +140,11 @@ void writeBakedPly(const Scene& scene, const BakeResult& r, const ArtistControls
                 w.put(face, sizeof face);
             }
         }
-        if (std::fflush(f) != 0) fail(path, "write failed (disk full?)");
-    });
+    }); });
 }
 
 void writeBakedCsv(const Scene& scene, const BakeResult& r, const ArtistControls& controls, const std::string& path) {
-    writeAtomically(path, [&](const std::string& temp) {
-        std::FILE* f = std::fopen(temp.c_str(), "wb");
-        if (!f) fail(path, "cannot open for writing");
-        struct Closer {
-            std::FILE* f;
-            ~Closer() { std::fclose(f); }
-        } closer{f};
+    writeAtomically(path, [&](const std::string& temp) { writeFile(path, temp, [&](std::FILE* f) {
         bool ok = std::fputs("index,x,y,z,short,long,blended\n", f) >= 0;
         for (std::size_t i = 0; i < scene.instances.size() && ok; ++i) {
             const Instance& inst = scene.instances[i];
@@ -154,8 +157,8 @@ void writeBakedCsv(const Scene& scene, const BakeResult& r, const ArtistControls
                                   double(s), double(l), double(controls.blended(s, l))) > 0;
             }
         }
-        if (!ok || std::fflush(f) != 0) fail(path, "write failed (disk full?)");
-    });
+        if (!ok) fail(path, "write failed (disk full?)");
+    }); });
 }
 
 } // namespace obscura::bake

@@ -80,6 +80,11 @@ Vec3 Camera::viewFromPixel(float px, float py, float depth) const {
     return {ndcX * t * aspect() * depth, ndcY * t * depth, -depth};
 }
 
+Camera::PixelToView Camera::viewFromPixelAffine() const {
+    const float tanY = tanHalfFovY(), tanX = tanHalfFovX();
+    return {2.0f * tanX / float(width), -tanX, -2.0f * tanY / float(height), tanY};
+}
+
 Vec3 Camera::viewRayDirection(float px, float py) const { return normalize(viewFromPixel(px, py, 1.0f)); }
 
 Vec2 Camera::pixelFromView(Vec3 p, float* depth) const {

@@ -79,11 +79,11 @@ AlchemyConstants alchemyConstants(const AlchemySettings& s, const Camera& camera
     k.samples = s.samples;
     k.minSamples = s.lodRadiusPixels > 0.0f ? std::max(1, s.samples / 4) : s.samples;
     k.seed = s.seed;
-    const float ty = camera.tanHalfFovY(), tx = ty * camera.aspect();
-    k.viewScaleX = 2.0f * tx / float(camera.width);
-    k.viewOffsetX = -tx;
-    k.viewScaleY = -2.0f * ty / float(camera.height);
-    k.viewOffsetY = ty;
+    const Camera::PixelToView view = camera.viewFromPixelAffine();
+    k.viewScaleX = view.mulX;
+    k.viewOffsetX = view.addX;
+    k.viewScaleY = view.mulY;
+    k.viewOffsetY = view.addY;
     k.focalPixels = camera.focalPixels();
     k.radius = s.radius;
     k.radius2 = s.radius * s.radius;

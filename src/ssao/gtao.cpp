@@ -151,12 +151,11 @@ GtaoConstants gtaoConstants(const GtaoSettings& s, const Camera& camera, int fra
     GtaoConstants c{};
     c.width = camera.width;
     c.height = camera.height;
-    // viewFromPixel: x = (2 px / w - 1) tanX depth, y = (1 - 2 py / h) tanY depth.
-    const float tanY = camera.tanHalfFovY(), tanX = camera.tanHalfFovX();
-    c.viewFromPixelMulX = 2.0f * tanX / float(camera.width);
-    c.viewFromPixelAddX = -tanX;
-    c.viewFromPixelMulY = -2.0f * tanY / float(camera.height);
-    c.viewFromPixelAddY = tanY;
+    const Camera::PixelToView view = camera.viewFromPixelAffine();
+    c.viewFromPixelMulX = view.mulX;
+    c.viewFromPixelAddX = view.addX;
+    c.viewFromPixelMulY = view.mulY;
+    c.viewFromPixelAddY = view.addY;
     c.focalPixels = camera.focalPixels();
     c.radius = s.radius;
     c.falloffFrom = s.radius * s.falloffStart;

@@ -33,6 +33,19 @@ TEST(Camera, PixelViewRoundTrip) {
             }
 }
 
+// The affine form the screen-space kernels read is the same mapping as viewFromPixel (float rounding apart).
+TEST(Camera, AffinePixelMappingMatchesViewFromPixel) {
+    Camera c = testCamera();
+    const Camera::PixelToView a = c.viewFromPixelAffine();
+    for (float py : {0.5f, 98.5f, 196.5f})
+        for (float px : {0.5f, 166.5f, 332.5f})
+            for (float d : {0.1f, 2.0f, 500.0f}) {
+                const Vec3 p = c.viewFromPixel(px, py, d);
+                EXPECT_NEAR((px * a.mulX + a.addX) * d, p.x, 1e-5f * d);
+                EXPECT_NEAR((py * a.mulY + a.addY) * d, p.y, 1e-5f * d);
+            }
+}
+
 TEST(Camera, MatricesAreInverse) {
     Camera c = testCamera();
     Mat4 m = c.viewFromWorld() * c.worldFromView();
