@@ -54,7 +54,21 @@ FloorStats floorErrors(const Scene& scene, const BakeResult& r, const double exp
     return s;
 }
 
-double sigma(double a, int rays) { return std::sqrt(std::max(a * (1 - a), 1e-12) / rays); }
+// Bakes `scene` and checks its interior floor vertices against `expected` for both distances. Bounds: a
+// vertex within 0.005 and the mean within 0.001 of the closed form. Measured worst 6e-4 and mean 3e-4
+// (512 rays per sample): stratified rays and the least-squares average over ~20 samples per vertex put
+// the error far below an i.i.d. ray's 3 sigma (0.057 at A = 0.25), which would let a real bias through.
+void expectFloorMatches(const Scene& scene, const BakeSettings& settings, const double expected[2]) {
+    const BakeResult r = bakeScene(scene, settings);
+    const FloorStats s = floorErrors(scene, r, expected, 1.0f);
+    for (int c = 0; c < 2; ++c) {
+        std::printf("[ closed form ] d %.2f: expected %.4f, worst vertex error %.4f, mean error %+.5f\n",
+                    double(settings.distances[std::size_t(c)]), expected[c], s.worst[c], s.mean[c]);
+        EXPECT_LT(s.worst[c], 0.005) << "d " << settings.distances[std::size_t(c)] << " expected " << expected[c];
+        EXPECT_LT(std::fabs(s.mean[c]), 0.001) << "d " << settings.distances[std::size_t(c)];
+    }
+    EXPECT_EQ(r.invalidSamples, 0u);
+}
 
 } // namespace
 
@@ -67,18 +81,8 @@ TEST(BakeClosedForm, OcclusionUnderCeilingIsHSquaredOverDSquared) {
     settings.mode = Mode::Occlusion;
     settings.distances = {2.0f, 1.25f};
     settings.rays = 512;
-    BakeResult r = bakeScene(scene, settings);
     const double expected[2] = {0.25, 0.64};
-    FloorStats s = floorErrors(scene, r, expected, 1.0f);
-    std::printf("[ closed form ] d %.2f: expected %.4f, worst vertex error %.4f, mean error %+.5f; d %.2f: expected %.4f, worst %.4f, mean %+.5f\n",
-                double(settings.distances[0]), expected[0], s.worst[0], s.mean[0], double(settings.distances[1]), expected[1],
-                s.worst[1], s.mean[1]);
-    for (int c = 0; c < 2; ++c) {
-        const double tol = 3 * sigma(expected[c], settings.rays);
-        EXPECT_LT(s.worst[c], tol) << "d " << settings.distances[std::size_t(c)] << " expected " << expected[c];
-        EXPECT_LT(std::fabs(s.mean[c]), tol / 10) << "d " << settings.distances[std::size_t(c)];
-    }
-    EXPECT_EQ(r.invalidSamples, 0u);
+    expectFloorMatches(scene, settings, expected);
 }
 
 TEST(BakeClosedForm, ExponentialObscuranceUnderCeiling) {
@@ -102,17 +106,8 @@ TEST(BakeClosedForm, ExponentialObscuranceUnderCeiling) {
     BakeSettings settings;
     settings.distances = {2.0f, 0.5f};
     settings.rays = 512;
-    BakeResult r = bakeScene(scene, settings);
     const double expected[2] = {closedForm(2.0), closedForm(0.5)};
-    FloorStats s = floorErrors(scene, r, expected, 1.0f);
-    std::printf("[ closed form ] d %.2f: expected %.4f, worst vertex error %.4f, mean error %+.5f; d %.2f: expected %.4f, worst %.4f, mean %+.5f\n",
-                double(settings.distances[0]), expected[0], s.worst[0], s.mean[0], double(settings.distances[1]), expected[1],
-                s.worst[1], s.mean[1]);
-    for (int c = 0; c < 2; ++c) {
-        const double tol = 3 * sigma(expected[c], settings.rays);
-        EXPECT_LT(s.worst[c], tol) << "d " << settings.distances[std::size_t(c)] << " expected " << expected[c];
-        EXPECT_LT(std::fabs(s.mean[c]), tol / 10) << "d " << settings.distances[std::size_t(c)];
-    }
+    expectFloorMatches(scene, settings, expected);
 }
 
 TEST(HitStream, ReportsFacingForFlatInstancedAndMirroredMeshes) {
