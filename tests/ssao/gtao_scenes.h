@@ -4,6 +4,7 @@
 
 #include "obscura/builtin_scenes.h"
 #include "obscura/gbuffer.h"
+#include "obscura/metrics.h"
 
 #include <cmath>
 #include <string>
@@ -36,17 +37,9 @@ inline TopDownView topDownView(const std::string& name, int width, int height) {
     return v;
 }
 
-// Mean of |a - b| over the G-buffer's surface pixels.
+// Mean of |a - b| over the G-buffer's surface pixels: the MAE that `obscura compare` reports.
 inline double meanAbsoluteError(const GBuffer& g, const Image& a, const Image& b) {
-    double sum = 0;
-    long count = 0;
-    for (int y = 0; y < g.height(); ++y)
-        for (int x = 0; x < g.width(); ++x) {
-            if (g.isSky(x, y)) continue;
-            sum += std::fabs(double(a.at(x, y)) - double(b.at(x, y)));
-            ++count;
-        }
-    return count ? sum / double(count) : 0.0;
+    return eval::errorStats(a, b, g).mae;
 }
 
 } // namespace obscura::test
