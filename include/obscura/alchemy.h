@@ -99,6 +99,9 @@ struct SpiralTable {
     const float* at(int count, int cls) const {
         return offsets[std::size_t(count - minSamples) * kAlchemyPixelClasses + std::size_t(cls)].data();
     }
+    // The maxSamples offsets of the four classes of each class row (y mod 4), interleaved for alchemyRow:
+    // sample i of class (x mod 4) at [(y mod 4) * 4 * maxSamples + 4 i + x mod 4].
+    std::vector<float> rowX, rowY;
 };
 SpiralTable alchemySpiral(const AlchemyConstants& k);
 

@@ -205,6 +205,18 @@ SpiralTable alchemySpiral(const AlchemyConstants& k) {
             }
             t.offsets.push_back(std::move(o));
         }
+    const std::size_t n = std::size_t(k.samples);
+    t.rowX.resize(kAlchemyPixelClasses * n);
+    t.rowY.resize(kAlchemyPixelClasses * n);
+    for (int row = 0; row < kAlchemyClassTile; ++row)
+        for (int col = 0; col < kAlchemyClassTile; ++col) {
+            const float* o = t.at(k.samples, row * kAlchemyClassTile + col);
+            for (std::size_t i = 0; i < n; ++i) {
+                const std::size_t j = std::size_t(row) * kAlchemyClassTile * n + kAlchemyClassTile * i + std::size_t(col);
+                t.rowX[j] = o[2 * i];
+                t.rowY[j] = o[2 * i + 1];
+            }
+        }
     return t;
 }
 
@@ -277,15 +289,9 @@ OBSCURA_TARGET_CLONES void alchemyRow(const AlchemyConstants& k, const AlchemyIn
         sum[j] = 0.0f;
     }
     // The offsets of the four pixel classes of this row, interleaved: sample i of class (x mod 4) is at 4 i + x mod 4.
-    const int classRow = (y % kAlchemyClassTile) * kAlchemyClassTile;
-    std::vector<float> ox(4 * std::size_t(k.samples)), oy(4 * std::size_t(k.samples));
-    for (int col = 0; col < kAlchemyClassTile; ++col) {
-        const float* o = spiral.at(k.samples, classRow + col);
-        for (int i = 0; i < k.samples; ++i) {
-            ox[4 * std::size_t(i) + std::size_t(col)] = o[2 * i];
-            oy[4 * std::size_t(i) + std::size_t(col)] = o[2 * i + 1];
-        }
-    }
+    const std::size_t classRow = std::size_t(y % kAlchemyClassTile) * kAlchemyClassTile * std::size_t(k.samples);
+    const float* ox = spiral.rowX.data() + classRow;
+    const float* oy = spiral.rowY.data() + classRow;
     const float radius2 = paper ? k.radius2 : std::nextafter(k.radius2, INFINITY);
     const int width = k.width, height = k.height;
     for (int i = 0; i < k.samples; ++i) {
