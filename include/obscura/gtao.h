@@ -22,6 +22,12 @@ namespace obscura::ssao {
 enum class GtaoWeighting { Cosine, Uniform };
 enum class GtaoThickness { None, Heuristic, Bitmask };
 enum class GtaoQuality { Low, Medium, High, Ultra };
+// What a horizon sample farther than r stands for. Below the horizon GTAO assumes solid ground (the depth
+// buffer read as a height field: each sample the front of a column that runs away from the camera), and
+// that column can come within r even when its front does not: from a well's floor the rim is beyond r
+// while the wall under it is not. Column keeps the assumption consistent and counts the column's part
+// within r; Drop ignores the sample, as most implementations do, and loses that occlusion.
+enum class GtaoBeyondRadius { Column, Drop };
 
 struct GtaoSettings {
     float radius = 1.0f;            // r: m, (0, 1e4]; occluders farther than r from the point do not count
@@ -31,8 +37,10 @@ struct GtaoSettings {
     int stepsPerSide = 3;           // horizon samples on each side of a slice, [1, 256]
     float maxRadiusPixels = 512.0f; // screen-space search radius clamp, pixels, [1, 8192]; bounds the cost
                                     // of points close to the camera (§4: "clamped to a maximum radius")
-    float stepPower = 2.0f;         // sample distance s_k = ((k + jitter) / steps)^power, [1, 4]; 2 puts
-                                    // more samples near the centre, where occluders matter most
+    float stepPower = 1.0f;         // sample distance s_k = ((k + jitter) / steps)^power, [1, 4]; > 1 puts
+                                    // more samples near the centre. 1 measured closest to ray-traced AO on
+                                    // every preset but low (docs/QUALITY.md)
+    GtaoBeyondRadius beyondRadius = GtaoBeyondRadius::Column;
     GtaoWeighting weighting = GtaoWeighting::Cosine;  // App. A's uniform weighting is an option
     GtaoThickness thickness = GtaoThickness::None;
     float thicknessBlend = 0.3f;    // eq. 9 blend towards a lower sample horizon, [0, 1): 0 = plain maximum

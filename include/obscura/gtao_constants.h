@@ -20,6 +20,8 @@ using uint = std::uint32_t;
 #define GTAO_THICKNESS_HEURISTIC 1  // eq. 9: exponential decay of the horizon past thin occluders
 #define GTAO_THICKNESS_BITMASK 2  // 32 sectors per slice, occluders of constant thickness
 #define GTAO_BITMASK_SECTORS 32
+#define GTAO_BEYOND_DROP 0        // a sample farther than r does not count
+#define GTAO_BEYOND_COLUMN 1      // ... but the depth buffer's column behind it does, where it comes within r
 
 struct GtaoConstants {
     int width;                 // image size, pixels
@@ -44,8 +46,8 @@ struct GtaoConstants {
     int interleaved;           // 1: slices rotated by the 4x4 pattern and the frame's rotation (of 6)
     int noiseMode;             // 0: fixed slice angles and step offsets; 1: per-pixel hashed jitter
     int frameIndex;            // selects the temporal rotation (of 6) and the jitter
-    int pad0;                  // keeps the size a multiple of 16 bytes
-    int pad1;
+    int beyondRadius;          // GTAO_BEYOND_*: what a sample farther than the full-weight distance stands for
+    int pad1;                  // keeps the size a multiple of 16 bytes
 };
 
 #ifdef __cplusplus

@@ -176,6 +176,7 @@ GtaoConstants gtaoConstants(const GtaoSettings& s, const Camera& camera, int fra
     c.interleaved = interleaved ? 1 : 0;
     c.noiseMode = s.jitter ? 1 : 0;
     c.frameIndex = frameIndex;
+    c.beyondRadius = s.beyondRadius == GtaoBeyondRadius::Column ? GTAO_BEYOND_COLUMN : GTAO_BEYOND_DROP;
     return c;
 }
 
@@ -260,7 +261,21 @@ GtaoPixel gtaoPixel(const GtaoConstants& c, const GBuffer& g, int x, int y, int 
                     for (int k = first; k < last; ++k) occluded |= 1u << k;
                     continue;
                 }
-                const float sampleCos = mix(side == 0 ? lowCos0 : lowCos1, dot(delta, v) / distance, weight);
+                const float lowCos = side == 0 ? lowCos0 : lowCos1;
+                float sampleCos = mix(lowCos, dot(delta, v) / distance, weight);
+                if (c.beyondRadius == GTAO_BEYOND_COLUMN && distance > c.falloffFrom) {
+                    // The column behind the sample, sp + u t for t >= 0 (u = its view ray), enters the sphere
+                    // of full weight about p where |delta + u t| = falloffFrom: the smaller root of
+                    // t^2 + 2 (delta.u) t + |delta|^2 - falloffFrom^2 = 0, if the column heads towards p.
+                    const Vec3 u = normalize(sp);
+                    const float du = dot(delta, u);
+                    const float disc = du * du - (distance - c.falloffFrom) * (distance + c.falloffFrom);
+                    if (du < 0.0f && disc >= 0.0f) {
+                        const Vec3 entry = delta + u * (-du - std::sqrt(disc));
+                        const float entryLength = length(entry);
+                        if (entryLength > 0.0f) sampleCos = std::max(sampleCos, dot(entry, v) / entryLength);
+                    }
+                }
                 float& horizonCos = side == 0 ? horizonCos0 : horizonCos1;
                 if (sampleCos >= horizonCos)
                     horizonCos = sampleCos;

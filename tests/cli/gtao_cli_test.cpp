@@ -62,6 +62,7 @@ TEST_F(GtaoCli, BadInputFailsWithOneLine) {
                           {"--roughness 2", "--roughness"},
                           {"--ao-output all", "--aov-dir"},
                           {"--gtao-falloff-start 1.5", "--gtao-falloff-start"},
+                          {"--gtao-step-power 9", "--gtao-step-power"},
                           {"--gtao-half-res --gtao-mode full", "--gtao-half-res"}};
     for (const Case& c : cases) {
         Result r = run("render plane --ao gtao --size 32x32 -q -o " + path("f.png") + " " + c.args);
@@ -71,8 +72,10 @@ TEST_F(GtaoCli, BadInputFailsWithOneLine) {
         EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
         EXPECT_FALSE(fs::exists(path("f.png"))) << c.args;
     }
-    Result r = run("render plane --ao gtao --ao-quality extreme -o " + path("f.png"));
-    EXPECT_EQ(r.code, 2) << r.out;
+    for (const char* args : {"--ao-quality extreme", "--gtao-beyond-radius sideways"}) {
+        Result r = run("render plane --ao gtao " + std::string(args) + " -o " + path("f.png"));
+        EXPECT_EQ(r.code, 2) << args << ": " << r.out;
+    }
 }
 
 TEST_F(GtaoCli, CompareMeasuresGtaoAgainstRayTracedAo) {

@@ -5,6 +5,8 @@
 #include "obscura/builtin_scenes.h"
 #include "obscura/gbuffer.h"
 #include "obscura/metrics.h"
+#include "obscura/trace.h"
+#include "trace/primary_ray.h"
 
 #include <cmath>
 #include <string>
@@ -25,8 +27,11 @@ inline TopDownView topDownView(const std::string& name, int width, int height) {
         v.camera.position = {0.0f, 3.0f, 0.0f};
         v.camera.target = {0.0f, -2.0f, 0.0f};
     } else if (name == "stairs") {
-        v.camera.position = {0.0f, 5.0f, -0.2f};
-        v.camera.target = {0.0f, 0.0f, -0.2f};
+        // Above and in front of the bottom step, so every riser faces the camera. The flight's sides and
+        // the back of the top step are vertical faces no camera above sees; occludersSeen() measures how
+        // much of the picture they reach (8%, the floor along the sides).
+        v.camera.position = {0.0f, 6.0f, 3.5f};
+        v.camera.target = {0.0f, 0.5f, 0.2f};
     } else {
         // Inside the corner, above the floor and below the walls' top: both walls' faces are seen.
         v.camera.position = {2.5f, 6.0f, 2.5f};
@@ -40,6 +45,48 @@ inline TopDownView topDownView(const std::string& name, int width, int height) {
 // Mean of |a - b| over the G-buffer's surface pixels: the MAE that `obscura compare` reports.
 inline double meanAbsoluteError(const GBuffer& g, const Image& a, const Image& b) {
     return eval::errorStats(a, b, g).mae;
+}
+
+// 1 where every surface that a pixel's ray-traced AO rays hit within `radius` is seen by the camera (the
+// premise under which screen-space AO can match it), 0 where some occluder is hidden, sky 0. 256 rays
+// per pixel, a hit counting as seen if the camera's ray to it meets nothing 0.1% short of it.
+inline Image occludersSeen(const trace::Tracer& tracer, const GBuffer& g, float radius) {
+    trace::ObscuranceSettings settings;
+    settings.radius = radius;
+    settings.rays = 256;
+    const trace::ObscuranceEstimator estimator(tracer, settings);
+    const Mat4 worldFromView = g.camera.worldFromView();
+    Image seen(g.width(), g.height(), 1, 0.0f);
+    for (int y = 0; y < g.height(); ++y)
+        for (int x = 0; x < g.width(); ++x) {
+            Vec3 p, n, ng;
+            if (!trace::pixelSurface(tracer, g, worldFromView, x, y, p, n, ng)) continue;
+            const auto frame = estimator.frame(p, n, ng, 0);
+            bool hidden = false;
+            for (int i = 0; i < settings.rays && !hidden; ++i) {
+                const Vec3 d = estimator.direction(frame, i);
+                trace::Hit hit;
+                if (!tracer.intersect(frame.origin, d, 0.0f, radius, hit)) continue;
+                const Vec3 toHit = frame.origin + d * hit.t - g.camera.position;
+                const float distance = length(toHit);
+                hidden = tracer.closestDistance(g.camera.position, toHit / distance, 0.0f, distance) <
+                         distance * (1.0f - 1e-3f);
+            }
+            seen.at(x, y) = hidden ? 0.0f : 1.0f;
+        }
+    return seen;
+}
+
+// Fraction of the surface pixels where `mask` is 1.
+inline double maskFraction(const GBuffer& g, const Image& mask) {
+    double in = 0, all = 0;
+    for (int y = 0; y < g.height(); ++y)
+        for (int x = 0; x < g.width(); ++x)
+            if (!g.isSky(x, y)) {
+                all += 1;
+                in += mask.at(x, y) > 0.5f ? 1 : 0;
+            }
+    return all > 0 ? in / all : 0.0;
 }
 
 } // namespace obscura::test

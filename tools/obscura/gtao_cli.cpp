@@ -70,6 +70,14 @@ void GtaoOptions::add(CLI::App& app) {
         ->capture_default_str();
     app.add_option("--gtao-falloff-start", falloffStart, "GTAO: fraction of the radius where the linear fade starts, [0, 1]")
         ->capture_default_str();
+    app.add_option("--gtao-beyond-radius", beyondRadius,
+                   "GTAO: a horizon sample farther than the radius counts through the solid column behind it where "
+                   "that comes within the radius (column), or not at all (drop)")
+        ->check(CLI::IsMember({"column", "drop"}))
+        ->capture_default_str();
+    app.add_option("--gtao-step-power", stepPower,
+                   "GTAO: horizon step distribution, distance ~ (k / steps)^power, [1, 4]; > 1 packs steps near the centre")
+        ->capture_default_str();
 }
 
 ssao::GtaoSettings GtaoOptions::settings(float radius) const {
@@ -78,6 +86,8 @@ ssao::GtaoSettings GtaoOptions::settings(float radius) const {
     if (!(radius > 0.0f && radius <= 1e4f)) fail("--ao-radius", "GTAO needs a finite radius in (0, 1e4] m");
     s.radius = radius;
     s.falloffStart = falloffStart;
+    s.beyondRadius = beyondRadius == "drop" ? ssao::GtaoBeyondRadius::Drop : ssao::GtaoBeyondRadius::Column;
+    s.stepPower = stepPower;
     s.thickness = thickness == "heuristic" ? ssao::GtaoThickness::Heuristic
                   : thickness == "bitmask" ? ssao::GtaoThickness::Bitmask
                                            : ssao::GtaoThickness::None;

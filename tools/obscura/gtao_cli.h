@@ -28,6 +28,8 @@ struct GtaoOptions {
     bool halfResolution = false;
     std::string thickness = "none";
     float falloffStart = 1.0f;
+    std::string beyondRadius = "column";
+    float stepPower = 1.0f;
 
     void add(CLI::App& app);
     // The settings for radius r; throws obscura::Error naming the flag for a bad value.
