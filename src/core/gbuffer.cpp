@@ -2,7 +2,9 @@
 #include "obscura/gbuffer.h"
 
 #include "obscura/error.h"
+#include "obscura/parallel.h"
 
+#include <atomic>
 #include <cmath>
 #include <string>
 
@@ -26,6 +28,24 @@ void GBuffer::validate(const std::string& what) const {
     checkImage(normal, camera, 3, what, "normal");
     if (!albedo.empty()) checkImage(albedo, camera, 3, what, "albedo");
     if (!motion.empty()) checkImage(motion, camera, 2, what, "motion");
+    // Every frame of a screen-space pass validates its G-buffer, so the scan is one branch-free pass per
+    // row, rows in parallel; only a bad buffer takes the per-pixel loop below, which names the first bad pixel.
+    const std::size_t w = std::size_t(camera.width);
+    const float* dp = depth.pixels.data();
+    const float* n = normal.pixels.data();
+    std::atomic<bool> bad{false};
+    parallelFor(std::size_t(camera.height), [&](std::size_t y0, std::size_t y1) {
+        for (std::size_t y = y0; y < y1; ++y) {
+            bool rowBad = false;
+            for (std::size_t i = y * w; i < (y + 1) * w; ++i) {
+                // !(depth > 0) is NaN, zero or negative (-inf included); x - x is nonzero (NaN) for inf and NaN.
+                const float nx = n[3 * i], ny = n[3 * i + 1], nz = n[3 * i + 2];
+                rowBad |= !(dp[i] > 0.0f) | ((nx - nx) != 0.0f) | ((ny - ny) != 0.0f) | ((nz - nz) != 0.0f);
+            }
+            if (rowBad) bad.store(true, std::memory_order_relaxed);
+        }
+    }, 16);
+    if (!bad.load()) return;
     for (int y = 0; y < camera.height; ++y)
         for (int x = 0; x < camera.width; ++x) {
             float d = depth.at(x, y);

@@ -2,6 +2,7 @@
 // Obscurance Algorithm", eq. 10, with the spiral sampling and the alternative formulation of "Where Corners
 // Stay Dark" (Alchemy SSAO in an IBL renderer). Contract in include/obscura/alchemy.h.
 #include "obscura/alchemy.h"
+#include "alchemy_row.h"
 
 #include "obscura/error.h"
 #include "obscura/parallel.h"
@@ -263,10 +264,10 @@ float alchemyPixel(const AlchemyConstants& k, const AlchemyInput& in, const Spir
 #define OBSCURA_TARGET_CLONES
 #endif
 
-// Built for AVX2 too (gathers) and chosen at load time; fp-contract is off in ISO C++ mode, so every
-// version performs alchemyPixel's exact operations.
-OBSCURA_TARGET_CLONES void alchemyRow(const AlchemyConstants& k, const AlchemyInput& in, const SpiralTable& spiral,
-                                      int y, int x0, int x1, float* out) {
+// Also built for AVX2 (chosen at load time) for a CPU where the intrinsics version is not compiled in;
+// fp-contract is off in ISO C++ mode, so every version performs alchemyPixel's exact operations.
+OBSCURA_TARGET_CLONES void alchemyRowPortable(const AlchemyConstants& k, const AlchemyInput& in,
+                                              const SpiralTable& spiral, int y, int x0, int x1, float* out) {
     constexpr int kMax = 64;
     const int n = x1 - x0;
     assert(n >= 0 && n <= kMax);
@@ -321,6 +322,15 @@ OBSCURA_TARGET_CLONES void alchemyRow(const AlchemyConstants& k, const AlchemyIn
         const float v = k.contrast == 1.0f ? a : std::pow(a, k.contrast);
         out[j] = isSkyDepth(in.depth[rowStart + std::size_t(x0 + j)]) ? 1.0f : v;
     }
+}
+
+void alchemyRow(const AlchemyConstants& k, const AlchemyInput& in, const SpiralTable& spiral, int y, int x0, int x1,
+                float* out) {
+#ifdef OBSCURA_HAVE_ALCHEMY_AVX2
+    static const bool avx2 = detail::haveAvx2();
+    if (avx2) return detail::alchemyRowAvx2(k, in, spiral, y, x0, x1, out);
+#endif
+    alchemyRowPortable(k, in, spiral, y, x0, x1, out);
 }
 
 Image alchemyAO(const GBuffer& g, const AlchemySettings& s) {
