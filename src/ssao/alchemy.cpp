@@ -9,6 +9,7 @@
 #include "obscura/sampling.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cassert>
 #include <cmath>
 
@@ -342,9 +343,15 @@ Image alchemyAO(const GBuffer& g, const AlchemySettings& s) {
         depthOnly.depth = g.depth;
         depthOnly.normal = Image(g.width(), g.height(), 3);  // validate() wants one; it is rebuilt
         depthOnly.validate(what);
-    } else {
+    } else if (s.guardBand > 0) {
         g.validate(what);
+    } else {
+        // The pixels are checked tile by tile below, where the kernel reads them anyway: the G-buffer
+        // comes from memory once instead of twice.
+        g.validateShape(what);
     }
+    const bool scanTiles = !s.normalsFromDepth && s.guardBand == 0;
+    std::atomic<bool> bad{false};
     const AlchemyInput in = alchemyInput(g, s.normalsFromDepth);
     const SpiralTable spiral = alchemySpiral(k);
     const int gb = k.guardBand, w = k.width - 2 * gb, h = k.height - 2 * gb;
@@ -357,6 +364,11 @@ Image alchemyAO(const GBuffer& g, const AlchemySettings& s) {
         for (std::size_t t = t0; t < t1; ++t) {
             const int x0 = int(t % std::size_t(tilesX)) * kTileW, y0 = int(t / std::size_t(tilesX)) * kTileH;
             const int x1 = std::min(w, x0 + kTileW);
+            // A tile with a bad centre is not computed (a NaN depth would reach a float-to-int conversion).
+            if (scanTiles && !g.pixelsValid(x0, x1, y0, std::min(h, y0 + kTileH))) {
+                bad.store(true, std::memory_order_relaxed);
+                continue;
+            }
             for (int y = y0; y < std::min(h, y0 + kTileH); ++y) {
                 float* row = &out.pixels[std::size_t(y) * std::size_t(w)];
                 if (k.minSamples == k.samples) {
@@ -367,6 +379,7 @@ Image alchemyAO(const GBuffer& g, const AlchemySettings& s) {
             }
         }
     });
+    if (bad.load()) g.validate(what);  // throws, naming the first bad pixel
     return out;
 }
 
