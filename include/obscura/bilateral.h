@@ -60,7 +60,9 @@ inline float tapWeight(float spatial, float d, Vec3 n, float di, Vec3 ni, float 
     return w;
 }
 
-// One 1-D pass along x (axis 0) or y (axis 1). `ao` has 1 channel and the G-buffer's size.
+// One 1-D pass along x (axis 0) or y (axis 1). `ao` has 1 channel and the G-buffer's size. The separable
+// filter runs both passes fused over tiles (src/ssao/bilateral_separable.cpp) with the same arithmetic, so
+// bilateralPass(bilateralPass(ao, 0), 1) gives the same bits as it.
 Image bilateralPass(const Image& ao, const GBuffer& gbuffer, const BilateralSettings& settings, int axis);
 
 // The square (2 radius + 1)^2 filter of the chapter.
