@@ -29,7 +29,7 @@ typedef float V8f __attribute__((vector_size(32)));
 typedef int V8i __attribute__((vector_size(32)));
 constexpr int kLanes = 8;
 
-// The helpers are always inlined, so the ABI of passing 32-byte vectors without AVX never applies.
+// These small functions are always inlined, so the ABI of passing 32-byte vectors without AVX never applies.
 #pragma GCC diagnostic ignored "-Wpsabi"
 #define OBSCURA_INLINE inline __attribute__((always_inline))
 
