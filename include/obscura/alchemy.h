@@ -112,8 +112,12 @@ float alchemyPixel(const AlchemyConstants& k, const AlchemyInput& in, const Spir
 // is evaluated for the whole segment before the next, so the loop over pixels vectorises (gathers). Same
 // operations in the same order, so the same bits as alchemyPixel. Needs the level of detail off (one
 // sample count for every pixel). Hot path: no checks.
+// On x86-64 CPUs with AVX2 it runs a version written with intrinsics (hardware gathers); elsewhere
+// alchemyRowPortable, which tests call directly so that both are checked against alchemyPixel.
 void alchemyRow(const AlchemyConstants& k, const AlchemyInput& in, const SpiralTable& spiral, int y, int x0, int x1,
                 float* out);
+void alchemyRowPortable(const AlchemyConstants& k, const AlchemyInput& in, const SpiralTable& spiral, int y, int x0,
+                        int x1, float* out);
 
 // Raw obscurance A in [0,1] for every pixel, guard band cropped: a 1-channel image of
 // (width - 2 guardBand) x (height - 2 guardBand). Sky pixels are 1. Validates the G-buffer (size, NaN

@@ -51,7 +51,7 @@ struct BilateralSettings {
 std::vector<float> gaussianHalfKernel(int radius);
 
 // Weight of a tap (the definition; the filter's vectorised loops evaluate the same expression with a
-// polynomial exp, relative error < 2e-5) with spatial weight `spatial` at depth di, normal ni, relative to a centre at depth d
+// polynomial exp, relative error < 2e-5 in the 2-D filter, < 3e-6 in the separable one) with spatial weight `spatial` at depth di, normal ni, relative to a centre at depth d
 // (finite) with normal n. invTwoSigmaD2 = 1 / (2 (depthSigma d)^2). Sky taps (di = +inf) weigh 0.
 inline float tapWeight(float spatial, float d, Vec3 n, float di, Vec3 ni, float invTwoSigmaD2, bool useNormal) {
     float dd = di - d;
@@ -60,7 +60,9 @@ inline float tapWeight(float spatial, float d, Vec3 n, float di, Vec3 ni, float 
     return w;
 }
 
-// One 1-D pass along x (axis 0) or y (axis 1). `ao` has 1 channel and the G-buffer's size.
+// One 1-D pass along x (axis 0) or y (axis 1). `ao` has 1 channel and the G-buffer's size. The separable
+// filter runs both passes fused over tiles (src/ssao/bilateral_separable.cpp) with the same arithmetic, so
+// bilateralPass(bilateralPass(ao, 0), 1) gives the same bits as it.
 Image bilateralPass(const Image& ao, const GBuffer& gbuffer, const BilateralSettings& settings, int axis);
 
 // The square (2 radius + 1)^2 filter of the chapter.

@@ -31,6 +31,11 @@ struct GBuffer {
     // Checks that every buffer present matches the camera's size and channel count, and that depths
     // are positive or +inf and normals finite; throws obscura::Error naming `what` (e.g. a file) if not.
     void validate(const std::string& what) const;
+    // validate() in two parts, for a pass that scans its pixels where it reads them anyway: the sizes and
+    // channel counts (throws), and whether every pixel of rows [y0, y1) x columns [x0, x1) has a valid
+    // depth and normal (branch-free; validate() then names the first bad pixel).
+    void validateShape(const std::string& what) const;
+    bool pixelsValid(int x0, int x1, int y0, int y1) const;
 };
 
 } // namespace obscura

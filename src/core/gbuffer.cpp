@@ -2,7 +2,9 @@
 #include "obscura/gbuffer.h"
 
 #include "obscura/error.h"
+#include "obscura/parallel.h"
 
+#include <atomic>
 #include <cmath>
 #include <string>
 
@@ -20,12 +22,38 @@ void checkImage(const Image& image, const Camera& camera, int channels, const st
 }
 } // namespace
 
-void GBuffer::validate(const std::string& what) const {
+void GBuffer::validateShape(const std::string& what) const {
     if (camera.width < 1 || camera.height < 1) fail(what, "G-buffer has zero size");
     checkImage(depth, camera, 1, what, "depth");
     checkImage(normal, camera, 3, what, "normal");
     if (!albedo.empty()) checkImage(albedo, camera, 3, what, "albedo");
     if (!motion.empty()) checkImage(motion, camera, 2, what, "motion");
+}
+
+bool GBuffer::pixelsValid(int x0, int x1, int y0, int y1) const {
+    const float* dp = depth.pixels.data();
+    const float* n = normal.pixels.data();
+    bool bad = false;
+    for (int y = y0; y < y1; ++y) {
+        const std::size_t row = std::size_t(y) * std::size_t(camera.width);
+        for (std::size_t i = row + std::size_t(x0); i < row + std::size_t(x1); ++i) {
+            // !(depth > 0) is NaN, zero or negative (-inf included); x - x is nonzero (NaN) for inf and NaN.
+            const float nx = n[3 * i], ny = n[3 * i + 1], nz = n[3 * i + 2];
+            bad |= !(dp[i] > 0.0f) | ((nx - nx) != 0.0f) | ((ny - ny) != 0.0f) | ((nz - nz) != 0.0f);
+        }
+    }
+    return !bad;
+}
+
+void GBuffer::validate(const std::string& what) const {
+    validateShape(what);
+    // Every frame of a screen-space pass validates its G-buffer, so the scan is branch-free and rows run in
+    // parallel; only a bad buffer takes the per-pixel loop below, which names the first bad pixel.
+    std::atomic<bool> bad{false};
+    parallelFor(std::size_t(camera.height), [&](std::size_t y0, std::size_t y1) {
+        if (!pixelsValid(0, camera.width, int(y0), int(y1))) bad.store(true, std::memory_order_relaxed);
+    }, 16);
+    if (!bad.load()) return;
     for (int y = 0; y < camera.height; ++y)
         for (int x = 0; x < camera.width; ++x) {
             float d = depth.at(x, y);

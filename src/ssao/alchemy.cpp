@@ -2,12 +2,14 @@
 // Obscurance Algorithm", eq. 10, with the spiral sampling and the alternative formulation of "Where Corners
 // Stay Dark" (Alchemy SSAO in an IBL renderer). Contract in include/obscura/alchemy.h.
 #include "obscura/alchemy.h"
+#include "alchemy_row.h"
 
 #include "obscura/error.h"
 #include "obscura/parallel.h"
 #include "obscura/sampling.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cassert>
 #include <cmath>
 
@@ -263,10 +265,10 @@ float alchemyPixel(const AlchemyConstants& k, const AlchemyInput& in, const Spir
 #define OBSCURA_TARGET_CLONES
 #endif
 
-// Built for AVX2 too (gathers) and chosen at load time; fp-contract is off in ISO C++ mode, so every
-// version performs alchemyPixel's exact operations.
-OBSCURA_TARGET_CLONES void alchemyRow(const AlchemyConstants& k, const AlchemyInput& in, const SpiralTable& spiral,
-                                      int y, int x0, int x1, float* out) {
+// Also built for AVX2 (chosen at load time) for a CPU where the intrinsics version is not compiled in;
+// fp-contract is off in ISO C++ mode, so every version performs alchemyPixel's exact operations.
+OBSCURA_TARGET_CLONES void alchemyRowPortable(const AlchemyConstants& k, const AlchemyInput& in,
+                                              const SpiralTable& spiral, int y, int x0, int x1, float* out) {
     constexpr int kMax = 64;
     const int n = x1 - x0;
     assert(n >= 0 && n <= kMax);
@@ -323,6 +325,15 @@ OBSCURA_TARGET_CLONES void alchemyRow(const AlchemyConstants& k, const AlchemyIn
     }
 }
 
+void alchemyRow(const AlchemyConstants& k, const AlchemyInput& in, const SpiralTable& spiral, int y, int x0, int x1,
+                float* out) {
+#ifdef OBSCURA_HAVE_ALCHEMY_AVX2
+    static const bool avx2 = detail::haveAvx2();
+    if (avx2) return detail::alchemyRowAvx2(k, in, spiral, y, x0, x1, out);
+#endif
+    alchemyRowPortable(k, in, spiral, y, x0, x1, out);
+}
+
 Image alchemyAO(const GBuffer& g, const AlchemySettings& s) {
     const AlchemyConstants k = alchemyConstants(s, g.camera);
     const std::string what = "alchemy G-buffer";
@@ -332,9 +343,15 @@ Image alchemyAO(const GBuffer& g, const AlchemySettings& s) {
         depthOnly.depth = g.depth;
         depthOnly.normal = Image(g.width(), g.height(), 3);  // validate() wants one; it is rebuilt
         depthOnly.validate(what);
-    } else {
+    } else if (s.guardBand > 0) {
         g.validate(what);
+    } else {
+        // The pixels are checked tile by tile below, where the kernel reads them anyway: the G-buffer
+        // comes from memory once instead of twice.
+        g.validateShape(what);
     }
+    const bool scanTiles = !s.normalsFromDepth && s.guardBand == 0;
+    std::atomic<bool> bad{false};
     const AlchemyInput in = alchemyInput(g, s.normalsFromDepth);
     const SpiralTable spiral = alchemySpiral(k);
     const int gb = k.guardBand, w = k.width - 2 * gb, h = k.height - 2 * gb;
@@ -347,6 +364,11 @@ Image alchemyAO(const GBuffer& g, const AlchemySettings& s) {
         for (std::size_t t = t0; t < t1; ++t) {
             const int x0 = int(t % std::size_t(tilesX)) * kTileW, y0 = int(t / std::size_t(tilesX)) * kTileH;
             const int x1 = std::min(w, x0 + kTileW);
+            // A tile with a bad centre is not computed (a NaN depth would reach a float-to-int conversion).
+            if (scanTiles && !g.pixelsValid(x0, x1, y0, std::min(h, y0 + kTileH))) {
+                bad.store(true, std::memory_order_relaxed);
+                continue;
+            }
             for (int y = y0; y < std::min(h, y0 + kTileH); ++y) {
                 float* row = &out.pixels[std::size_t(y) * std::size_t(w)];
                 if (k.minSamples == k.samples) {
@@ -357,6 +379,7 @@ Image alchemyAO(const GBuffer& g, const AlchemySettings& s) {
             }
         }
     });
+    if (bad.load()) g.validate(what);  // throws, naming the first bad pixel
     return out;
 }
 

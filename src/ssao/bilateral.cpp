@@ -2,6 +2,7 @@
 // Algorithm" (two 1-D passes, Fig. 6) and the 2-D filter of "Where Corners Stay Dark" (Alchemy SSAO in an
 // IBL renderer). See include/obscura/bilateral.h for the contract.
 #include "obscura/bilateral.h"
+#include "bilateral_separable.h"
 
 #include "obscura/error.h"
 #include "obscura/parallel.h"
@@ -132,46 +133,6 @@ struct RowScratch {
 // Rows are processed in chunks of this many pixels, so a chunk's centre data, sums and taps stay in L1.
 constexpr int kChunk = 256;
 
-// One 1-D pass along x (axis 0) or y (axis 1).
-Image pass1D(const Image& ao, const Planes& p, const BilateralSettings& s, int axis) {
-    const std::vector<float> kernel = gaussianHalfKernel(s.radius);
-    Image out(ao.width, ao.height, 1);
-    const int w = p.width, h = p.height, r = s.radius;
-    parallelFor(
-        std::size_t(h),
-        [&](std::size_t y0, std::size_t y1) {
-            RowScratch row(w);
-            for (int y = int(y0); y < int(y1); ++y) {
-                const std::size_t c = std::size_t(y) * std::size_t(w);
-                row.begin(&p.depth[c], w, s.depthSigma);
-                for (int cx0 = 0; cx0 < w; cx0 += kChunk) {
-                    const int cx1 = std::min(w, cx0 + kChunk);
-                    for (int t = -r; t <= r; ++t) {
-                        const float k = kernel[std::size_t(std::abs(t))];
-                        // Centres x in [x0, x1) whose tap (x + t along the axis) is inside the image.
-                        int x0 = cx0, x1 = cx1;
-                        std::ptrdiff_t shift = t;
-                        if (axis == 0) {
-                            x0 = std::max(x0, -t);
-                            x1 = std::min(x1, w - t);
-                        } else {
-                            if (y + t < 0 || y + t >= h) continue;
-                            shift = std::ptrdiff_t(t) * std::ptrdiff_t(w);
-                        }
-                        if (x1 <= x0) continue;
-                        const std::size_t i = c + std::size_t(x0), j = std::size_t(std::ptrdiff_t(i) + shift);
-                        accumulateTaps(x1 - x0, k, s.normalWeight, &p.depth[i], &row.inv[std::size_t(x0)], &p.nx[i],
-                                       &p.ny[i], &p.nz[i], &p.depth[j], &p.nx[j], &p.ny[j], &p.nz[j], &ao.pixels[j],
-                                       &row.sum[std::size_t(x0)], &row.wsum[std::size_t(x0)]);
-                    }
-                }
-                row.finish(&p.depth[c], &ao.pixels[c], &out.pixels[c], w);
-            }
-        },
-        4);
-    return out;
-}
-
 Image pass2D(const Image& ao, const Planes& p, const BilateralSettings& s) {
     const std::vector<float> kernel = gaussianHalfKernel(s.radius);
     Image out(ao.width, ao.height, 1);
@@ -224,7 +185,7 @@ Image bilateralPass(const Image& ao, const GBuffer& gbuffer, const BilateralSett
     settings.validate();
     checkInputs(ao, gbuffer);
     assert(axis == 0 || axis == 1);
-    return pass1D(ao, Planes(gbuffer), settings, axis);
+    return detail::separableBlur(ao, gbuffer, settings, axis == 0, axis == 1);
 }
 
 Image bilateral2D(const Image& ao, const GBuffer& gbuffer, const BilateralSettings& settings) {
@@ -239,10 +200,8 @@ Image bilateralFilter(const Image& ao, const GBuffer& gbuffer, const BilateralSe
     switch (settings.mode) {
     case BlurMode::None:
         return ao;
-    case BlurMode::Separable: {
-        Planes p(gbuffer);
-        return pass1D(pass1D(ao, p, settings, 0), p, settings, 1);
-    }
+    case BlurMode::Separable:
+        return detail::separableBlur(ao, gbuffer, settings, true, true);
     case BlurMode::TwoD:
         return pass2D(ao, Planes(gbuffer), settings);
     }
