@@ -9,6 +9,7 @@
 #include "obscura/mesh_builder.h"
 #include "obscura/parallel.h"
 #include "obscura/trace.h"
+#include "trace/closed_form_scenes.h"
 
 #include <gtest/gtest.h>
 
@@ -35,17 +36,6 @@ GtaoSettings dense(float radius, int slices, int steps) {
     s.stepPower = 1.0f;
     s.maxRadiusPixels = 4096.0f;
     return s;
-}
-
-Scene wallAndFloor() {
-    // Floor y = 0 and a wall z = 0 facing +Z, 2 km wide: "infinite" at every radius used here.
-    Scene scene;
-    Mesh m;
-    const float h = 1000.0f;
-    build::addQuad(m, {-h, 0, h}, {h, 0, h}, {h, 0, -h}, {-h, 0, -h});
-    build::addQuad(m, {-h, 0, 0}, {h, 0, 0}, {h, h, 0}, {-h, h, 0});
-    scene.add(std::move(m));
-    return scene;
 }
 
 // Floor pixels of column x nearest the wall's foot (world z smallest but positive).
@@ -97,7 +87,7 @@ TEST(Gtao, OpenPlaneIsOneEverywhere) {
 TEST(Gtao, FootOfAnInfiniteWallIsOneHalf) {
     // Half of the cosine-weighted hemisphere faces the wall; with r = 4 m and the point within a pixel
     // (about 2 cm) of the wall, rays that miss the wall within r leave |w_z| < 0.005: below 1e-4 of A.
-    Scene scene = wallAndFloor();
+    Scene scene = test::wallAndFloor();
     Camera cam;
     cam.position = {0.0f, 1.5f, 4.0f};
     cam.target = {0.0f, 0.0f, 0.0f};

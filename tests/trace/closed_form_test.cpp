@@ -9,6 +9,7 @@
 #include "obscura/builtin_scenes.h"
 #include "obscura/mesh_builder.h"
 #include "obscura/trace.h"
+#include "trace/closed_form_scenes.h"
 
 #include <gtest/gtest.h>
 
@@ -51,14 +52,8 @@ TEST(ClosedForm, OpenPlaneIsUnoccluded) {
 }
 
 TEST(ClosedForm, FootOfAnInfiniteWallIsOneHalf) {
-    // Floor y = 0 and a wall z = 0 facing +Z, both 2 km wide. Every direction with a -Z component hits the
-    // wall: exactly half of the cosine-weighted hemisphere, for any distance from the wall.
-    Scene scene;
-    Mesh m;
-    const float h = 1000.0f;
-    build::addQuad(m, {-h, 0, h}, {h, 0, h}, {h, 0, -h}, {-h, 0, -h});
-    build::addQuad(m, {-h, 0, 0}, {h, 0, 0}, {h, h, 0}, {-h, h, 0});
-    scene.add(std::move(m));
+    // Every direction with a -Z component hits the wall: exactly half of the cosine-weighted hemisphere.
+    const Scene scene = test::wallAndFloor();
     Tracer tracer(scene);
     const double expected = 0.5;
     for (float z : {1e-3f, 0.05f}) {
