@@ -259,16 +259,11 @@ float alchemyPixel(const AlchemyConstants& k, const AlchemyInput& in, const Spir
     return k.contrast == 1.0f ? a : std::pow(a, k.contrast);
 }
 
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
-#define OBSCURA_TARGET_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define OBSCURA_TARGET_CLONES
-#endif
-
-// Also built for AVX2 (chosen at load time) for a CPU where the intrinsics version is not compiled in;
-// fp-contract is off in ISO C++ mode, so every version performs alchemyPixel's exact operations.
-OBSCURA_TARGET_CLONES void alchemyRowPortable(const AlchemyConstants& k, const AlchemyInput& in,
-                                              const SpiralTable& spiral, int y, int x0, int x1, float* out) {
+// What a CPU without AVX2 runs (x86-64 CPUs with it take alchemyRowAvx2). Built for the baseline only, so
+// the tests that call it check the very code those CPUs run; fp-contract is off in ISO C++ mode, so it
+// performs alchemyPixel's exact operations.
+void alchemyRowPortable(const AlchemyConstants& k, const AlchemyInput& in, const SpiralTable& spiral, int y, int x0,
+                        int x1, float* out) {
     constexpr int kMax = 64;
     const int n = x1 - x0;
     assert(n >= 0 && n <= kMax);
