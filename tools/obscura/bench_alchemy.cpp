@@ -12,10 +12,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include <algorithm>
 #include <cstdio>
-#include <ctime>
-#include <functional>
 #include <memory>
 #include <vector>
 
@@ -34,35 +31,15 @@ struct AlchemyBenchOptions {
     float maxRadiusPixels = ssao::AlchemySettings{}.maxRadiusPixels;
 };
 
-struct Timing {
-    double wallMs = 0;  // median wall time
-    double cpuMs = 0;   // median process CPU time (all threads): on a shared machine, what the pass cost
-};
-
-double processCpuMs() {
-    timespec ts{};
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-    return 1000.0 * double(ts.tv_sec) + 1e-6 * double(ts.tv_nsec);
-}
-
-Timing median(int repeats, const std::function<void()>& body) {
-    std::vector<double> wall, cpu;
-    for (int i = 0; i < repeats; ++i) {
-        const double c0 = processCpuMs();
-        auto start = std::chrono::steady_clock::now();
-        body();
-        wall.push_back(1000.0 * secondsSince(start));
-        cpu.push_back(processCpuMs() - c0);
-    }
-    std::sort(wall.begin(), wall.end());
-    std::sort(cpu.begin(), cpu.end());
-    return {wall[wall.size() / 2], cpu[cpu.size() / 2]};
-}
-
 void runAlchemy(const AlchemyBenchOptions& o) {
     if (o.samples < 1 || o.samples > 1024) fail("--samples", "must be in [1, 1024]");
     if (o.repeats < 1 || o.repeats > 100) fail("--repeats", "must be in [1, 100]");
     const int all = o.threads > 0 ? o.threads : hardwareThreads();
+    std::vector<std::pair<int, int>> sizes = {{1280, 720}, {1920, 1080}};
+    if (!o.size.empty()) {
+        sizes.resize(1);
+        parseSize("--size", o.size, sizes[0].first, sizes[0].second);
+    }
     LoadedScene loaded = loadSceneArgument(o.scene);
     trace::Tracer tracer(loaded.scene);
     ssao::AlchemySettings settings;
@@ -76,17 +53,10 @@ void runAlchemy(const AlchemyBenchOptions& o) {
     report["repeats"] = o.repeats;
     if (!o.json) {
         std::printf("obscura bench alchemy: scene %s, %d samples/px, paper defaults (r 0.5 m), blur radius 6 (13 taps),\n"
-                    "median of %d runs; wall ms per pass (process CPU ms in brackets)\n\n",
+                    "median of %d runs after a warm-up; wall ms per pass (process CPU ms in brackets)\n\n",
                     loaded.name.c_str(), o.samples, o.repeats);
         std::printf("%-10s %7s %17s %17s %17s %17s\n", "size", "threads", "alchemy", "blur separable", "blur 2d",
                     "alchemy+separable");
-    }
-    std::vector<std::pair<int, int>> sizes = {{1280, 720}, {1920, 1080}};
-    if (!o.size.empty()) {
-        int w = 0, h = 0;
-        if (std::sscanf(o.size.c_str(), "%dx%d", &w, &h) != 2 || w < 16 || h < 16 || w > 16384 || h > 16384)
-            fail("--size", "must be WxH with each side in [16, 16384], is '" + o.size + "'");
-        sizes = {{w, h}};
     }
     for (auto [w, h] : sizes) {
         Camera camera = loaded.camera;
@@ -96,28 +66,28 @@ void runAlchemy(const AlchemyBenchOptions& o) {
         for (int threads : {1, all}) {
             ThreadLimit limit(threads);
             Image ao;
-            const Timing tAo = median(o.repeats, [&] { ao = ssao::alchemyAO(g, settings); });
-            const Timing tSep = median(o.repeats, [&] { (void)ssao::bilateralFilter(ao, g, separable); });
-            const Timing t2d =
-                o.skip2d ? Timing{} : median(o.repeats, [&] { (void)ssao::bilateralFilter(ao, g, twoD); });
+            const RunTimes tAo = timeRuns(o.repeats, [&] { ao = ssao::alchemyAO(g, settings); });
+            const RunTimes tSep = timeRuns(o.repeats, [&] { (void)ssao::bilateralFilter(ao, g, separable); });
+            const RunTimes t2d =
+                o.skip2d ? RunTimes{} : timeRuns(o.repeats, [&] { (void)ssao::bilateralFilter(ao, g, twoD); });
             auto cell = [](double wall, double cpu) {
                 char b[32];
                 std::snprintf(b, sizeof b, "%.1f (%.1f)", wall, cpu);
                 return std::string(b);
             };
             if (!o.json)
-                std::printf("%4dx%-5d %7d %17s %17s %17s %17s\n", w, h, threads, cell(tAo.wallMs, tAo.cpuMs).c_str(),
-                            cell(tSep.wallMs, tSep.cpuMs).c_str(), cell(t2d.wallMs, t2d.cpuMs).c_str(),
-                            cell(tAo.wallMs + tSep.wallMs, tAo.cpuMs + tSep.cpuMs).c_str());
+                std::printf("%4dx%-5d %7d %17s %17s %17s %17s\n", w, h, threads, cell(tAo.medianMs, tAo.medianCpuMs).c_str(),
+                            cell(tSep.medianMs, tSep.medianCpuMs).c_str(), (o.skip2d ? std::string("-") : cell(t2d.medianMs, t2d.medianCpuMs)).c_str(),
+                            cell(tAo.medianMs + tSep.medianMs, tAo.medianCpuMs + tSep.medianCpuMs).c_str());
             report["rows"].push_back({{"width", w},
                                       {"height", h},
                                       {"threads", threads},
-                                      {"alchemy_ms", tAo.wallMs},
-                                      {"blur_separable_ms", tSep.wallMs},
-                                      {"blur_2d_ms", t2d.wallMs},
-                                      {"alchemy_cpu_ms", tAo.cpuMs},
-                                      {"blur_separable_cpu_ms", tSep.cpuMs},
-                                      {"blur_2d_cpu_ms", t2d.cpuMs}});
+                                      {"alchemy_ms", tAo.medianMs},
+                                      {"blur_separable_ms", tSep.medianMs},
+                                      {"blur_2d_ms", o.skip2d ? nlohmann::json() : nlohmann::json(t2d.medianMs)},
+                                      {"alchemy_cpu_ms", tAo.medianCpuMs},
+                                      {"blur_separable_cpu_ms", tSep.medianCpuMs},
+                                      {"blur_2d_cpu_ms", o.skip2d ? nlohmann::json() : nlohmann::json(t2d.medianCpuMs)}});
             if (threads == all) break;  // a one-core machine has one row
         }
     }

@@ -12,9 +12,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include <algorithm>
 #include <cstdio>
-#include <functional>
 #include <memory>
 #include <vector>
 
@@ -30,19 +28,6 @@ struct GtaoBenchOptions {
     int threads = 0;
     bool json = false;
 };
-
-// Median and minimum of `repeat` timed runs after one untimed warm-up, in milliseconds.
-std::pair<double, double> timeRuns(int repeat, const std::function<void()>& body) {
-    body();
-    std::vector<double> ms;
-    for (int i = 0; i < repeat; ++i) {
-        auto start = std::chrono::steady_clock::now();
-        body();
-        ms.push_back(1000.0 * secondsSince(start));
-    }
-    std::sort(ms.begin(), ms.end());
-    return {ms[ms.size() / 2], ms.front()};
-}
 
 void runGtaoBench(const GtaoBenchOptions& o) {
     if (o.repeat < 1 || o.repeat > 100) fail("--repeat", "must be in [1, 100]");
@@ -66,9 +51,9 @@ void runGtaoBench(const GtaoBenchOptions& o) {
                     loaded.name.c_str(), camera.width, camera.height, double(o.radius), threads, o.repeat);
         std::printf("%-34s %12s %12s %12s\n", "case", "ms/frame", "min ms", "Mpixel/s");
     }
-    auto record = [&](const std::string& label, std::pair<double, double> t) {
-        if (!o.json) std::printf("%-34s %12.1f %12.1f %12.2f\n", label.c_str(), t.first, t.second, megapixels / (t.first * 1e-3));
-        report["cases"].push_back({{"label", label}, {"median_ms", t.first}, {"min_ms", t.second}});
+    auto record = [&](const std::string& label, const RunTimes& t) {
+        if (!o.json) std::printf("%-34s %12.1f %12.1f %12.2f\n", label.c_str(), t.medianMs, t.minMs, megapixels / (t.medianMs * 1e-3));
+        report["cases"].push_back({{"label", label}, {"median_ms", t.medianMs}, {"min_ms", t.minMs}});
     };
     for (ssao::GtaoQuality q : {ssao::GtaoQuality::Low, ssao::GtaoQuality::Medium, ssao::GtaoQuality::High,
                                 ssao::GtaoQuality::Ultra}) {
@@ -120,7 +105,7 @@ void addGtaoBench(CLI::App& bench) {
     cmd->add_option("--scene", o->scene, "Built-in scene or scene file")->capture_default_str();
     cmd->add_option("--size", o->size, "Image size WIDTHxHEIGHT")->capture_default_str();
     cmd->add_option("--radius", o->radius, "AO radius r, m")->capture_default_str();
-    cmd->add_option("--repeat", o->repeat, "Timed runs per case after one warm-up, [1, 100]")->capture_default_str();
+    cmd->add_option("--repeat,--repeats", o->repeat, "Timed runs per case after one warm-up, [1, 100]")->capture_default_str();
     cmd->add_option("--threads", o->threads, "Worker threads (0 = all cores)")->capture_default_str();
     cmd->add_flag("--json", o->json, "Print JSON instead of a table");
     cmd->callback([o] { runGtaoBench(*o); });

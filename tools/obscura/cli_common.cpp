@@ -7,10 +7,12 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <sstream>
+#include <ctime>
 #include <unistd.h>
 
 namespace obscura::cli {
@@ -157,6 +159,29 @@ void Progress::operator()(double fraction) {
 
 double secondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+namespace {
+double processCpuMs() {
+    timespec ts{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return 1000.0 * double(ts.tv_sec) + 1e-6 * double(ts.tv_nsec);
+}
+} // namespace
+
+RunTimes timeRuns(int repeats, const std::function<void()>& body) {
+    body();
+    std::vector<double> wall, cpu;
+    for (int i = 0; i < repeats; ++i) {
+        const double cpu0 = processCpuMs();
+        const auto start = std::chrono::steady_clock::now();
+        body();
+        wall.push_back(1000.0 * secondsSince(start));
+        cpu.push_back(processCpuMs() - cpu0);
+    }
+    std::sort(wall.begin(), wall.end());
+    std::sort(cpu.begin(), cpu.end());
+    return {wall[wall.size() / 2], wall.front(), cpu[cpu.size() / 2]};
 }
 
 } // namespace obscura::cli

@@ -6,6 +6,7 @@
 #include "obscura/scene.h"
 
 #include <chrono>
+#include <functional>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -61,5 +62,13 @@ private:
 bool progressWanted(bool quiet);
 
 double secondsSince(std::chrono::steady_clock::time_point start);
+
+// `repeats` timed runs of `body` after one untimed warm-up (first-touch allocations, lazily built tables).
+struct RunTimes {
+    double medianMs = 0;     // wall
+    double minMs = 0;        // wall
+    double medianCpuMs = 0;  // process CPU time, all threads: on a shared machine, what the work itself cost
+};
+RunTimes timeRuns(int repeats, const std::function<void()>& body);
 
 } // namespace obscura::cli

@@ -1,0 +1,46 @@
+// `obscura bench alchemy` and `obscura bench gtao`: tiny sizes, one run, machine-readable output; bad
+// arguments fail with one line.
+#include "cli/cli_harness.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <string>
+
+using obscura::clitest::CliTest;
+using obscura::clitest::runCli;
+
+class BenchCli : public CliTest {};
+
+TEST_F(BenchCli, AlchemyJsonHasOneRowPerThreadCount) {
+    const auto r = runCli("bench alchemy --size 48x32 --repeats 1 --threads 2 --skip-2d --json");
+    ASSERT_EQ(r.code, 0) << r.out;
+    const nlohmann::json j = nlohmann::json::parse(r.out);
+    ASSERT_EQ(j["rows"].size(), 2u) << r.out;  // 1 thread and 2
+    for (const auto& row : j["rows"]) {
+        EXPECT_EQ(row["width"], 48);
+        EXPECT_GT(row["alchemy_ms"].get<double>(), 0.0);
+        EXPECT_GT(row["blur_separable_cpu_ms"].get<double>(), 0.0);
+        EXPECT_TRUE(row["blur_2d_ms"].is_null()) << "skipped, so not a time";
+    }
+}
+
+TEST_F(BenchCli, GtaoJsonTimesEveryPreset) {
+    const auto r = runCli("bench gtao --size 32x18 --repeats 1 --json");
+    ASSERT_EQ(r.code, 0) << r.out;
+    const nlohmann::json j = nlohmann::json::parse(r.out);
+    int presets = 0;
+    for (const auto& c : j["cases"]) {
+        EXPECT_GT(c["median_ms"].get<double>(), 0.0) << c["label"];
+        EXPECT_LE(c["min_ms"].get<double>(), c["median_ms"].get<double>()) << c["label"];
+        presets += c["label"].get<std::string>().rfind("full ", 0) == 0;
+    }
+    EXPECT_EQ(presets, 4);
+}
+
+TEST_F(BenchCli, BadArgumentsFailWithOneLine) {
+    expectFailure("bench alchemy --repeats 0", {"--repeats"});
+    expectFailure("bench alchemy --size 0x10", {"--size"});
+    expectFailure("bench gtao --repeats 101", {"--repeat"});
+    expectFailure("bench gtao --radius -1", {"--radius"});
+}
