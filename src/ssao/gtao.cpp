@@ -53,10 +53,11 @@ float fract(float v) { return v - std::floor(v); }
 // the image over a plane, so where a 2x2 quad of pixels agrees with one plane (its bilinear cross term
 // vanishes) it is interpolated, and the point lies on the slice line exactly; at grazing angles snapping
 // to a pixel centre would move the point off the slice by many metres of depth and find false horizons.
-// The quad around (sx, sy) is tried first, then the four quads shifted by one pixel that still hold the
-// nearest pixel (extrapolating an affine function is exact too): that keeps the interpolation at a
-// surface's edge against the sky and at the image border. Across an edge or a silhouette the nearest
-// pixel's own point is used. False for sky or for (sx, sy) in the centre pixel (cx, cy).
+// The quad around (sx, sy) is tried first, then the three other quads that hold the nearest pixel as a
+// corner (extrapolating an affine function is exact too): that keeps the interpolation at a surface's
+// edge against the sky, at its corners (where only the diagonal quad lies on the surface) and at the image
+// border. Across an edge or a silhouette the nearest pixel's own point is used. False for sky or for
+// (sx, sy) in the centre pixel (cx, cy).
 bool samplePosition(const GtaoConstants& c, const GBuffer& g, float sx, float sy, int cx, int cy, Vec3& out) {
     const int ix = int(sx), iy = int(sy);
     if (ix == cx && iy == cy) return false;
@@ -64,11 +65,13 @@ bool samplePosition(const GtaoConstants& c, const GBuffer& g, float sx, float sy
     if (!(nearest < 1e30f)) return false;
     const float gx = sx - 0.5f, gy = sy - 0.5f;
     if (c.width > 1 && c.height > 1) {
-        static constexpr int kShifts[5][2] = {{0, 0}, {0, 1}, {0, -1}, {1, 0}, {-1, 0}};
+        // The quad around (sx, sy) has the nearest pixel (ix, iy) as a corner; ox, oy pick the other quads.
         const int bx = int(std::floor(gx)), by = int(std::floor(gy));
-        for (const auto& shift : kShifts) {
-            const int x0 = std::clamp(bx + shift[0], 0, c.width - 2);
-            const int y0 = std::clamp(by + shift[1], 0, c.height - 2);
+        const int ox = bx == ix ? ix - 1 : ix, oy = by == iy ? iy - 1 : iy;
+        const int quads[4][2] = {{bx, by}, {ox, by}, {bx, oy}, {ox, oy}};
+        for (const auto& quad : quads) {
+            const int x0 = std::clamp(quad[0], 0, c.width - 2);
+            const int y0 = std::clamp(quad[1], 0, c.height - 2);
             if (ix < x0 || ix > x0 + 1 || iy < y0 || iy > y0 + 1) continue;
             // Inverse depths: 0 for sky, which fails the test below.
             const float w00 = 1.0f / g.depth.at(x0, y0), w10 = 1.0f / g.depth.at(x0 + 1, y0);

@@ -11,7 +11,7 @@
 // pixels at silhouettes and, where an occluder is hidden, the height-field assumption.
 //
 // Measured at 128x128, r = 1 m (MAE well / stairs / corner; docs/QUALITY.md; 96x96 is within 0.002):
-//   ultra 9x3: 0.0097 / 0.0134 / 0.0129; 9x8: 0.0061 / 0.011 / 0.0092.
+//   ultra 9x3: 0.0097 / 0.0134 / 0.0129; 9x8: 0.0042 / 0.0103 / 0.0070.
 //   Before the column rule and the linear steps (GtaoBeyondRadius::Drop, step power 2): ultra 0.0275 /
 //   0.0236 (the earlier straight-down stairs view) / 0.0250.
 // The bounds are the 0.02.

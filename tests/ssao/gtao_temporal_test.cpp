@@ -109,7 +109,7 @@ TEST(GtaoTemporal, AccumulatedMatchesRayTraced) {
     // MAE after 6 frames of a static camera (one slice per pixel). Measured at 96x96, r = 1 m (well /
     // stairs / corner):
     //   3 steps per side (the ultra/high presets' steps): 0.0157 / 0.0188 / 0.0200;
-    //   6 steps: 0.0154 / 0.0172 / 0.0134 full resolution, 0.0167 / 0.0201 / 0.0168 half resolution;
+    //   6 steps: 0.0154 / 0.0173 / 0.0134 full resolution, 0.0167 / 0.0201 / 0.0168 half resolution;
     //   the first frame (= spatial-only mode) is within 0.001 of these: the error is bias, not noise.
     // (Before the column rule and linear steps, 3 steps gave 0.028-0.033.) The bound is the 0.03.
     for (const char* name : {"well", "stairs", "corner"}) {
