@@ -109,14 +109,16 @@ SpiralTable alchemySpiral(const AlchemyConstants& k);
 float alchemyPixel(const AlchemyConstants& k, const AlchemyInput& in, const SpiralTable& spiral, int x, int y);
 
 // The same as alchemyPixel for the pixels [x0, x1) of row y (x1 - x0 <= 64), all at once: each sample index
-// is evaluated for the whole segment before the next, so the loop over pixels vectorises (gathers). Same
-// operations in the same order, so the same bits as alchemyPixel. Needs the level of detail off (one
-// sample count for every pixel). Hot path: no checks.
-// On x86-64 CPUs with AVX2 it runs a version written with intrinsics (hardware gathers); elsewhere
-// alchemyRowPortable, which tests call directly so that both are checked against alchemyPixel.
-void alchemyRow(const AlchemyConstants& k, const AlchemyInput& in, const SpiralTable& spiral, int y, int x0, int x1,
+// is evaluated for the whole segment before the next, so the loop over pixels vectorises (gathers). Needs the
+// level of detail off (one sample count for every pixel). Hot path: checks only the centres it reads, with
+// GBuffer::pixelsValid's test, and returns false (its output then undefined) if one has a bad depth or normal.
+// On x86-64 CPUs with AVX2 and FMA it runs a version written with intrinsics, which fuses multiply-adds and
+// so agrees with alchemyPixel to rounding (a sample at |v| = r may fall on either side of the radius);
+// elsewhere alchemyRowPortable, which performs alchemyPixel's operations in order and gives its bits. Tests
+// call both. Either way the output does not depend on the thread count.
+bool alchemyRow(const AlchemyConstants& k, const AlchemyInput& in, const SpiralTable& spiral, int y, int x0, int x1,
                 float* out);
-void alchemyRowPortable(const AlchemyConstants& k, const AlchemyInput& in, const SpiralTable& spiral, int y, int x0,
+bool alchemyRowPortable(const AlchemyConstants& k, const AlchemyInput& in, const SpiralTable& spiral, int y, int x0,
                         int x1, float* out);
 
 // Raw obscurance A in [0,1] for every pixel, guard band cropped: a 1-channel image of

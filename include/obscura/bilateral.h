@@ -3,10 +3,12 @@
 //
 // Two filters, as the sources give them:
 //  - Separable: McGuire et al. 2011, "The Alchemy Screen-Space Ambient Obscurance Algorithm", Fig. 6 and
-//    Table 1: two 1-D cross-bilateral passes (horizontal then vertical), 13 taps by default.
+//    Table 1: two 1-D cross-bilateral passes (horizontal then vertical), 13 taps by default, weighted by
+//    "camera-space proximity" (§2): spatial Gaussian x exp(-dd^2 / 2 sigma_d^2).
 //  - TwoD: "Where Corners Stay Dark" (Alchemy SSAO in an IBL renderer): a (2 radius + 1)^2 window with
 //    weight = spatial Gaussian x max(0, N . Ni) x exp(-dd^2 / 2 sigma_d^2).
-// Both use the same tap weight; the separable one is the cheap approximation of the 2-D one.
+// The normal factor is a setting of both (NormalWeight): by default each filter weighs as its source does.
+// With the same weights the separable filter is the cheap approximation of the 2-D one.
 //
 // The depth tolerance sigma_d is relative to the centre pixel's depth (sigma_d = depthSigma * d), so one
 // setting works for a 10 cm figurine and a 100 m courtyard. Sky pixels (depth +inf) never contribute
@@ -31,6 +33,8 @@ enum class BlurMode {
     TwoD,       // one square 2-D pass (the chapter)
 };
 
+enum class NormalWeight { Auto, On, Off };
+
 struct BilateralSettings {
     BlurMode mode = BlurMode::Separable;
     // Taps on each side of the centre: 2 radius + 1 taps per axis; [1, 32]. 6 gives the paper's 13 taps.
@@ -38,9 +42,14 @@ struct BilateralSettings {
     // sigma_d / centre depth: unitless, (0, 10]. 0.05 lets a 5% depth change through at weight 0.6 and
     // stops a 20% step (weight 3e-4), so surfaces at a silhouette do not bleed into each other.
     float depthSigma = 0.05f;
-    // Multiply each tap by max(0, N . Ni) (the chapter's normal weight); off for depth-only edge stops.
-    bool normalWeight = true;
+    // Multiply each tap by max(0, N . Ni), which keeps the blur from crossing creases at equal depth. Auto:
+    // off for Separable (the paper weighs by depth alone, and the normals make that pass about 1.6x slower),
+    // on for TwoD (the chapter's weight). docs/QUALITY.md measures both; docs/PERFORMANCE.md times both.
+    NormalWeight normalWeight = NormalWeight::Auto;
 
+    bool usesNormals() const {
+        return normalWeight == NormalWeight::On || (normalWeight == NormalWeight::Auto && mode == BlurMode::TwoD);
+    }
     void validate() const;  // throws obscura::Error naming the bad field
 };
 
@@ -51,7 +60,7 @@ struct BilateralSettings {
 std::vector<float> gaussianHalfKernel(int radius);
 
 // Weight of a tap (the definition; the filter's vectorised loops evaluate the same expression with a
-// polynomial exp, relative error < 2e-5 in the 2-D filter, < 3e-6 in the separable one) with spatial weight `spatial` at depth di, normal ni, relative to a centre at depth d
+// polynomial exp, relative error < 2e-5 in the 2-D filter, < 8e-5 in the separable one) with spatial weight `spatial` at depth di, normal ni, relative to a centre at depth d
 // (finite) with normal n. invTwoSigmaD2 = 1 / (2 (depthSigma d)^2). Sky taps (di = +inf) weigh 0.
 inline float tapWeight(float spatial, float d, Vec3 n, float di, Vec3 ni, float invTwoSigmaD2, bool useNormal) {
     float dd = di - d;

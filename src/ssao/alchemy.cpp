@@ -259,10 +259,10 @@ float alchemyPixel(const AlchemyConstants& k, const AlchemyInput& in, const Spir
     return k.contrast == 1.0f ? a : std::pow(a, k.contrast);
 }
 
-// What a CPU without AVX2 runs (x86-64 CPUs with it take alchemyRowAvx2). Built for the baseline only, so
-// the tests that call it check the very code those CPUs run; fp-contract is off in ISO C++ mode, so it
-// performs alchemyPixel's exact operations.
-void alchemyRowPortable(const AlchemyConstants& k, const AlchemyInput& in, const SpiralTable& spiral, int y, int x0,
+// What a CPU without AVX2 and FMA runs (x86-64 CPUs with them take alchemyRowAvx2). Built for the baseline
+// only, so the tests that call it check the very code those CPUs run; fp-contract is off in ISO C++ mode, so it
+// performs alchemyPixel's exact operations and gives its bits.
+bool alchemyRowPortable(const AlchemyConstants& k, const AlchemyInput& in, const SpiralTable& spiral, int y, int x0,
                         int x1, float* out) {
     constexpr int kMax = 64;
     const int n = x1 - x0;
@@ -271,9 +271,13 @@ void alchemyRowPortable(const AlchemyConstants& k, const AlchemyInput& in, const
     const std::size_t rowStart = std::size_t(y) * std::size_t(k.width);
     const bool paper = k.formulation == kAlchemyPaper;
     const float fy = float(y) + 0.5f;
+    bool bad = false;
     for (int j = 0; j < n; ++j) {
         const std::size_t c = rowStart + std::size_t(x0 + j);
         const float d = in.depth[c];
+        // GBuffer::pixelsValid's test: x - x is nonzero (NaN) for inf and NaN.
+        bad |= !(d > 0.0f) | ((in.normal[3 * c] - in.normal[3 * c]) != 0.0f) |
+               ((in.normal[3 * c + 1] - in.normal[3 * c + 1]) != 0.0f) | ((in.normal[3 * c + 2] - in.normal[3 * c + 2]) != 0.0f);
         fx[j] = float(x0 + j) + 0.5f;
         cx[j] = (fx[j] * k.viewScaleX + k.viewOffsetX) * d;
         cy[j] = (fy * k.viewScaleY + k.viewOffsetY) * d;
@@ -285,6 +289,7 @@ void alchemyRowPortable(const AlchemyConstants& k, const AlchemyInput& in, const
         shift[j] = paper ? cz[j] * k.bias : -k.bias;
         sum[j] = 0.0f;
     }
+    if (bad) return false;  // a NaN centre would reach a float-to-int conversion
     // The offsets of the four pixel classes of this row, interleaved: sample i of class (x mod 4) is at 4 i + x mod 4.
     const std::size_t classRow = std::size_t(y % kAlchemyClassTile) * kAlchemyClassTile * std::size_t(k.samples);
     const float* ox = spiral.rowX.data() + classRow;
@@ -318,15 +323,16 @@ void alchemyRowPortable(const AlchemyConstants& k, const AlchemyInput& in, const
         const float v = k.contrast == 1.0f ? a : std::pow(a, k.contrast);
         out[j] = isSkyDepth(in.depth[rowStart + std::size_t(x0 + j)]) ? 1.0f : v;
     }
+    return true;
 }
 
-void alchemyRow(const AlchemyConstants& k, const AlchemyInput& in, const SpiralTable& spiral, int y, int x0, int x1,
+bool alchemyRow(const AlchemyConstants& k, const AlchemyInput& in, const SpiralTable& spiral, int y, int x0, int x1,
                 float* out) {
 #ifdef OBSCURA_HAVE_ALCHEMY_AVX2
-    static const bool avx2 = detail::haveAvx2();
+    static const bool avx2 = detail::haveAvx2Fma();
     if (avx2) return detail::alchemyRowAvx2(k, in, spiral, y, x0, x1, out);
 #endif
-    alchemyRowPortable(k, in, spiral, y, x0, x1, out);
+    return alchemyRowPortable(k, in, spiral, y, x0, x1, out);
 }
 
 Image alchemyAO(const GBuffer& g, const AlchemySettings& s) {
@@ -341,11 +347,11 @@ Image alchemyAO(const GBuffer& g, const AlchemySettings& s) {
     } else if (s.guardBand > 0) {
         g.validate(what);
     } else {
-        // The pixels are checked tile by tile below, where the kernel reads them anyway: the G-buffer
-        // comes from memory once instead of twice.
+        // The pixels are checked where the kernel reads them anyway (the row kernels check the centres they
+        // load; the level-of-detail path scans its tile): the G-buffer comes from memory once, not twice.
         g.validateShape(what);
     }
-    const bool scanTiles = !s.normalsFromDepth && s.guardBand == 0;
+    const bool checkHere = !s.normalsFromDepth && s.guardBand == 0;
     std::atomic<bool> bad{false};
     const AlchemyInput in = alchemyInput(g, s.normalsFromDepth);
     const SpiralTable spiral = alchemySpiral(k);
@@ -358,23 +364,26 @@ Image alchemyAO(const GBuffer& g, const AlchemySettings& s) {
     parallelFor(std::size_t(tilesX) * std::size_t(tilesY), [&](std::size_t t0, std::size_t t1) {
         for (std::size_t t = t0; t < t1; ++t) {
             const int x0 = int(t % std::size_t(tilesX)) * kTileW, y0 = int(t / std::size_t(tilesX)) * kTileH;
-            const int x1 = std::min(w, x0 + kTileW);
+            const int x1 = std::min(w, x0 + kTileW), y1 = std::min(h, y0 + kTileH);
+            if (k.minSamples == k.samples) {
+                for (int y = y0; y < y1; ++y)
+                    if (!alchemyRow(k, in, spiral, y + gb, x0 + gb, x1 + gb, &out.pixels[std::size_t(y) * std::size_t(w)] + x0))
+                        bad.store(true, std::memory_order_relaxed);
+                continue;
+            }
             // A tile with a bad centre is not computed (a NaN depth would reach a float-to-int conversion).
-            if (scanTiles && !g.pixelsValid(x0, x1, y0, std::min(h, y0 + kTileH))) {
+            if (checkHere && !g.pixelsValid(x0, x1, y0, y1)) {
                 bad.store(true, std::memory_order_relaxed);
                 continue;
             }
-            for (int y = y0; y < std::min(h, y0 + kTileH); ++y) {
-                float* row = &out.pixels[std::size_t(y) * std::size_t(w)];
-                if (k.minSamples == k.samples) {
-                    alchemyRow(k, in, spiral, y + gb, x0 + gb, x1 + gb, row + x0);
-                } else {
-                    for (int x = x0; x < x1; ++x) row[x] = alchemyPixel(k, in, spiral, x + gb, y + gb);
-                }
-            }
+            for (int y = y0; y < y1; ++y)
+                for (int x = x0; x < x1; ++x) out.pixels[std::size_t(y) * std::size_t(w) + std::size_t(x)] = alchemyPixel(k, in, spiral, x + gb, y + gb);
         }
     });
-    if (bad.load()) g.validate(what);  // throws, naming the first bad pixel
+    if (bad.load()) {
+        g.validate(what);  // throws, naming the first bad pixel
+        fail(what, "has a pixel with a bad depth or normal");  // not reached: a row reports only bad centres
+    }
     return out;
 }
 

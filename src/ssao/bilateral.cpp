@@ -154,7 +154,7 @@ Image pass2D(const Image& ao, const Planes& p, const BilateralSettings& s) {
                             const float k = kernel[std::size_t(std::abs(tx))] * kernel[std::size_t(std::abs(ty))];
                             const std::size_t i = c + std::size_t(x0);
                             const std::size_t j = std::size_t(std::ptrdiff_t(rowT + std::size_t(x0)) + tx);
-                            accumulateTaps(x1 - x0, k, s.normalWeight, &p.depth[i], &row.inv[std::size_t(x0)],
+                            accumulateTaps(x1 - x0, k, s.usesNormals(), &p.depth[i], &row.inv[std::size_t(x0)],
                                            &p.nx[i], &p.ny[i], &p.nz[i], &p.depth[j], &p.nx[j], &p.ny[j], &p.nz[j],
                                            &ao.pixels[j], &row.sum[std::size_t(x0)], &row.wsum[std::size_t(x0)]);
                         }

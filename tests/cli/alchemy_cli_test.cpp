@@ -45,6 +45,23 @@ TEST_F(AlchemyCli, RenderAndAoAgreeBitForBit) {
     }
 }
 
+// --blur-normal-weight: auto is off for the separable blur and on for the 2-D one, so "on" changes the
+// separable result near the room's creases and "off" the 2-D one, and the matching setting changes nothing.
+TEST_F(AlchemyCli, BlurNormalWeightFlag) {
+    Result r = run("render demo --size 64x36 -q --ao alchemy --blur none -o " + path("f.png") + " --aov-dir " + path("aov"));
+    ASSERT_EQ(r.code, 0) << r.out;
+    auto ao = [&](const std::string& flags) {
+        const Result a = run("ao --depth " + path("aov/depth.exr") + " --normal " + path("aov/normal.exr") + " --camera " +
+                             path("aov/camera.json") + " " + flags + " -o " + path("ao.exr"));
+        EXPECT_EQ(a.code, 0) << a.out;
+        return obscura::readExr(path("ao.exr")).pixels;
+    };
+    EXPECT_EQ(ao("--blur separable"), ao("--blur separable --blur-normal-weight off"));
+    EXPECT_NE(ao("--blur separable"), ao("--blur separable --blur-normal-weight on"));
+    EXPECT_EQ(ao("--blur 2d"), ao("--blur 2d --blur-normal-weight on"));
+    EXPECT_NE(ao("--blur 2d"), ao("--blur 2d --blur-normal-weight off"));
+}
+
 TEST_F(AlchemyCli, PresetsGuardBandAndDepthOnlyInput) {
     for (const char* preset : {"scene", "closeup"}) {
         Result r = run(std::string("render demo --size 48x32 -q --ao alchemy --ao-preset ") + preset +
@@ -96,6 +113,7 @@ TEST_F(AlchemyCli, RenderRejectsBadAlchemyFlags) {
     expectFailure(base + " --ao-radius inf", {"--ao-radius", "finite"});
     expectFailure(base + " --ao-preset loud", {"--ao-preset"}, 2);
     expectFailure(base + " --blur box", {"--blur"}, 2);
+    expectFailure(base + " --blur-normal-weight sometimes", {"--blur-normal-weight"}, 2);
     expectFailure(base + " --ao-max-radius-px 0", {"--ao-max-radius"});
     expectFailure(base + " --ao-lod-radius-px -3", {"--ao-lod-radius"});
     expectFailure(base + " --ao-lod-radius-px 8 --ao-samples 300", {"--ao-samples", "level of detail"});

@@ -23,6 +23,23 @@ TEST_F(BenchCli, AlchemyJsonHasOneRowPerThreadCount) {
         EXPECT_GT(row["blur_separable_cpu_ms"].get<double>(), 0.0);
         EXPECT_TRUE(row["blur_2d_ms"].is_null()) << "skipped, so not a time";
     }
+    // The share of the AO at exactly 1 (where the separable blur skips work) comes with the last row.
+    const double ones = j["rows"][1]["ao_one_fraction"].get<double>();
+    EXPECT_GT(ones, 0.0);
+    EXPECT_LT(ones, 1.0);
+    EXPECT_EQ(j["separable_normal_weight"], false);
+    EXPECT_EQ(j["2d_normal_weight"], true);
+    EXPECT_EQ(j["dense"], false);
+}
+
+TEST_F(BenchCli, AlchemyDenseAndNormalWeightAreReported) {
+    const auto r = runCli("bench alchemy --size 40x24 --repeats 1 --threads 1 --dense --blur-normal-weight on --json");
+    ASSERT_EQ(r.code, 0) << r.out;
+    const nlohmann::json j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["rows"].size(), 1u) << r.out;
+    EXPECT_EQ(j["dense"], true);
+    EXPECT_EQ(j["separable_normal_weight"], true);
+    EXPECT_GT(j["rows"][0]["blur_2d_ms"].get<double>(), 0.0);
 }
 
 TEST_F(BenchCli, GtaoJsonTimesEveryPreset) {
@@ -41,6 +58,7 @@ TEST_F(BenchCli, GtaoJsonTimesEveryPreset) {
 TEST_F(BenchCli, BadArgumentsFailWithOneLine) {
     expectFailure("bench alchemy --repeats 0", {"--repeats"});
     expectFailure("bench alchemy --size 0x10", {"--size"});
+    expectFailure("bench alchemy --blur-normal-weight maybe", {"--blur-normal-weight"}, 2);  // a usage error
     expectFailure("bench gtao --repeats 101", {"--repeat"});
     expectFailure("bench gtao --radius -1", {"--radius"});
 }

@@ -121,7 +121,8 @@ TEST(Bilateral, DepthStepLeaksLessThanOnePercent) {
 }
 
 // A crease at equal depth (a wall meeting a floor): normals 90 degrees apart give max(0, N . Ni) = 0, so
-// nothing crosses it when the normal weight is on.
+// nothing crosses it when the normal weight is on (the 2-D filter's default). The separable filter weighs
+// by depth alone by default, as the paper does, and then blurs across it.
 TEST(Bilateral, NormalCreaseStopsTheBlur) {
     const int w = 40, h = 24;
     GBuffer g = makeGBuffer(w, h, [](int, int) { return 3.0f; },
@@ -129,11 +130,24 @@ TEST(Bilateral, NormalCreaseStopsTheBlur) {
     Image ao(w, h, 1);
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) ao.at(x, y) = x < 20 ? 0.0f : 1.0f;
-    for (BlurMode mode : {BlurMode::Separable, BlurMode::TwoD}) {
-        Image out = bilateralFilter(ao, g, settings(mode, 6));
-        for (int y = 0; y < h; ++y)
-            for (int x = 0; x < w; ++x) ASSERT_EQ(out.at(x, y), ao.at(x, y)) << x << "," << y;
-    }
+    for (BlurMode mode : {BlurMode::Separable, BlurMode::TwoD})
+        for (NormalWeight nw : {NormalWeight::Auto, NormalWeight::On}) {
+            BilateralSettings s = settings(mode, 6);
+            s.normalWeight = nw;
+            if (!s.usesNormals()) continue;
+            Image out = bilateralFilter(ao, g, s);
+            for (int y = 0; y < h; ++y)
+                for (int x = 0; x < w; ++x) ASSERT_EQ(out.at(x, y), ao.at(x, y)) << x << "," << y;
+        }
+    BilateralSettings depthOnly = settings(BlurMode::Separable, 6);
+    ASSERT_FALSE(depthOnly.usesNormals());
+    // Beside the crease a depth-only 13-tap Gaussian (sigma 3) mixes both sides: about 0.4 and 0.6.
+    const Image out = bilateralFilter(ao, g, depthOnly);
+    EXPECT_NEAR(out.at(19, 12), 0.43, 0.05);
+    EXPECT_NEAR(out.at(20, 12), 0.57, 0.05);
+    depthOnly.mode = BlurMode::TwoD;
+    depthOnly.normalWeight = NormalWeight::Off;
+    EXPECT_NEAR(bilateralFilter(ao, g, depthOnly).at(19, 12), 0.43, 0.05);
 }
 
 // Sky pixels keep their value and never feed a surface pixel.
@@ -179,16 +193,24 @@ TEST(Bilateral, FlatPlaneIsAPlainGaussian) {
 
 // The row-vectorised filter against a direct per-pixel evaluation with tapWeight (std::exp) in double, on a
 // G-buffer with depth ramps, 10% steps, varied normals and sky. The fast exp has relative error < 2e-5 and
-// the sums are normalised, so outputs agree to ~1e-5; 1e-4 is the bound.
+// the sums are normalised, so outputs agree to ~1e-5; 1e-4 is the bound. Where a whole window reads 1 the
+// output must be exactly 1.
 TEST(Bilateral, MatchesADirectEvaluation) {
     const int w = 41, h = 29;
     GBuffer g = makeGBuffer(
         w, h, [](int x, int y) { return (x * 7 + y * 3) % 23 == 0 ? INFINITY : 2.0f + 0.03f * float(x) + (y > 14 ? 0.2f : 0.0f); },
         [](int x, int y) { return normalize(Vec3{0.05f * float(x % 5), 0.1f * float(y % 3), 1.0f}); });
+    // Noise, with blocks of exactly 1 (what the estimator writes on open surfaces and sky), where the separable
+    // filter skips its arithmetic.
     Image ao = noise(w, h, 5);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            if ((x / 16 + y / 15) % 2 == 0) ao.at(x, y) = 1.0f;
     for (BlurMode mode : {BlurMode::Separable, BlurMode::TwoD})
+        for (NormalWeight nw : {NormalWeight::On, NormalWeight::Off})
         for (int r : {1, 3, 7}) {
             BilateralSettings st = settings(mode, r);
+            st.normalWeight = nw;
             std::vector<float> k = gaussianHalfKernel(r);
             auto direct = [&](const Image& in, int x, int y, int axis) {  // axis 0, 1, or 2 for the square
                 const float d = g.depth.at(x, y);
@@ -200,7 +222,7 @@ TEST(Bilateral, MatchesADirectEvaluation) {
                         const int sx = x + tx, sy = y + ty;
                         if (sx < 0 || sy < 0 || sx >= w || sy >= h) continue;
                         const double wt = tapWeight(k[std::size_t(std::abs(tx))] * k[std::size_t(std::abs(ty))], d,
-                                                    g.viewNormal(x, y), g.depth.at(sx, sy), g.viewNormal(sx, sy), inv, true);
+                                                    g.viewNormal(x, y), g.depth.at(sx, sy), g.viewNormal(sx, sy), inv, st.usesNormals());
                         sum += wt * double(in.at(sx, sy));
                         wsum += wt;
                     }
@@ -220,6 +242,17 @@ TEST(Bilateral, MatchesADirectEvaluation) {
             Image out = bilateralFilter(ao, g, st);
             for (std::size_t i = 0; i < out.pixels.size(); ++i)
                 ASSERT_NEAR(out.pixels[i], expected.pixels[i], 1e-4f) << "mode " << int(mode) << " radius " << r << " pixel " << i;
+            int ones = 0;
+            for (int y = 0; y < h; ++y)
+                for (int x = 0; x < w; ++x) {
+                    bool all = true;
+                    for (int ty = std::max(0, y - r); ty <= std::min(h - 1, y + r); ++ty)
+                        for (int tx = std::max(0, x - r); tx <= std::min(w - 1, x + r); ++tx) all = all && ao.at(tx, ty) == 1.0f;
+                    if (!all) continue;
+                    ++ones;
+                    ASSERT_EQ(out.at(x, y), 1.0f) << x << "," << y;
+                }
+            EXPECT_GT(ones, 0);
         }
 }
 
@@ -251,7 +284,7 @@ TEST(Bilateral, FusedSeparableEqualsTwoPasses) {
         for (bool normals : {true, false})
             for (int r : {1, 6, 32}) {
                 BilateralSettings s = settings(BlurMode::Separable, r);
-                s.normalWeight = normals;
+                s.normalWeight = normals ? NormalWeight::On : NormalWeight::Off;
                 Image fused = bilateralFilter(ao, g, s);
                 Image chained = bilateralPass(bilateralPass(ao, g, s, 0), g, s, 1);
                 ASSERT_EQ(fused.pixels, chained.pixels) << w << "x" << h << " radius " << r << " normals " << normals;

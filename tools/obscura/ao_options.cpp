@@ -21,6 +21,11 @@ void BlurFlags::add(CLI::App& app) {
     app.add_option("--blur-depth-sigma", depthSigma,
                    "Depth tolerance of the blur relative to depth, (0, 10] (0.05: 5% of the pixel's depth)")
         ->capture_default_str();
+    app.add_option("--blur-normal-weight", normalWeight,
+                   "Also weigh blur taps by max(0, N . Ni) so the blur stops at creases: on, off, or auto (off for "
+                   "separable, as the paper; on for 2d, as the chapter)")
+        ->check(CLI::IsMember({"auto", "on", "off"}))
+        ->capture_default_str();
 }
 
 ssao::BilateralSettings BlurFlags::settings() const {
@@ -28,6 +33,9 @@ ssao::BilateralSettings BlurFlags::settings() const {
     s.mode = mode == "none" ? ssao::BlurMode::None : mode == "2d" ? ssao::BlurMode::TwoD : ssao::BlurMode::Separable;
     s.radius = radius;
     s.depthSigma = depthSigma;
+    s.normalWeight = normalWeight == "on"    ? ssao::NormalWeight::On
+                     : normalWeight == "off" ? ssao::NormalWeight::Off
+                                             : ssao::NormalWeight::Auto;
     try {
         s.validate();
     } catch (const Error& e) {

@@ -18,6 +18,7 @@ struct BlurFlags {
     std::string mode = "separable";
     int radius = 6;
     float depthSigma = 0.05f;
+    std::string normalWeight = "auto";
     void add(CLI::App& app);
     // Validated; errors name the flag.
     ssao::BilateralSettings settings() const;

@@ -12,6 +12,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 #include <vector>
@@ -29,6 +30,8 @@ struct AlchemyBenchOptions {
     std::string size;         // "WxH" for one size; empty = 1280x720 and 1920x1080
     bool skip2d = false;      // the 2-D blur takes longest and is not part of the 40 ms aim
     float maxRadiusPixels = ssao::AlchemySettings{}.maxRadiusPixels;
+    std::string normalWeight = "auto";
+    bool dense = false;  // blur an AO with no pixel exactly 1, so the separable blur skips nothing
 };
 
 void runAlchemy(const AlchemyBenchOptions& o) {
@@ -47,14 +50,24 @@ void runAlchemy(const AlchemyBenchOptions& o) {
     settings.maxRadiusPixels = o.maxRadiusPixels;
     ssao::BilateralSettings separable, twoD;
     twoD.mode = ssao::BlurMode::TwoD;
+    const ssao::NormalWeight nw = o.normalWeight == "on"    ? ssao::NormalWeight::On
+                                  : o.normalWeight == "off" ? ssao::NormalWeight::Off
+                                                            : ssao::NormalWeight::Auto;
+    separable.normalWeight = twoD.normalWeight = nw;
     nlohmann::json report;
     report["scene"] = loaded.name;
     report["samples"] = o.samples;
     report["repeats"] = o.repeats;
+    report["separable_normal_weight"] = separable.usesNormals();
+    report["dense"] = o.dense;
+    report["2d_normal_weight"] = twoD.usesNormals();
     if (!o.json) {
         std::printf("obscura bench alchemy: scene %s, %d samples/px, paper defaults (r 0.5 m), blur radius 6 (13 taps),\n"
-                    "median of %d runs after a warm-up; wall ms per pass (process CPU ms in brackets)\n\n",
-                    loaded.name.c_str(), o.samples, o.repeats);
+                    "separable blur weighs %s, 2-D %s%s; median of %d runs after a warm-up;\n"
+                    "wall ms per pass (process CPU ms in brackets)\n\n",
+                    loaded.name.c_str(), o.samples, separable.usesNormals() ? "depth and normals" : "depth only",
+                    twoD.usesNormals() ? "depth and normals" : "depth only",
+                    o.dense ? ", both on the AO with every 1 lowered by an ulp (dense)" : "", o.repeats);
         std::printf("%-10s %7s %17s %17s %17s %17s\n", "size", "threads", "alchemy", "blur separable", "blur 2d",
                     "alchemy+separable");
     }
@@ -67,9 +80,12 @@ void runAlchemy(const AlchemyBenchOptions& o) {
             ThreadLimit limit(threads);
             Image ao;
             const RunTimes tAo = timeRuns(o.repeats, [&] { ao = ssao::alchemyAO(g, settings); });
-            const RunTimes tSep = timeRuns(o.repeats, [&] { (void)ssao::bilateralFilter(ao, g, separable); });
+            Image blurInput = ao;
+            if (o.dense)
+                for (float& v : blurInput.pixels) v = std::min(v, 0.99999994f);  // the float below 1
+            const RunTimes tSep = timeRuns(o.repeats, [&] { (void)ssao::bilateralFilter(blurInput, g, separable); });
             const RunTimes t2d =
-                o.skip2d ? RunTimes{} : timeRuns(o.repeats, [&] { (void)ssao::bilateralFilter(ao, g, twoD); });
+                o.skip2d ? RunTimes{} : timeRuns(o.repeats, [&] { (void)ssao::bilateralFilter(blurInput, g, twoD); });
             auto cell = [](double wall, double cpu) {
                 char b[32];
                 std::snprintf(b, sizeof b, "%.1f (%.1f)", wall, cpu);
@@ -88,6 +104,15 @@ void runAlchemy(const AlchemyBenchOptions& o) {
                                       {"alchemy_cpu_ms", tAo.medianCpuMs},
                                       {"blur_separable_cpu_ms", tSep.medianCpuMs},
                                       {"blur_2d_cpu_ms", o.skip2d ? nlohmann::json() : nlohmann::json(t2d.medianCpuMs)}});
+            if (threads == all || all == 1) {
+                // The separable blur skips windows that read exactly 1 (open surfaces and sky), so its time
+                // depends on how much of the view that is.
+                std::size_t ones = 0;
+                for (float v : ao.pixels) ones += v == 1.0f;
+                const double fraction = double(ones) / double(ao.pixels.size());
+                report["rows"].back()["ao_one_fraction"] = fraction;
+                if (!o.json) std::printf("%29s(%.0f%% of the %dx%d AO is exactly 1)\n", "", 100.0 * fraction, w, h);
+            }
             if (threads == all) break;  // a one-core machine has one row
         }
     }
@@ -107,7 +132,14 @@ void addAlchemyBench(CLI::App& bench) {
     cmd->add_option("--size", o->size, "One size WxH instead of 1280x720 and 1920x1080");
     cmd->add_option("--max-radius-px", o->maxRadiusPixels, "Clamp of the estimator's screen radius, px")
         ->capture_default_str();
-    cmd->add_flag("--skip-2d", o->skip2d, "Do not time the 2-D blur (printed as 0)");
+    cmd->add_option("--blur-normal-weight", o->normalWeight,
+                    "Weigh blur taps by max(0, N . Ni) too: on, off, or auto (off for separable, on for 2-D)")
+        ->check(CLI::IsMember({"auto", "on", "off"}))
+        ->capture_default_str();
+    cmd->add_flag("--skip-2d", o->skip2d, "Do not time the 2-D blur (printed as -)");
+    cmd->add_flag("--dense", o->dense,
+                  "Blur the AO with every value 1 lowered by an ulp: the separable blur skips windows that read "
+                  "exactly 1 (open surfaces, sky), so this times it on a view with occlusion everywhere");
     cmd->add_flag("--json", o->json, "Print JSON instead of a table");
     cmd->callback([o] { runAlchemy(*o); });
 }
