@@ -6,6 +6,7 @@
 #include "cli/cli_harness.h"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <unistd.h>
 
@@ -130,6 +131,15 @@ TEST_F(AlchemyCli, CompareReportsMetricsAndWritesThePicture) {
     r = run("compare corner --size 48x32 --rays 16 -q -o " + path("t.png"));
     ASSERT_EQ(r.code, 0) << r.out;
     EXPECT_NE(r.out.find("MAE"), std::string::npos) << r.out;
+    // The blur's normal weight reaches compare: on the corner's creases it changes the separable result.
+    auto mae = [&](const std::string& flags) {
+        const Result c = run("compare corner --methods alchemy --size 48x32 --rays 16 --blur separable --json " + flags +
+                             " -o " + path("b.png"));
+        EXPECT_EQ(c.code, 0) << c.out;
+        return nlohmann::json::parse(c.out)["methods"][0]["mae"].get<double>();
+    };
+    EXPECT_NE(mae("--blur-normal-weight on"), mae("--blur-normal-weight off"));
+    EXPECT_EQ(mae("--blur-normal-weight auto"), mae("--blur-normal-weight off"));
     expectFailure("compare corner --methods alchemy,nope --size 48x32 -o " + path("x.png"), {"nope", "alchemy"});
     expectFailure("compare corner --rays 0 --size 48x32 -o " + path("x.png"), {"--rays"});
 }

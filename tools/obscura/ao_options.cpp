@@ -11,6 +11,13 @@
 
 namespace obscura::cli {
 
+ssao::NormalWeight normalWeightFromFlag(const std::string& value) {
+    return value == "on" ? ssao::NormalWeight::On : value == "off" ? ssao::NormalWeight::Off : ssao::NormalWeight::Auto;
+}
+
+const char* const kNormalWeightHelp = "Also weigh blur taps by max(0, N . Ni) so the blur stops at creases: on, off, or "
+                                      "auto (off for separable, as the paper; on for 2d, as the chapter)";
+
 void BlurFlags::add(CLI::App& app) {
     app.add_option("--blur", mode,
                    "Cross-bilateral filter of the AO: none, separable (two 1-D passes, the paper) or 2d (the chapter)")
@@ -21,9 +28,7 @@ void BlurFlags::add(CLI::App& app) {
     app.add_option("--blur-depth-sigma", depthSigma,
                    "Depth tolerance of the blur relative to depth, (0, 10] (0.05: 5% of the pixel's depth)")
         ->capture_default_str();
-    app.add_option("--blur-normal-weight", normalWeight,
-                   "Also weigh blur taps by max(0, N . Ni) so the blur stops at creases: on, off, or auto (off for "
-                   "separable, as the paper; on for 2d, as the chapter)")
+    app.add_option("--blur-normal-weight", normalWeight, kNormalWeightHelp)
         ->check(CLI::IsMember({"auto", "on", "off"}))
         ->capture_default_str();
 }
@@ -33,9 +38,7 @@ ssao::BilateralSettings BlurFlags::settings() const {
     s.mode = mode == "none" ? ssao::BlurMode::None : mode == "2d" ? ssao::BlurMode::TwoD : ssao::BlurMode::Separable;
     s.radius = radius;
     s.depthSigma = depthSigma;
-    s.normalWeight = normalWeight == "on"    ? ssao::NormalWeight::On
-                     : normalWeight == "off" ? ssao::NormalWeight::Off
-                                             : ssao::NormalWeight::Auto;
+    s.normalWeight = normalWeightFromFlag(normalWeight);
     try {
         s.validate();
     } catch (const Error& e) {

@@ -14,6 +14,11 @@ class Option;
 
 namespace obscura::cli {
 
+// "auto", "on" or "off" (the CLI checks the spelling) -> the blur's normal weight.
+ssao::NormalWeight normalWeightFromFlag(const std::string& value);
+// The help text of --blur-normal-weight, shared by every command that has it.
+extern const char* const kNormalWeightHelp;
+
 struct BlurFlags {
     std::string mode = "separable";
     int radius = 6;

@@ -1,5 +1,6 @@
 // `obscura bench alchemy`: milliseconds per pass of the Alchemy AO CPU reference (estimator, separable and
 // 2-D bilateral blur) at 1280x720 and 1920x1080, on one thread and on all of them.
+#include "ao_options.h"
 #include "cli_common.h"
 #include "commands.h"
 
@@ -50,10 +51,7 @@ void runAlchemy(const AlchemyBenchOptions& o) {
     settings.maxRadiusPixels = o.maxRadiusPixels;
     ssao::BilateralSettings separable, twoD;
     twoD.mode = ssao::BlurMode::TwoD;
-    const ssao::NormalWeight nw = o.normalWeight == "on"    ? ssao::NormalWeight::On
-                                  : o.normalWeight == "off" ? ssao::NormalWeight::Off
-                                                            : ssao::NormalWeight::Auto;
-    separable.normalWeight = twoD.normalWeight = nw;
+    separable.normalWeight = twoD.normalWeight = normalWeightFromFlag(o.normalWeight);
     nlohmann::json report;
     report["scene"] = loaded.name;
     report["samples"] = o.samples;
@@ -132,8 +130,7 @@ void addAlchemyBench(CLI::App& bench) {
     cmd->add_option("--size", o->size, "One size WxH instead of 1280x720 and 1920x1080");
     cmd->add_option("--max-radius-px", o->maxRadiusPixels, "Clamp of the estimator's screen radius, px")
         ->capture_default_str();
-    cmd->add_option("--blur-normal-weight", o->normalWeight,
-                    "Weigh blur taps by max(0, N . Ni) too: on, off, or auto (off for separable, on for 2-D)")
+    cmd->add_option("--blur-normal-weight", o->normalWeight, kNormalWeightHelp)
         ->check(CLI::IsMember({"auto", "on", "off"}))
         ->capture_default_str();
     cmd->add_flag("--skip-2d", o->skip2d, "Do not time the 2-D blur (printed as -)");

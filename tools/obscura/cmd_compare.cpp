@@ -1,5 +1,6 @@
 // `obscura compare`: screen-space AO methods against the ray-traced integral each one estimates, on one
 // G-buffer: MAE, RMSE, bias and max error per method, and a side-by-side picture.
+#include "ao_options.h"
 #include "cli_common.h"
 #include "commands.h"
 
@@ -32,6 +33,7 @@ struct CompareOptions {
     int samples = 0;
     float radius = 0.0f;
     std::string blur = "none";
+    std::string blurNormalWeight = "auto";
     float range = 0.5f;
     unsigned seed = 0;
     int threads = 0;
@@ -92,6 +94,7 @@ void run(const CompareOptions& o) {
     mo.radius = o.radius;
     mo.seed = o.seed;
     mo.blur.mode = o.blur == "none" ? ssao::BlurMode::None : o.blur == "2d" ? ssao::BlurMode::TwoD : ssao::BlurMode::Separable;
+    mo.blur.normalWeight = normalWeightFromFlag(o.blurNormalWeight);
 
     ThreadLimit limit(o.threads);
     LoadedScene loaded = loadSceneArgument(o.scene);
@@ -212,6 +215,9 @@ void addCompareCommand(CLI::App& app) {
         ->capture_default_str();
     cmd->add_option("--blur", o->blur, "Filter the methods' AO: none, separable or 2d (the reference is exact)")
         ->check(CLI::IsMember({"none", "separable", "2d"}))
+        ->capture_default_str();
+    cmd->add_option("--blur-normal-weight", o->blurNormalWeight, kNormalWeightHelp)
+        ->check(CLI::IsMember({"auto", "on", "off"}))
         ->capture_default_str();
     cmd->add_option("--range", o->range, "Error mapped to full colour in the heat map, (0, 1]")->capture_default_str();
     cmd->add_option("--seed", o->seed, "Seed of the methods and of the reference rays")->capture_default_str();
