@@ -365,9 +365,10 @@ Image alchemyAO(const GBuffer& g, const AlchemySettings& s) {
         for (std::size_t t = t0; t < t1; ++t) {
             const int x0 = int(t % std::size_t(tilesX)) * kTileW, y0 = int(t / std::size_t(tilesX)) * kTileH;
             const int x1 = std::min(w, x0 + kTileW), y1 = std::min(h, y0 + kTileH);
+            auto row = [&](int y) { return &out.pixels[std::size_t(y) * std::size_t(w)]; };
             if (k.minSamples == k.samples) {
                 for (int y = y0; y < y1; ++y)
-                    if (!alchemyRow(k, in, spiral, y + gb, x0 + gb, x1 + gb, &out.pixels[std::size_t(y) * std::size_t(w)] + x0))
+                    if (!alchemyRow(k, in, spiral, y + gb, x0 + gb, x1 + gb, row(y) + x0))
                         bad.store(true, std::memory_order_relaxed);
                 continue;
             }
@@ -377,7 +378,7 @@ Image alchemyAO(const GBuffer& g, const AlchemySettings& s) {
                 continue;
             }
             for (int y = y0; y < y1; ++y)
-                for (int x = x0; x < x1; ++x) out.pixels[std::size_t(y) * std::size_t(w) + std::size_t(x)] = alchemyPixel(k, in, spiral, x + gb, y + gb);
+                for (int x = x0; x < x1; ++x) row(y)[x] = alchemyPixel(k, in, spiral, x + gb, y + gb);
         }
     });
     if (bad.load()) {
