@@ -19,6 +19,7 @@
 #pragma once
 
 #include "obscura/alchemy.h"
+#include "obscura/bilateral.h"
 #include "obscura/gbuffer.h"
 #include "obscura/image.h"
 
@@ -74,5 +75,11 @@ private:
 // cropped, sky 1); equal to ssao::alchemyPixel to within GPU rounding (tests/gpu bound the difference).
 // Normals rebuilt from depth (settings.normalsFromDepth) are computed on the CPU, as ssao::alchemyInput does.
 Image alchemyAO(Context& context, const GBuffer& gbuffer, const ssao::AlchemySettings& settings);
+
+// ssao::bilateralFilter on the GPU for BlurMode::Separable (two 1-D passes; BlurMode::None returns a copy):
+// the same settings, validation and errors; equal to the CPU filter to within 2e-3 (tests/gpu measure it).
+// BlurMode::TwoD has no GPU pass yet and throws obscura::Error.
+Image bilateralFilter(Context& context, const Image& ao, const GBuffer& gbuffer,
+                      const ssao::BilateralSettings& settings);
 
 } // namespace obscura::gpu

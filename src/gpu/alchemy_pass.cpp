@@ -6,7 +6,7 @@
 #include "gpu/compute_pipeline.h"
 #include "gpu/context.h"
 #include "gpu/spirv.h"
-#include "shaders/alchemy_layout.h"
+#include "shaders/layouts.h"
 
 #include "obscura/error.h"
 #include "obscura/gpu.h"

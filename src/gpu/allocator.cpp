@@ -84,7 +84,8 @@ Allocation Allocator::allocate(const VkMemoryRequirements& req, MemoryUse use) {
     const bool host = use != MemoryUse::Device;
     const auto found = [&](std::uint32_t index, std::uint64_t offset) {
         Block& b = blocks_[index];
-        return Allocation{b.memory, offset, req.size, b.mapped ? static_cast<char*>(b.mapped) + offset : nullptr, index};
+        void* mapped = b.mapped ? static_cast<char*>(b.mapped) + offset : nullptr;
+        return Allocation{b.memory, offset, req.size, mapped, index};
     };
     if (req.size <= kBlockBytes)
         for (std::uint32_t i = 0; i < blocks_.size(); ++i) {

@@ -7,26 +7,13 @@
 
 namespace obscura::gpu {
 
-namespace {
-
-// A global memory barrier: the `src` accesses of `srcStage` are complete and visible to the `dst` accesses of
-// `dstStage`.
-void barrier(VkCommandBuffer cmd, VkPipelineStageFlags srcStage, VkAccessFlags src, VkPipelineStageFlags dstStage,
-             VkAccessFlags dst) {
-    VkMemoryBarrier b{};
-    b.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
-    b.srcAccessMask = src;
-    b.dstAccessMask = dst;
-    vkCmdPipelineBarrier(cmd, srcStage, dstStage, 0, 1, &b, 0, nullptr, 0, nullptr);
-}
-
-} // namespace
 
 Buffer::Buffer(Context::Impl& context, VkDeviceSize bytes, MemoryUse use) : context_(&context), bytes_(bytes) {
     VkBufferCreateInfo info{};
     info.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO;
     info.size = bytes;
-    info.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+    info.usage =
+        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
     info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
     context.check(vkCreateBuffer(context.device, &info, nullptr, &buffer_),
                   "creating a buffer of " + std::to_string(bytes) + " bytes");
@@ -70,8 +57,8 @@ Buffer upload(Context::Impl& context, const void* data, std::size_t bytes) {
         const VkBufferCopy region{0, 0, bytes};
         vkCmdCopyBuffer(cmd, staging.handle(), device.handle(), 1, &region);
         // The copy's writes must land before any later compute shader reads the buffer.
-        barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                VK_ACCESS_SHADER_READ_BIT);
+        memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                      VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
     });
     return device;
 }
@@ -81,13 +68,13 @@ void download(Context::Impl& context, const Buffer& buffer, void* data, std::siz
     Buffer staging(context, bytes, MemoryUse::Download);
     context.submit([&](VkCommandBuffer cmd) {
         // Earlier compute shader writes must be complete and visible to the copy.
-        barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                VK_ACCESS_TRANSFER_READ_BIT);
+        memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                      VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
         const VkBufferCopy region{0, 0, bytes};
         vkCmdCopyBuffer(cmd, buffer.handle(), staging.handle(), 1, &region);
         // The copy's writes must be visible to the host once the fence signals.
-        barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
-                VK_ACCESS_HOST_READ_BIT);
+        memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
+                      VK_ACCESS_HOST_READ_BIT);
     });
     std::memcpy(data, staging.mapped(), bytes);
 }

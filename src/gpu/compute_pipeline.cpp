@@ -32,7 +32,8 @@ ComputePipeline::ComputePipeline(Context::Impl& context, const Spirv& code, cons
     setInfo.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
     setInfo.bindingCount = std::uint32_t(bindings);
     setInfo.pBindings = slots.data();
-    setLayout_ = create(context, vkCreateDescriptorSetLayout, setInfo, vkDestroyDescriptorSetLayout, "creating " + what + "'s layout");
+    setLayout_ = create(context, vkCreateDescriptorSetLayout, setInfo, vkDestroyDescriptorSetLayout,
+                        "creating " + what + "'s layout");
     const VkDescriptorSetLayout setLayout = setLayout_.get();
 
     const VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, pushConstantBytes};
@@ -42,14 +43,16 @@ ComputePipeline::ComputePipeline(Context::Impl& context, const Spirv& code, cons
     layoutInfo.pSetLayouts = &setLayout;
     layoutInfo.pushConstantRangeCount = pushConstantBytes > 0 ? 1 : 0;
     layoutInfo.pPushConstantRanges = &range;
-    pipelineLayout_ = create(context, vkCreatePipelineLayout, layoutInfo, vkDestroyPipelineLayout, "creating " + what + "'s layout");
+    pipelineLayout_ =
+        create(context, vkCreatePipelineLayout, layoutInfo, vkDestroyPipelineLayout, "creating " + what + "'s layout");
 
     VkShaderModuleCreateInfo moduleInfo{};
     moduleInfo.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO;
     moduleInfo.codeSize = code.count * sizeof(std::uint32_t);
     moduleInfo.pCode = code.words;
     // Needed only until the pipeline exists.
-    const Unique<VkShaderModule> module = create(context, vkCreateShaderModule, moduleInfo, vkDestroyShaderModule, "loading " + what);
+    const Unique<VkShaderModule> module =
+        create(context, vkCreateShaderModule, moduleInfo, vkDestroyShaderModule, "loading " + what);
 
     VkComputePipelineCreateInfo pipelineInfo{};
     pipelineInfo.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO;
@@ -63,19 +66,21 @@ ComputePipeline::ComputePipeline(Context::Impl& context, const Spirv& code, cons
                   "compiling " + what);
     pipeline_ = Unique<VkPipeline>(device, pipeline, vkDestroyPipeline);
 
-    const VkDescriptorPoolSize poolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, std::uint32_t(bindings)};
+    const VkDescriptorPoolSize poolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, std::uint32_t(bindings * kSetsPerSubmit)};
     VkDescriptorPoolCreateInfo poolInfo{};
     poolInfo.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
-    poolInfo.maxSets = 1;
+    poolInfo.maxSets = kSetsPerSubmit;
     poolInfo.poolSizeCount = 1;
     poolInfo.pPoolSizes = &poolSize;
-    pool_ = create(context, vkCreateDescriptorPool, poolInfo, vkDestroyDescriptorPool, "creating " + what + "'s descriptors");
+    pool_ = create(context, vkCreateDescriptorPool, poolInfo, vkDestroyDescriptorPool,
+                   "creating " + what + "'s descriptors");
     VkDescriptorSetAllocateInfo allocInfo{};
     allocInfo.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
     allocInfo.descriptorPool = pool_.get();
-    allocInfo.descriptorSetCount = 1;
-    allocInfo.pSetLayouts = &setLayout;
-    context.check(vkAllocateDescriptorSets(device, &allocInfo, &set_), "allocating " + what + "'s descriptors");
+    const std::vector<VkDescriptorSetLayout> setLayouts(kSetsPerSubmit, setLayout);
+    allocInfo.descriptorSetCount = kSetsPerSubmit;
+    allocInfo.pSetLayouts = setLayouts.data();
+    context.check(vkAllocateDescriptorSets(device, &allocInfo, sets_), "allocating " + what + "'s descriptors");
 }
 
 void ComputePipeline::dispatch(VkCommandBuffer cmd, std::initializer_list<const Buffer*> buffers,
@@ -83,6 +88,9 @@ void ComputePipeline::dispatch(VkCommandBuffer cmd, std::initializer_list<const 
                                std::uint32_t groupsY) {
     // The shader's declared layout, checked at creation, is what is bound here.
     assert(int(buffers.size()) == layout_.bindings && pushBytes == layout_.pushConstantBytes);
+    if (used_ == kSetsPerSubmit)
+        fail("shader " + name_, "more than " + std::to_string(kSetsPerSubmit) + " dispatches in one submission");
+    const VkDescriptorSet set = sets_[used_++];
     std::vector<VkDescriptorBufferInfo> infos;
     std::vector<VkWriteDescriptorSet> writes;
     infos.reserve(buffers.size());
@@ -90,7 +98,7 @@ void ComputePipeline::dispatch(VkCommandBuffer cmd, std::initializer_list<const 
     for (std::size_t i = 0; i < infos.size(); ++i) {
         VkWriteDescriptorSet w{};
         w.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
-        w.dstSet = set_;
+        w.dstSet = set;
         w.dstBinding = std::uint32_t(i);
         w.descriptorCount = 1;
         w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
@@ -99,7 +107,7 @@ void ComputePipeline::dispatch(VkCommandBuffer cmd, std::initializer_list<const 
     }
     vkUpdateDescriptorSets(context_.device, std::uint32_t(writes.size()), writes.data(), 0, nullptr);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.get());
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineLayout_.get(), 0, 1, &set_, 0, nullptr);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineLayout_.get(), 0, 1, &set, 0, nullptr);
     if (pushBytes > 0)
         vkCmdPushConstants(cmd, pipelineLayout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, pushBytes, pushConstants);
     vkCmdDispatch(cmd, groupsX, groupsY, 1);

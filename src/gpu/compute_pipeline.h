@@ -22,12 +22,16 @@ public:
                     std::uint32_t pushConstantBytes);
 
     // Records a dispatch of `groupsX` x `groupsY` workgroups with these buffers at bindings 0, 1, ... and
-    // these push constants. The descriptor set is rewritten here, so the previous dispatch's commands must
-    // have completed (Context::Impl::submit waits for them).
+    // these push constants. Each dispatch of one submission takes its own descriptor set (kSetsPerSubmit at
+    // most); sets are rewritten in the next submission, after Context::Impl::submit has waited for this one.
     void dispatch(VkCommandBuffer cmd, std::initializer_list<const Buffer*> buffers, const void* pushConstants,
                   std::uint32_t pushBytes, std::uint32_t groupsX, std::uint32_t groupsY);
 
     const SpirvLayout& layout() const { return layout_; }
+    // Called by Context::Impl::submit before recording: the descriptor sets are free again.
+    void beginCommands() { used_ = 0; }
+
+    static constexpr int kSetsPerSubmit = 4;
 
 private:
     Context::Impl& context_;
@@ -37,7 +41,8 @@ private:
     Unique<VkPipelineLayout> pipelineLayout_;
     Unique<VkPipeline> pipeline_;
     Unique<VkDescriptorPool> pool_;
-    VkDescriptorSet set_ = VK_NULL_HANDLE;  // freed with the pool
+    VkDescriptorSet sets_[kSetsPerSubmit] = {};  // freed with the pool
+    int used_ = 0;
 };
 
 } // namespace obscura::gpu

@@ -140,8 +140,10 @@ Context::Context(const ContextSettings& settings) : impl_(std::make_unique<Impl>
 
     VkDebugUtilsMessengerCreateInfoEXT messenger{};
     messenger.sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT;
-    messenger.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
-    messenger.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+    messenger.messageSeverity =
+        VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+    messenger.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
+                            VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
                             VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
     messenger.pfnUserCallback = recordMessage;
     messenger.pUserData = &c;
@@ -165,8 +167,9 @@ Context::Context(const ContextSettings& settings) : impl_(std::make_unique<Impl>
     c.info.discrete = c.properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU;
     c.info.apiVersion = c.properties.apiVersion;
     if (c.properties.apiVersion < VK_API_VERSION_1_2)
-        fail("Vulkan device '" + c.info.name + "'", "supports Vulkan " + std::to_string(VK_API_VERSION_MAJOR(c.properties.apiVersion)) +
-                                                    "." + std::to_string(VK_API_VERSION_MINOR(c.properties.apiVersion)) + ", 1.2 needed");
+        fail("Vulkan device '" + c.info.name + "'",
+             "supports Vulkan " + std::to_string(VK_API_VERSION_MAJOR(c.properties.apiVersion)) + "." +
+                 std::to_string(VK_API_VERSION_MINOR(c.properties.apiVersion)) + ", 1.2 needed");
 
     // A compute queue; a family with compute and no graphics is the dedicated one, so it is preferred.
     std::uint32_t n = 0;
@@ -239,6 +242,7 @@ void Context::Impl::check(VkResult r, const std::string& doing) const { gpu::che
 
 void Context::Impl::submit(const std::function<void(VkCommandBuffer)>& record, bool timed) {
     const bool timing = timed && timestamps != VK_NULL_HANDLE;
+    for (auto& [name, p] : pipelines) p->beginCommands();
     VkCommandBufferBeginInfo begin{};
     begin.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
     begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
@@ -271,6 +275,15 @@ ComputePipeline& Context::Impl::pipeline(const std::string& name, const Spirv& c
     std::unique_ptr<ComputePipeline>& p = pipelines[name];
     if (!p) p = std::make_unique<ComputePipeline>(*this, code, name, bindings, pushConstantBytes);
     return *p;
+}
+
+void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags srcStage, VkAccessFlags src, VkPipelineStageFlags dstStage,
+                   VkAccessFlags dst) {
+    VkMemoryBarrier b{};
+    b.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
+    b.srcAccessMask = src;
+    b.dstAccessMask = dst;
+    vkCmdPipelineBarrier(cmd, srcStage, dstStage, 0, 1, &b, 0, nullptr, 0, nullptr);
 }
 
 Context::~Context() = default;

@@ -53,7 +53,8 @@ struct Context::Impl {
     // With `timed`, the commands are bracketed by timestamps and lastPassMs is set from them.
     void submit(const std::function<void(VkCommandBuffer)>& record, bool timed = false);
     // The pipeline of shader `name`, made on first use (see ComputePipeline for the checks).
-    ComputePipeline& pipeline(const std::string& name, const Spirv& code, int bindings, std::uint32_t pushConstantBytes);
+    ComputePipeline& pipeline(const std::string& name, const Spirv& code, int bindings,
+                              std::uint32_t pushConstantBytes);
 };
 
 // A Vulkan object owned by a device, destroyed with it: move-only.
@@ -64,7 +65,9 @@ public:
     Unique() = default;
     Unique(VkDevice device, T handle, Destroy destroy) : device_(device), handle_(handle), destroy_(destroy) {}
     ~Unique() { reset(); }
-    Unique(Unique&& o) noexcept : device_(o.device_), handle_(o.handle_), destroy_(o.destroy_) { o.handle_ = VK_NULL_HANDLE; }
+    Unique(Unique&& o) noexcept : device_(o.device_), handle_(o.handle_), destroy_(o.destroy_) {
+        o.handle_ = VK_NULL_HANDLE;
+    }
     Unique& operator=(Unique&& o) noexcept {
         if (this != &o) {
             reset();
@@ -88,6 +91,11 @@ private:
     T handle_ = VK_NULL_HANDLE;
     Destroy destroy_ = nullptr;
 };
+
+// A global memory barrier: the `src` accesses of `srcStage` (and commands before it in submission order) are
+// complete and visible to the `dst` accesses of `dstStage` (in commands after it, in any later submission).
+void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags srcStage, VkAccessFlags src, VkPipelineStageFlags dstStage,
+                   VkAccessFlags dst);
 
 // vkCreate<T>(device, &info) wrapped in a Unique; throws obscura::Error saying what was `doing`.
 template <class T, class Info>

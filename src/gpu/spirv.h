@@ -14,7 +14,8 @@ struct Spirv {
 };
 
 namespace shaders {
-extern const Spirv alchemy;  // alchemy.comp
+extern const Spirv alchemy;              // alchemy.comp
+extern const Spirv bilateral_separable;  // bilateral_separable.comp
 } // namespace shaders
 
 // What a compute shader declares: its resources and workgroup size.

@@ -3,10 +3,8 @@
 #include "gpu_test_util.h"
 
 #include "obscura/alchemy.h"
-#include "obscura/builtin_scenes.h"
 #include "obscura/error.h"
 #include "obscura/gpu.h"
-#include "obscura/trace.h"
 
 #include <gtest/gtest.h>
 
@@ -16,15 +14,6 @@
 
 namespace obscura::gpu {
 namespace {
-
-GBuffer render(const std::string& scene, int w, int h) {
-    BuiltinScene s = makeBuiltinScene(scene);
-    Camera cam = s.camera;
-    cam.width = w;
-    cam.height = h;
-    trace::Tracer tracer(s.scene);
-    return trace::renderGBuffer(tracer, cam);
-}
 
 ssao::AlchemySettings chapter() {
     ssao::AlchemySettings s;
@@ -88,7 +77,7 @@ TEST(GpuAlchemy, MatchesTheCpuReference) {
         int w, h;
     };
     for (const Case& c : {Case{"demo", 333, 197}, Case{"corner", 160, 96}, Case{"cabinet", 256, 144}}) {
-        const GBuffer g = render(c.scene, c.w, c.h);
+        const GBuffer g = testing::render(c.scene, c.w, c.h);
         const bool lavapipe = context.device().name.rfind("llvmpipe", 0) == 0;
         for (const auto& [name, s] : {std::pair{"paper", ssao::AlchemySettings{}}, std::pair{"chapter", chapter()},
                                       std::pair{"contrast 3", contrastCurve()}}) {
@@ -119,7 +108,7 @@ TEST(GpuAlchemy, MatchesTheCpuReference) {
 // from depth (on the CPU), more samples and another seed. Same bounds as above.
 TEST(GpuAlchemy, MatchesTheCpuReferenceWithEverySetting) {
     OBSCURA_GPU_CONTEXT(context);
-    const GBuffer g = render("stairs", 181, 123);
+    const GBuffer g = testing::render("stairs", 181, 123);
     ssao::AlchemySettings lod;
     lod.lodRadiusPixels = 40.0f;
     ssao::AlchemySettings band = chapter();
@@ -150,15 +139,7 @@ TEST(GpuAlchemy, MatchesTheCpuReferenceWithEverySetting) {
 // The same validation and messages as ssao::alchemyAO.
 TEST(GpuAlchemy, RejectsBadInputAsTheCpuPassDoes) {
     OBSCURA_GPU_CONTEXT(context);
-    const GBuffer g = render("plane", 16, 16);
-    const auto message = [](auto&& run) {
-        try {
-            run();
-        } catch (const Error& e) {
-            return std::string(e.what());
-        }
-        return std::string("no error");
-    };
+    const GBuffer g = testing::render("plane", 16, 16);
     ssao::AlchemySettings radius;
     radius.radius = -1;
     ssao::AlchemySettings band;
@@ -171,9 +152,9 @@ TEST(GpuAlchemy, RejectsBadInputAsTheCpuPassDoes) {
     rebuilt.normalsFromDepth = true;
     for (const auto& [buffer, s] : {std::pair{g, radius}, std::pair{g, band}, std::pair{nan, ssao::AlchemySettings{}},
                                     std::pair{small, ssao::AlchemySettings{}}, std::pair{nan, rebuilt}}) {
-        const std::string cpu = message([&] { ssao::alchemyAO(buffer, s); });
+        const std::string cpu = testing::errorMessage([&] { ssao::alchemyAO(buffer, s); });
         EXPECT_NE(cpu, "no error");
-        EXPECT_EQ(message([&] { alchemyAO(context, buffer, s); }), cpu);
+        EXPECT_EQ(testing::errorMessage([&] { alchemyAO(context, buffer, s); }), cpu);
     }
     // With normals rebuilt from depth the G-buffer needs none.
     GBuffer depthOnly = g;

@@ -5,7 +5,7 @@
 #include "gpu/allocator.h"
 #include "gpu/buffer.h"
 #include "gpu/spirv.h"
-#include "gpu/shaders/alchemy_layout.h"
+#include "gpu/shaders/layouts.h"
 
 #include "obscura/alchemy_constants.h"
 #include "obscura/error.h"
@@ -40,14 +40,17 @@ TEST(GpuAllocator, FirstFitAlignsAndMerges) {
     EXPECT_EQ(r.allocate(1024, 1024), 0u);
 }
 
-// The embedded alchemy shader declares what alchemy_layout.h says it does.
-TEST(GpuShaders, ReflectionReadsTheAlchemyLayout) {
+// The embedded shaders declare what src/gpu/shaders/layouts.h says they do.
+TEST(GpuShaders, ReflectionReadsTheLayouts) {
     const SpirvLayout l = reflect(shaders::alchemy);
     EXPECT_EQ(l.bindings, kAlchemyBindingCount);
     EXPECT_EQ(l.pushConstantBytes, std::uint32_t(kAlchemyPushConstantBytes));
     EXPECT_EQ(l.localSize[0], std::uint32_t(ssao::kAlchemyWorkgroupX));
     EXPECT_EQ(l.localSize[1], std::uint32_t(ssao::kAlchemyWorkgroupY));
     EXPECT_EQ(l.localSize[2], 1u);
+    const SpirvLayout b = reflect(shaders::bilateral_separable);
+    EXPECT_EQ(b.bindings, kBilateralBindingCount);
+    EXPECT_EQ(b.pushConstantBytes, std::uint32_t(kBilateralPushConstantBytes));
     const std::uint32_t junk[6] = {1, 2, 3, 4, 5, 6};
     EXPECT_THROW(reflect(Spirv{junk, 6}), Error);
 }

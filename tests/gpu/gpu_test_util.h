@@ -2,7 +2,10 @@
 // skip rule DESIGN.md sets: a GPU test skips, with a message, only when no Vulkan device exists at all.
 #pragma once
 
+#include "obscura/builtin_scenes.h"
+#include "obscura/error.h"
 #include "obscura/gpu.h"
+#include "obscura/trace.h"
 
 #include <gtest/gtest.h>
 
@@ -27,6 +30,27 @@ inline std::string validationReport(const Context& context) {
     std::string all;
     for (const std::string& m : context.validationMessages()) all += m + "\n";
     return all;
+}
+
+// The G-buffer of a built-in scene from its default camera at w x h pixels.
+inline GBuffer render(const std::string& scene, int w, int h) {
+    BuiltinScene s = makeBuiltinScene(scene);
+    Camera cam = s.camera;
+    cam.width = w;
+    cam.height = h;
+    trace::Tracer tracer(s.scene);
+    return trace::renderGBuffer(tracer, cam);
+}
+
+// The message of the obscura::Error that run() throws, or "no error".
+template <class Run>
+std::string errorMessage(Run&& run) {
+    try {
+        run();
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "no error";
 }
 
 } // namespace obscura::gpu::testing

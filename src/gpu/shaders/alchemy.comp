@@ -12,7 +12,7 @@
 #extension GL_GOOGLE_include_directive : require
 
 #include "obscura/alchemy_constants.h"
-#include "alchemy_layout.h"
+#include "layouts.h"
 
 layout(local_size_x = kAlchemyWorkgroupX, local_size_y = kAlchemyWorkgroupY, local_size_z = 1) in;
 
