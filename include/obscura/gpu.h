@@ -48,6 +48,7 @@ struct DeviceInfo {
 // Number of Vulkan devices; 0 when there is no loader, no driver or no device. Never throws.
 int deviceCount();
 
+// Use a Context from one thread at a time; each pass waits for the GPU before it returns.
 class Context {
 public:
     explicit Context(const ContextSettings& settings = {});

@@ -9,6 +9,7 @@ namespace obscura::gpu {
 
 
 Buffer::Buffer(Context::Impl& context, VkDeviceSize bytes, MemoryUse use) : context_(&context), bytes_(bytes) {
+    assert(bytes > 0);  // Vulkan has no empty buffers
     VkBufferCreateInfo info{};
     info.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO;
     info.size = bytes;

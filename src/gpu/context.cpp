@@ -251,7 +251,12 @@ void Context::Impl::submit(const std::function<void(VkCommandBuffer)>& record, b
         vkCmdResetQueryPool(commandBuffer, timestamps, 0, 2);
         vkCmdWriteTimestamp(commandBuffer, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, timestamps, 0);
     }
-    record(commandBuffer);
+    try {
+        record(commandBuffer);
+    } catch (...) {
+        vkEndCommandBuffer(commandBuffer);  // out of the recording state, so the next submit can begin again
+        throw;
+    }
     if (timing) vkCmdWriteTimestamp(commandBuffer, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, timestamps, 1);
     check(vkEndCommandBuffer(commandBuffer), "recording commands");
     VkSubmitInfo work{};
