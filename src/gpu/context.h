@@ -36,7 +36,7 @@ struct Context::Impl {
     std::unique_ptr<Allocator> allocator;
     double lastPassMs = -1.0;
 
-    // Compiled once per context (lavapipe compiles a shader to machine code in tens of milliseconds).
+    // Made once per context: creating a pipeline compiles its shader to the device's machine code.
     std::map<std::string, std::unique_ptr<ComputePipeline>> pipelines;
 
     mutable std::mutex messagesMutex;  // the layer may call back from any thread

@@ -1,4 +1,4 @@
-// One validated Vulkan context shared by the GPU tests (creating one costs ~0.1 s on lavapipe), and the
+// One validated Vulkan context shared by the GPU tests of a process (so the pipelines compile once), and the
 // skip rule DESIGN.md sets: a GPU test skips, with a message, only when no Vulkan device exists at all.
 #pragma once
 
