@@ -16,7 +16,8 @@ void check(VkResult r, const std::string& device, const std::string& doing) {
     case VK_ERROR_INCOMPATIBLE_DRIVER: problem = "no compatible Vulkan driver"; break;
     default: problem = "failed"; break;
     }
-    throw Error("Vulkan device '" + device + "': " + doing + ": " + problem + " (" + resultName(r) + ")");
+    const std::string what = device.empty() ? std::string("Vulkan") : "Vulkan device '" + device + "'";
+    throw Error(what + ": " + doing + ": " + problem + " (" + resultName(r) + ")");
 }
 
 } // namespace obscura::gpu

@@ -9,7 +9,7 @@
 namespace obscura::gpu {
 
 // Throws obscura::Error("Vulkan device '<device>': <doing>: <problem> (<VK_ERROR_...>)") unless r is
-// VK_SUCCESS.
+// VK_SUCCESS; "Vulkan: ..." when there is no device yet (device empty).
 void check(VkResult r, const std::string& device, const std::string& doing);
 
 } // namespace obscura::gpu

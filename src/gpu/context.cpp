@@ -83,7 +83,7 @@ VkInstance createInstance(bool validation, const VkDebugUtilsMessengerCreateInfo
     if (r == VK_ERROR_LAYER_NOT_PRESENT || r == VK_ERROR_EXTENSION_NOT_PRESENT)
         fail("Vulkan", "validation asked for but VK_LAYER_KHRONOS_validation is not installed "
                        "(on Debian: vulkan-validationlayers)");
-    check(r, "(none yet)", "creating the Vulkan instance");
+    check(r, "", "creating the Vulkan instance");
     return instance;
 }
 
@@ -154,7 +154,7 @@ Context::Context(const ContextSettings& settings) : impl_(std::make_unique<Impl>
         c.destroyMessenger = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
             vkGetInstanceProcAddr(c.instance, "vkDestroyDebugUtilsMessengerEXT"));
         if (!create || !c.destroyMessenger) fail("Vulkan", "the validation layer lacks VK_EXT_debug_utils");
-        check(create(c.instance, &messenger, nullptr, &c.messenger), "(none yet)", "creating the debug messenger");
+        check(create(c.instance, &messenger, nullptr, &c.messenger), "", "creating the debug messenger");
     }
 
     const std::vector<VkPhysicalDevice> devices = physicalDevices(c.instance);
