@@ -1,6 +1,7 @@
-// Constants of the Alchemy AO kernel, shared by the C++ reference (src/ssao/alchemy.cpp) and a future
-// GLSL compute pass: plain 32-bit ints and floats, std140/std430-compatible, no vec3. Written so the same
-// file can be #included by GLSL (the #ifdef maps the few C++-only parts). Filled in by one pure function,
+// Constants of the Alchemy AO kernel, shared by the C++ reference (src/ssao/alchemy.cpp) and the GLSL
+// compute pass (src/gpu/shaders/alchemy.comp, which takes them as push constants): plain 32-bit ints and
+// floats, std140/std430-compatible, no vec3. The same file is #included by GLSL (the #ifdef maps the few
+// C++-only parts). Filled in by one pure function,
 // obscura::ssao::alchemyConstants() in obscura/alchemy.h.
 #ifndef OBSCURA_ALCHEMY_CONSTANTS_H
 #define OBSCURA_ALCHEMY_CONSTANTS_H

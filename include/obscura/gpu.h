@@ -1,0 +1,86 @@
+// Vulkan compute: a headless context and the screen-space passes of src/ssao as compute shaders.
+//
+// Context: Vulkan >= 1.2, no surface, one compute queue. The device is the one at
+// ContextSettings::deviceIndex, else the index in the environment variable OBSCURA_GPU_DEVICE, else the
+// first discrete GPU, else the first device the loader lists. Validation (VK_LAYER_KHRONOS_validation with
+// synchronization validation) is on when ContextSettings::validation is set or OBSCURA_VALIDATION=1; then
+// every warning and error message the layer sends is recorded (validationMessages()), so tests can fail on
+// any of them.
+//
+// The passes take the same settings and G-buffers as their CPU references and run the same constants
+// function (ssao::alchemyConstants); the kernels differ only in floating-point rounding. Shaders are SPIR-V
+// compiled at build time and embedded in the library.
+//
+// Errors: everything throws obscura::Error with a message naming the device and the problem: no Vulkan
+// loader or driver, no device (or none at the index asked for), a device below Vulkan 1.2, validation asked
+// for but not installed, device lost, out of device or host memory; and the CPU references' errors for bad
+// settings or buffers. The Vulkan library is loaded when the first Context is made, so a program that makes
+// none runs without it.
+#pragma once
+
+#include "obscura/alchemy.h"
+#include "obscura/bilateral.h"
+#include "obscura/gbuffer.h"
+#include "obscura/image.h"
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace obscura::gpu {
+
+struct ContextSettings {
+    // Physical device index in the loader's order: [0, deviceCount()); -1 = OBSCURA_GPU_DEVICE, else the
+    // first discrete GPU, else device 0.
+    int deviceIndex = -1;
+    bool validation = false;  // also on when the environment has OBSCURA_VALIDATION=1
+};
+
+struct DeviceInfo {
+    std::string name;               // e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
+    int index = 0;                  // in the loader's order
+    bool discrete = false;
+    std::uint32_t apiVersion = 0;   // VK_MAKE_API_VERSION encoding
+    double timestampPeriodNs = 0;   // ns per timestamp tick; 0 when the compute queue has no timestamps
+};
+
+// Number of Vulkan devices; 0 when there is no loader, no driver or no device. Never throws.
+int deviceCount();
+
+// Use a Context from one thread at a time; each pass waits for the GPU before it returns.
+class Context {
+public:
+    explicit Context(const ContextSettings& settings = {});
+    ~Context();
+    Context(Context&&) noexcept;
+    Context& operator=(Context&&) noexcept;
+    Context(const Context&) = delete;
+    Context& operator=(const Context&) = delete;
+
+    const DeviceInfo& device() const;
+    bool validation() const;
+    // Every validation message so far ("severity: id: text"), oldest first; empty without validation.
+    std::vector<std::string> validationMessages() const;
+    // GPU time of the last pass's dispatches, from timestamp queries, ms; -1 when timestamps are missing.
+    double lastPassMs() const;
+
+    struct Impl;  // src/gpu/context.h
+    Impl& impl() { return *impl_; }
+
+private:
+    std::unique_ptr<Impl> impl_;
+};
+
+// ssao::alchemyAO on the GPU: the same settings, validation, errors and output (raw obscurance, guard band
+// cropped, sky 1); equal to ssao::alchemyPixel to within GPU rounding (tests/gpu bound the difference).
+// Normals rebuilt from depth (settings.normalsFromDepth) are computed on the CPU, as ssao::alchemyInput does.
+Image alchemyAO(Context& context, const GBuffer& gbuffer, const ssao::AlchemySettings& settings);
+
+// ssao::bilateralFilter on the GPU for BlurMode::Separable (two 1-D passes; BlurMode::None returns a copy):
+// the same settings, validation and errors; equal to the CPU filter to within 2e-3 (tests/gpu measure it).
+// BlurMode::TwoD has no GPU pass yet and throws obscura::Error.
+Image bilateralFilter(Context& context, const Image& ao, const GBuffer& gbuffer,
+                      const ssao::BilateralSettings& settings);
+
+} // namespace obscura::gpu

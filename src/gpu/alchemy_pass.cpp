@@ -1,0 +1,73 @@
+// Alchemy AO as a compute pass (src/gpu/shaders/alchemy.comp): McGuire et al. 2011, "The Alchemy
+// Screen-Space Ambient Obscurance Algorithm", eq. 10. The host side of ssao::alchemyAO: the same
+// validation, the same constants (ssao::alchemyConstants) and the same spiral table, so CPU and GPU differ
+// only in the kernel. Contract in include/obscura/gpu.h.
+#include "gpu/buffer.h"
+#include "gpu/compute_pipeline.h"
+#include "gpu/context.h"
+#include "gpu/spirv.h"
+#include "shaders/layouts.h"
+
+#include "obscura/error.h"
+#include "obscura/gpu.h"
+
+#include <vector>
+
+namespace obscura::gpu {
+
+namespace {
+
+// The depth plane with zero normals, for validating a G-buffer whose normals are rebuilt from depth.
+GBuffer withPlaceholderNormals(const GBuffer& g) {
+    GBuffer depthOnly;
+    depthOnly.camera = g.camera;
+    depthOnly.depth = g.depth;
+    depthOnly.normal = Image(g.width(), g.height(), 3);
+    return depthOnly;
+}
+
+} // namespace
+
+static_assert(sizeof(ssao::AlchemyConstants) == kAlchemyPushConstantBytes,
+              "the push constants of alchemy.comp are one AlchemyConstants");
+
+Image alchemyAO(Context& context, const GBuffer& g, const ssao::AlchemySettings& s) {
+    const ssao::AlchemyConstants k = ssao::alchemyConstants(s, g.camera);
+    // ssao::alchemyAO's checks and messages (the shader checks nothing, and a NaN depth would reach a
+    // float-to-int conversion). Normals rebuilt from depth replace the G-buffer's, which may then be absent.
+    const std::string what = "alchemy G-buffer";
+    if (s.normalsFromDepth) withPlaceholderNormals(g).validate(what);
+    else g.validate(what);
+    const ssao::AlchemyInput in = ssao::alchemyInput(g, s.normalsFromDepth);
+    const ssao::SpiralTable spiral = ssao::alchemySpiral(k);
+    // SpiralTable::offsets concatenated; the shader finds (count, class) by alchemySpiralAt.
+    std::vector<float> offsets;
+    for (const std::vector<float>& o : spiral.offsets) offsets.insert(offsets.end(), o.begin(), o.end());
+
+    Context::Impl& c = context.impl();
+    ComputePipeline& pipeline =
+        c.pipeline("alchemy", shaders::alchemy, kAlchemyBindingCount, kAlchemyPushConstantBytes);
+    // The dispatch below divides the image into workgroups of the size the shared header gives the shader.
+    if (pipeline.layout().localSize[0] != std::uint32_t(ssao::kAlchemyWorkgroupX) ||
+        pipeline.layout().localSize[1] != std::uint32_t(ssao::kAlchemyWorkgroupY))
+        fail("shader alchemy", "workgroup size differs from kAlchemyWorkgroupX x kAlchemyWorkgroupY");
+    const std::size_t pixels = std::size_t(k.width) * std::size_t(k.height);
+    const Buffer depth = upload(c, in.depth, pixels * sizeof(float));
+    const Buffer normal = upload(c, in.normal, 3 * pixels * sizeof(float));
+    const Buffer table = upload(c, offsets.data(), offsets.size() * sizeof(float));
+    const int w = k.width - 2 * k.guardBand, h = k.height - 2 * k.guardBand;
+    Image out(w, h, 1);
+    const Buffer ao(c, out.pixels.size() * sizeof(float), MemoryUse::Device);
+    c.submit(
+        [&](VkCommandBuffer cmd) {
+            // In binding order: kAlchemyBindingDepth, Normal, Spiral, Output.
+            pipeline.dispatch(cmd, {&depth, &normal, &table, &ao}, &k, sizeof k,
+                              std::uint32_t((w + ssao::kAlchemyWorkgroupX - 1) / ssao::kAlchemyWorkgroupX),
+                              std::uint32_t((h + ssao::kAlchemyWorkgroupY - 1) / ssao::kAlchemyWorkgroupY));
+        },
+        true);
+    download(c, ao, out.pixels.data(), out.pixels.size() * sizeof(float));
+    return out;
+}
+
+} // namespace obscura::gpu

@@ -1,0 +1,116 @@
+// Compute pipelines with checked layouts; see compute_pipeline.h.
+#include "gpu/compute_pipeline.h"
+
+#include "obscura/error.h"
+
+#include <cassert>
+#include <vector>
+
+namespace obscura::gpu {
+
+ComputePipeline::ComputePipeline(Context::Impl& context, const Spirv& code, const std::string& name, int bindings,
+                                 std::uint32_t pushConstantBytes)
+    : context_(context), name_(name), layout_(reflect(code)) {
+    const std::string what = "shader " + name;
+    if (layout_.bindings != bindings || layout_.pushConstantBytes != pushConstantBytes)
+        fail(what, "declares " + std::to_string(layout_.bindings) + " bindings and " +
+                       std::to_string(layout_.pushConstantBytes) + " bytes of push constants, the host binds " +
+                       std::to_string(bindings) + " and " + std::to_string(pushConstantBytes));
+    if (pushConstantBytes > context.properties.limits.maxPushConstantsSize)
+        fail("Vulkan device '" + context.info.name + "'", what + " needs " + std::to_string(pushConstantBytes) +
+                                                              " bytes of push constants");
+    VkDevice device = context.device;
+
+    std::vector<VkDescriptorSetLayoutBinding> slots(static_cast<std::size_t>(bindings));
+    for (int i = 0; i < bindings; ++i) {
+        slots[std::size_t(i)].binding = std::uint32_t(i);
+        slots[std::size_t(i)].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        slots[std::size_t(i)].descriptorCount = 1;
+        slots[std::size_t(i)].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
+    }
+    VkDescriptorSetLayoutCreateInfo setInfo{};
+    setInfo.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
+    setInfo.bindingCount = std::uint32_t(bindings);
+    setInfo.pBindings = slots.data();
+    setLayout_ = create(context, vkCreateDescriptorSetLayout, setInfo, vkDestroyDescriptorSetLayout,
+                        "creating " + what + "'s layout");
+    const VkDescriptorSetLayout setLayout = setLayout_.get();
+
+    const VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, pushConstantBytes};
+    VkPipelineLayoutCreateInfo layoutInfo{};
+    layoutInfo.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO;
+    layoutInfo.setLayoutCount = 1;
+    layoutInfo.pSetLayouts = &setLayout;
+    layoutInfo.pushConstantRangeCount = pushConstantBytes > 0 ? 1 : 0;
+    layoutInfo.pPushConstantRanges = &range;
+    pipelineLayout_ =
+        create(context, vkCreatePipelineLayout, layoutInfo, vkDestroyPipelineLayout, "creating " + what + "'s layout");
+
+    VkShaderModuleCreateInfo moduleInfo{};
+    moduleInfo.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO;
+    moduleInfo.codeSize = code.count * sizeof(std::uint32_t);
+    moduleInfo.pCode = code.words;
+    // Needed only until the pipeline exists.
+    const Unique<VkShaderModule> module =
+        create(context, vkCreateShaderModule, moduleInfo, vkDestroyShaderModule, "loading " + what);
+
+    VkComputePipelineCreateInfo pipelineInfo{};
+    pipelineInfo.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO;
+    pipelineInfo.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+    pipelineInfo.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    pipelineInfo.stage.module = module.get();
+    pipelineInfo.stage.pName = "main";
+    pipelineInfo.layout = pipelineLayout_.get();
+    VkPipeline pipeline = VK_NULL_HANDLE;
+    context.check(vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &pipelineInfo, nullptr, &pipeline),
+                  "compiling " + what);
+    pipeline_ = Unique<VkPipeline>(device, pipeline, vkDestroyPipeline);
+
+    const VkDescriptorPoolSize poolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, std::uint32_t(bindings * kSetsPerSubmit)};
+    VkDescriptorPoolCreateInfo poolInfo{};
+    poolInfo.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
+    poolInfo.maxSets = kSetsPerSubmit;
+    poolInfo.poolSizeCount = 1;
+    poolInfo.pPoolSizes = &poolSize;
+    pool_ = create(context, vkCreateDescriptorPool, poolInfo, vkDestroyDescriptorPool,
+                   "creating " + what + "'s descriptors");
+    VkDescriptorSetAllocateInfo allocInfo{};
+    allocInfo.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
+    allocInfo.descriptorPool = pool_.get();
+    const std::vector<VkDescriptorSetLayout> setLayouts(kSetsPerSubmit, setLayout);
+    allocInfo.descriptorSetCount = kSetsPerSubmit;
+    allocInfo.pSetLayouts = setLayouts.data();
+    context.check(vkAllocateDescriptorSets(device, &allocInfo, sets_), "allocating " + what + "'s descriptors");
+}
+
+void ComputePipeline::dispatch(VkCommandBuffer cmd, std::initializer_list<const Buffer*> buffers,
+                               const void* pushConstants, std::uint32_t pushBytes, std::uint32_t groupsX,
+                               std::uint32_t groupsY) {
+    // The shader's declared layout, checked at creation, is what is bound here.
+    assert(int(buffers.size()) == layout_.bindings && pushBytes == layout_.pushConstantBytes);
+    if (used_ == kSetsPerSubmit)
+        fail("shader " + name_, "more than " + std::to_string(kSetsPerSubmit) + " dispatches in one submission");
+    const VkDescriptorSet set = sets_[used_++];
+    std::vector<VkDescriptorBufferInfo> infos;
+    std::vector<VkWriteDescriptorSet> writes;
+    infos.reserve(buffers.size());
+    for (const Buffer* b : buffers) infos.push_back({b->handle(), 0, b->size()});
+    for (std::size_t i = 0; i < infos.size(); ++i) {
+        VkWriteDescriptorSet w{};
+        w.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
+        w.dstSet = set;
+        w.dstBinding = std::uint32_t(i);
+        w.descriptorCount = 1;
+        w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        w.pBufferInfo = &infos[i];
+        writes.push_back(w);
+    }
+    vkUpdateDescriptorSets(context_.device, std::uint32_t(writes.size()), writes.data(), 0, nullptr);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.get());
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineLayout_.get(), 0, 1, &set, 0, nullptr);
+    if (pushBytes > 0)
+        vkCmdPushConstants(cmd, pipelineLayout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, pushBytes, pushConstants);
+    vkCmdDispatch(cmd, groupsX, groupsY, 1);
+}
+
+} // namespace obscura::gpu

@@ -1,0 +1,306 @@
+// Headless Vulkan compute context: instance (with validation on request), device choice, one compute queue,
+// a command buffer, a fence and timestamp queries. After SaschaWillems' computeheadless example.
+#include "gpu/context.h"
+#include "gpu/check.h"
+#include "gpu/compute_pipeline.h"
+
+#include "obscura/error.h"
+
+#include <cstdlib>
+#include <cstring>
+
+namespace obscura::gpu {
+
+namespace {
+
+constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
+
+bool envFlag(const char* name) {
+    const char* v = std::getenv(name);
+    return v && std::strcmp(v, "1") == 0;
+}
+
+VKAPI_ATTR VkBool32 VKAPI_CALL recordMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                             VkDebugUtilsMessageTypeFlagsEXT,
+                                             const VkDebugUtilsMessengerCallbackDataEXT* data, void* user) {
+    auto* impl = static_cast<Context::Impl*>(user);
+    const char* level = severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT ? "error" : "warning";
+    std::string text = std::string(level) + ": " + (data->pMessageIdName ? data->pMessageIdName : "?") + ": " +
+                       (data->pMessage ? data->pMessage : "");
+    std::lock_guard lock(impl->messagesMutex);
+    impl->messages.push_back(std::move(text));
+    return VK_FALSE;  // never abort the call: the message is the finding
+}
+
+bool hasLayer(const char* name) {
+    std::uint32_t n = 0;
+    vkEnumerateInstanceLayerProperties(&n, nullptr);
+    std::vector<VkLayerProperties> layers(n);
+    vkEnumerateInstanceLayerProperties(&n, layers.data());
+    for (const auto& l : layers)
+        if (std::strcmp(l.layerName, name) == 0) return true;
+    return false;
+}
+
+std::vector<VkPhysicalDevice> physicalDevices(VkInstance instance) {
+    std::uint32_t n = 0;
+    if (vkEnumeratePhysicalDevices(instance, &n, nullptr) != VK_SUCCESS) return {};
+    std::vector<VkPhysicalDevice> devices(n);
+    if (vkEnumeratePhysicalDevices(instance, &n, devices.data()) < VK_SUCCESS) return {};
+    devices.resize(n);
+    return devices;
+}
+
+VkInstance createInstance(bool validation, const VkDebugUtilsMessengerCreateInfoEXT* messenger) {
+    VkApplicationInfo app{};
+    app.sType = VK_STRUCTURE_TYPE_APPLICATION_INFO;
+    app.pApplicationName = "obscura";
+    app.pEngineName = "obscura";
+    app.apiVersion = VK_API_VERSION_1_2;
+    VkInstanceCreateInfo info{};
+    info.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO;
+    info.pApplicationInfo = &app;
+    const char* extension = VK_EXT_DEBUG_UTILS_EXTENSION_NAME;
+    // Synchronization validation catches a missing barrier, the bug the default checks miss in compute code.
+    const VkValidationFeatureEnableEXT enables[] = {VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT};
+    VkValidationFeaturesEXT features{};
+    features.sType = VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT;
+    features.enabledValidationFeatureCount = 1;
+    features.pEnabledValidationFeatures = enables;
+    if (validation) {
+        info.enabledLayerCount = 1;
+        info.ppEnabledLayerNames = &kValidationLayer;
+        info.enabledExtensionCount = 1;
+        info.ppEnabledExtensionNames = &extension;
+        // Chained messenger: also reports on vkCreateInstance and vkDestroyInstance themselves.
+        features.pNext = messenger;
+        info.pNext = &features;
+    }
+    VkInstance instance = VK_NULL_HANDLE;
+    const VkResult r = vkCreateInstance(&info, nullptr, &instance);
+    if (r == VK_ERROR_INCOMPATIBLE_DRIVER)
+        fail("Vulkan", "no Vulkan 1.2 driver (on Debian install mesa-vulkan-drivers for the CPU driver lavapipe)");
+    if (r == VK_ERROR_LAYER_NOT_PRESENT || r == VK_ERROR_EXTENSION_NOT_PRESENT)
+        fail("Vulkan", "validation asked for but VK_LAYER_KHRONOS_validation is not installed "
+                       "(on Debian: vulkan-validationlayers)");
+    check(r, "", "creating the Vulkan instance");
+    return instance;
+}
+
+int chooseDevice(const std::vector<VkPhysicalDevice>& devices, int asked) {
+    const int count = int(devices.size());
+    std::string from = "ContextSettings::deviceIndex";
+    if (asked < 0)
+        if (const char* env = std::getenv("OBSCURA_GPU_DEVICE"); env && *env) {
+            char* end = nullptr;
+            const long v = std::strtol(env, &end, 10);
+            from = "OBSCURA_GPU_DEVICE";
+            asked = (*end == '\0' && v >= 0 && v < 1 << 20) ? int(v) : count;
+            if (asked == count) fail(from, std::string("'") + env + "' is not a device index");
+        }
+    if (asked >= 0) {
+        if (asked >= count)
+            fail(from, "device " + std::to_string(asked) + " asked for, but there are " + std::to_string(count) +
+                           " Vulkan device(s)");
+        return asked;
+    }
+    for (int i = 0; i < count; ++i) {
+        VkPhysicalDeviceProperties p;
+        vkGetPhysicalDeviceProperties(devices[std::size_t(i)], &p);
+        if (p.deviceType == VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU) return i;
+    }
+    return 0;
+}
+
+} // namespace
+
+int deviceCount() {
+    if (!loadVulkan(nullptr)) return 0;
+    VkApplicationInfo app{};
+    app.sType = VK_STRUCTURE_TYPE_APPLICATION_INFO;
+    app.apiVersion = VK_API_VERSION_1_2;
+    VkInstanceCreateInfo info{};
+    info.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO;
+    info.pApplicationInfo = &app;
+    VkInstance instance = VK_NULL_HANDLE;
+    if (vkCreateInstance(&info, nullptr, &instance) != VK_SUCCESS) return 0;
+    const int n = int(physicalDevices(instance).size());
+    vkDestroyInstance(instance, nullptr);
+    return n;
+}
+
+Context::Context(const ContextSettings& settings) : impl_(std::make_unique<Impl>()) {
+    Impl& c = *impl_;
+    std::string why;
+    if (!loadVulkan(&why)) fail("Vulkan", why);
+    c.validation = settings.validation || envFlag("OBSCURA_VALIDATION");
+    if (c.validation && !hasLayer(kValidationLayer))
+        fail("Vulkan", "validation asked for but VK_LAYER_KHRONOS_validation is not installed "
+                       "(on Debian: vulkan-validationlayers)");
+
+    VkDebugUtilsMessengerCreateInfoEXT messenger{};
+    messenger.sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT;
+    messenger.messageSeverity =
+        VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+    messenger.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
+                            VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                            VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+    messenger.pfnUserCallback = recordMessage;
+    messenger.pUserData = &c;
+    c.instance = createInstance(c.validation, &messenger);
+    if (c.validation) {
+        auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+            vkGetInstanceProcAddr(c.instance, "vkCreateDebugUtilsMessengerEXT"));
+        c.destroyMessenger = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+            vkGetInstanceProcAddr(c.instance, "vkDestroyDebugUtilsMessengerEXT"));
+        if (!create || !c.destroyMessenger) fail("Vulkan", "the validation layer lacks VK_EXT_debug_utils");
+        check(create(c.instance, &messenger, nullptr, &c.messenger), "", "creating the debug messenger");
+    }
+
+    const std::vector<VkPhysicalDevice> devices = physicalDevices(c.instance);
+    if (devices.empty()) fail("Vulkan", "no Vulkan device (on Debian install mesa-vulkan-drivers for lavapipe)");
+    const int index = chooseDevice(devices, settings.deviceIndex);
+    c.physical = devices[std::size_t(index)];
+    vkGetPhysicalDeviceProperties(c.physical, &c.properties);
+    c.info.name = c.properties.deviceName;
+    c.info.index = index;
+    c.info.discrete = c.properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU;
+    c.info.apiVersion = c.properties.apiVersion;
+    if (c.properties.apiVersion < VK_API_VERSION_1_2)
+        fail("Vulkan device '" + c.info.name + "'",
+             "supports Vulkan " + std::to_string(VK_API_VERSION_MAJOR(c.properties.apiVersion)) + "." +
+                 std::to_string(VK_API_VERSION_MINOR(c.properties.apiVersion)) + ", 1.2 needed");
+
+    // A compute queue; a family with compute and no graphics is the dedicated one, so it is preferred.
+    std::uint32_t n = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(c.physical, &n, nullptr);
+    std::vector<VkQueueFamilyProperties> families(n);
+    vkGetPhysicalDeviceQueueFamilyProperties(c.physical, &n, families.data());
+    int family = -1;
+    for (std::uint32_t i = 0; i < n; ++i) {
+        if (!(families[i].queueFlags & VK_QUEUE_COMPUTE_BIT)) continue;
+        if (family < 0 || !(families[i].queueFlags & VK_QUEUE_GRAPHICS_BIT)) family = int(i);
+        if (!(families[i].queueFlags & VK_QUEUE_GRAPHICS_BIT)) break;
+    }
+    if (family < 0) fail("Vulkan device '" + c.info.name + "'", "has no compute queue");
+    c.queueFamily = std::uint32_t(family);
+
+    const float priority = 1.0f;
+    VkDeviceQueueCreateInfo queue{};
+    queue.sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO;
+    queue.queueFamilyIndex = c.queueFamily;
+    queue.queueCount = 1;
+    queue.pQueuePriorities = &priority;
+    VkDeviceCreateInfo deviceInfo{};
+    deviceInfo.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO;
+    deviceInfo.queueCreateInfoCount = 1;
+    deviceInfo.pQueueCreateInfos = &queue;
+    c.check(vkCreateDevice(c.physical, &deviceInfo, nullptr, &c.device), "creating the device");
+    vkGetDeviceQueue(c.device, c.queueFamily, 0, &c.queue);
+
+    VkCommandPoolCreateInfo pool{};
+    pool.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO;
+    pool.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+    pool.queueFamilyIndex = c.queueFamily;
+    c.check(vkCreateCommandPool(c.device, &pool, nullptr, &c.commandPool), "creating a command pool");
+    VkCommandBufferAllocateInfo cmd{};
+    cmd.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO;
+    cmd.commandPool = c.commandPool;
+    cmd.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    cmd.commandBufferCount = 1;
+    c.check(vkAllocateCommandBuffers(c.device, &cmd, &c.commandBuffer), "allocating a command buffer");
+    VkFenceCreateInfo fence{};
+    fence.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO;
+    c.check(vkCreateFence(c.device, &fence, nullptr, &c.fence), "creating a fence");
+
+    if (families[c.queueFamily].timestampValidBits > 0 && c.properties.limits.timestampPeriod > 0.0f) {
+        VkQueryPoolCreateInfo query{};
+        query.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO;
+        query.queryType = VK_QUERY_TYPE_TIMESTAMP;
+        query.queryCount = 2;
+        c.check(vkCreateQueryPool(c.device, &query, nullptr, &c.timestamps), "creating timestamp queries");
+        c.info.timestampPeriodNs = double(c.properties.limits.timestampPeriod);
+    }
+    c.allocator = std::make_unique<Allocator>(c.physical, c.device, c.info.name);
+}
+
+Context::Impl::~Impl() {
+    if (device != VK_NULL_HANDLE) {
+        vkDeviceWaitIdle(device);  // nothing may be in flight when its objects go
+        pipelines.clear();
+        allocator.reset();
+        if (timestamps != VK_NULL_HANDLE) vkDestroyQueryPool(device, timestamps, nullptr);
+        if (fence != VK_NULL_HANDLE) vkDestroyFence(device, fence, nullptr);
+        if (commandPool != VK_NULL_HANDLE) vkDestroyCommandPool(device, commandPool, nullptr);
+        vkDestroyDevice(device, nullptr);
+    }
+    if (messenger != VK_NULL_HANDLE) destroyMessenger(instance, messenger, nullptr);
+    if (instance != VK_NULL_HANDLE) vkDestroyInstance(instance, nullptr);
+}
+
+void Context::Impl::check(VkResult r, const std::string& doing) const { gpu::check(r, info.name, doing); }
+
+void Context::Impl::submit(const std::function<void(VkCommandBuffer)>& record, bool timed) {
+    const bool timing = timed && timestamps != VK_NULL_HANDLE;
+    for (auto& [name, p] : pipelines) p->beginCommands();
+    VkCommandBufferBeginInfo begin{};
+    begin.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
+    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    check(vkBeginCommandBuffer(commandBuffer, &begin), "recording commands");
+    if (timing) {
+        vkCmdResetQueryPool(commandBuffer, timestamps, 0, 2);
+        vkCmdWriteTimestamp(commandBuffer, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, timestamps, 0);
+    }
+    try {
+        record(commandBuffer);
+    } catch (...) {
+        vkEndCommandBuffer(commandBuffer);  // out of the recording state, so the next submit can begin again
+        throw;
+    }
+    if (timing) vkCmdWriteTimestamp(commandBuffer, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, timestamps, 1);
+    check(vkEndCommandBuffer(commandBuffer), "recording commands");
+    VkSubmitInfo work{};
+    work.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
+    work.commandBufferCount = 1;
+    work.pCommandBuffers = &commandBuffer;
+    check(vkResetFences(device, 1, &fence), "resetting a fence");
+    check(vkQueueSubmit(queue, 1, &work, fence), "submitting commands");
+    check(vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX), "waiting for the GPU");
+    if (timing) {
+        std::uint64_t ticks[2] = {0, 0};
+        check(vkGetQueryPoolResults(device, timestamps, 0, 2, sizeof ticks, ticks, sizeof ticks[0],
+                                    VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
+              "reading timestamps");
+        lastPassMs = double(ticks[1] - ticks[0]) * info.timestampPeriodNs * 1e-6;
+    }
+}
+
+ComputePipeline& Context::Impl::pipeline(const std::string& name, const Spirv& code, int bindings,
+                                         std::uint32_t pushConstantBytes) {
+    std::unique_ptr<ComputePipeline>& p = pipelines[name];
+    if (!p) p = std::make_unique<ComputePipeline>(*this, code, name, bindings, pushConstantBytes);
+    return *p;
+}
+
+void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags srcStage, VkAccessFlags src, VkPipelineStageFlags dstStage,
+                   VkAccessFlags dst) {
+    VkMemoryBarrier b{};
+    b.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
+    b.srcAccessMask = src;
+    b.dstAccessMask = dst;
+    vkCmdPipelineBarrier(cmd, srcStage, dstStage, 0, 1, &b, 0, nullptr, 0, nullptr);
+}
+
+Context::~Context() = default;
+Context::Context(Context&&) noexcept = default;
+Context& Context::operator=(Context&&) noexcept = default;
+
+const DeviceInfo& Context::device() const { return impl_->info; }
+bool Context::validation() const { return impl_->validation; }
+std::vector<std::string> Context::validationMessages() const {
+    std::lock_guard lock(impl_->messagesMutex);
+    return impl_->messages;
+}
+double Context::lastPassMs() const { return impl_->lastPassMs; }
+
+} // namespace obscura::gpu

@@ -1,0 +1,109 @@
+// The state behind obscura::gpu::Context, for the passes in src/gpu.
+#pragma once
+
+#include "gpu/allocator.h"
+#include "gpu/vulkan.h"
+
+#include "obscura/gpu.h"
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+namespace obscura::gpu {
+
+class ComputePipeline;
+struct Spirv;
+
+struct Context::Impl {
+    VkInstance instance = VK_NULL_HANDLE;
+    VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
+    PFN_vkDestroyDebugUtilsMessengerEXT destroyMessenger = nullptr;
+    VkPhysicalDevice physical = VK_NULL_HANDLE;
+    VkDevice device = VK_NULL_HANDLE;
+    std::uint32_t queueFamily = 0;
+    VkQueue queue = VK_NULL_HANDLE;
+    VkCommandPool commandPool = VK_NULL_HANDLE;
+    VkCommandBuffer commandBuffer = VK_NULL_HANDLE;
+    VkFence fence = VK_NULL_HANDLE;
+    VkQueryPool timestamps = VK_NULL_HANDLE;  // null when the queue has no timestamps
+    VkPhysicalDeviceProperties properties{};
+    DeviceInfo info;
+    bool validation = false;
+    std::unique_ptr<Allocator> allocator;
+    double lastPassMs = -1.0;
+
+    // Made once per context: creating a pipeline compiles its shader to the device's machine code.
+    std::map<std::string, std::unique_ptr<ComputePipeline>> pipelines;
+
+    mutable std::mutex messagesMutex;  // the layer may call back from any thread
+    std::vector<std::string> messages;
+
+    Impl() = default;
+    Impl(const Impl&) = delete;
+    Impl& operator=(const Impl&) = delete;
+    ~Impl();
+
+    // Throws obscura::Error naming this device unless r is VK_SUCCESS.
+    void check(VkResult r, const std::string& doing) const;
+    // Records commands with `record` into the context's command buffer, submits them and waits for them.
+    // With `timed`, the commands are bracketed by timestamps and lastPassMs is set from them.
+    void submit(const std::function<void(VkCommandBuffer)>& record, bool timed = false);
+    // The pipeline of shader `name`, made on first use (see ComputePipeline for the checks).
+    ComputePipeline& pipeline(const std::string& name, const Spirv& code, int bindings,
+                              std::uint32_t pushConstantBytes);
+};
+
+// A Vulkan object owned by a device, destroyed with it: move-only.
+template <class T>
+class Unique {
+public:
+    using Destroy = void (*)(VkDevice, T, const VkAllocationCallbacks*);
+    Unique() = default;
+    Unique(VkDevice device, T handle, Destroy destroy) : device_(device), handle_(handle), destroy_(destroy) {}
+    ~Unique() { reset(); }
+    Unique(Unique&& o) noexcept : device_(o.device_), handle_(o.handle_), destroy_(o.destroy_) {
+        o.handle_ = VK_NULL_HANDLE;
+    }
+    Unique& operator=(Unique&& o) noexcept {
+        if (this != &o) {
+            reset();
+            device_ = o.device_;
+            handle_ = o.handle_;
+            destroy_ = o.destroy_;
+            o.handle_ = VK_NULL_HANDLE;
+        }
+        return *this;
+    }
+    Unique(const Unique&) = delete;
+    Unique& operator=(const Unique&) = delete;
+    T get() const { return handle_; }
+    void reset() {
+        if (handle_ != VK_NULL_HANDLE) destroy_(device_, handle_, nullptr);
+        handle_ = VK_NULL_HANDLE;
+    }
+
+private:
+    VkDevice device_ = VK_NULL_HANDLE;
+    T handle_ = VK_NULL_HANDLE;
+    Destroy destroy_ = nullptr;
+};
+
+// A global memory barrier: the `src` accesses of `srcStage` (and commands before it in submission order) are
+// complete and visible to the `dst` accesses of `dstStage` (in commands after it, in any later submission).
+void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags srcStage, VkAccessFlags src, VkPipelineStageFlags dstStage,
+                   VkAccessFlags dst);
+
+// vkCreate<T>(device, &info) wrapped in a Unique; throws obscura::Error saying what was `doing`.
+template <class T, class Info>
+Unique<T> create(Context::Impl& context, VkResult (*createFn)(VkDevice, const Info*, const VkAllocationCallbacks*, T*),
+                 const Info& info, typename Unique<T>::Destroy destroy, const std::string& doing) {
+    T handle = VK_NULL_HANDLE;
+    context.check(createFn(context.device, &info, nullptr, &handle), doing);
+    return Unique<T>(context.device, handle, destroy);
+}
+
+} // namespace obscura::gpu

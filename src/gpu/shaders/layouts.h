@@ -1,0 +1,61 @@
+// The constants and resources of the compute shaders in this folder, shared by each shader and its host
+// side in src/gpu (compiled as both C++ and GLSL, like obscura/alchemy_constants.h). The host also checks
+// the binding count and push-constant size against the compiled shader (gpu::reflect), so a binding added on
+// one side only fails at pipeline creation, not in a wrong image.
+#ifndef OBSCURA_GPU_LAYOUTS_H
+#define OBSCURA_GPU_LAYOUTS_H
+
+#ifdef __cplusplus
+#include <cstddef>
+namespace obscura::gpu {
+#define OBSCURA_CONST inline constexpr
+#else
+#define OBSCURA_CONST const
+#endif
+
+// ---- alchemy.comp (src/gpu/alchemy_pass.cpp) ----
+// Storage buffers of set 0 (float arrays, std430).
+OBSCURA_CONST int kAlchemyBindingDepth = 0;   // width * height linear depths, +inf for sky
+OBSCURA_CONST int kAlchemyBindingNormal = 1;  // width * height * 3 view normals
+OBSCURA_CONST int kAlchemyBindingSpiral = 2;  // SpiralTable::offsets, concatenated (see alchemySpiralAt)
+OBSCURA_CONST int kAlchemyBindingOutput = 3;  // (width - 2 guardBand) * (height - 2 guardBand) obscurance
+OBSCURA_CONST int kAlchemyBindingCount = 4;
+// The push constants are one AlchemyConstants.
+OBSCURA_CONST int kAlchemyPushConstantBytes = 96;
+
+// ---- bilateral_separable.comp (src/gpu/bilateral_pass.cpp) ----
+// One 1-D pass of the separable cross-bilateral blur (src/ssao/bilateral_separable.cpp): a tap t in
+// [-radius, radius] along `axis` weighs 2^(logSpatial[t + radius] - dd^2 depthScale / d^2), dd = d_t - d,
+// times max(0, N . N_t) when useNormal is 1.
+struct BilateralConstants {
+    int width;         // px
+    int height;        // px
+    int radius;        // taps on each side, [1, 32]
+    int axis;          // 0: horizontal (x), 1: vertical (y)
+
+    int useNormal;     // 0 or 1
+    float depthScale;  // log2(e) / (2 depthSigma^2)
+    int pad0;
+    int pad1;
+};
+
+// Storage buffers of set 0 (float arrays, std430).
+OBSCURA_CONST int kBilateralBindingDepth = 0;       // width * height linear depths, +inf for sky
+OBSCURA_CONST int kBilateralBindingNormal = 1;      // width * height * 3 view normals
+OBSCURA_CONST int kBilateralBindingLogSpatial = 2;  // 2 radius + 1 log2 spatial weights, tap t at [t + radius]
+OBSCURA_CONST int kBilateralBindingInput = 3;       // width * height AO, the pass's input
+OBSCURA_CONST int kBilateralBindingOutput = 4;      // width * height AO, the pass's output
+OBSCURA_CONST int kBilateralBindingCount = 5;
+OBSCURA_CONST int kBilateralPushConstantBytes = 32;
+OBSCURA_CONST int kBilateralWorkgroupX = 8;
+OBSCURA_CONST int kBilateralWorkgroupY = 8;
+
+#ifdef __cplusplus
+static_assert(sizeof(BilateralConstants) == kBilateralPushConstantBytes &&
+                  offsetof(BilateralConstants, useNormal) == 16 && offsetof(BilateralConstants, depthScale) == 20,
+              "BilateralConstants keeps its std430 layout");
+} // namespace obscura::gpu
+#endif
+#undef OBSCURA_CONST
+
+#endif

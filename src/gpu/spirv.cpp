@@ -1,0 +1,119 @@
+// Minimal SPIR-V reflection (SPIR-V 1.5 specification, section 2.3 "Physical Layout" and 3 "Binary Form"):
+// enough to count a compute shader's descriptor bindings and size its push-constant block, as niagara's
+// shaders.cpp does, so a pass cannot bind a layout its shader does not declare.
+#include "gpu/spirv.h"
+
+#include "obscura/error.h"
+
+#include <algorithm>
+#include <functional>
+#include <map>
+#include <set>
+#include <vector>
+
+namespace obscura::gpu {
+
+namespace {
+
+enum : std::uint32_t {
+    kMagic = 0x07230203,
+    OpExecutionMode = 16,
+    OpTypeInt = 21,
+    OpTypeFloat = 22,
+    OpTypeVector = 23,
+    OpTypeArray = 28,
+    OpTypeStruct = 30,
+    OpTypePointer = 32,
+    OpConstant = 43,
+    OpVariable = 59,
+    OpDecorate = 71,
+    OpMemberDecorate = 72,
+    ExecutionModeLocalSize = 17,
+    DecorationArrayStride = 6,
+    DecorationBinding = 33,
+    DecorationOffset = 35,
+    StorageClassPushConstant = 9,
+};
+
+[[noreturn]] void malformed(const std::string& why) { fail("SPIR-V", why); }
+
+} // namespace
+
+SpirvLayout reflect(const Spirv& code) {
+    if (code.count < 5 || code.words[0] != kMagic) malformed("not a SPIR-V module");
+    SpirvLayout layout;
+    std::map<std::uint32_t, std::vector<std::uint32_t>> types;  // id -> opcode followed by operands
+    std::map<std::uint32_t, std::uint32_t> constants, strides;
+    std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> memberOffsets;
+    std::set<std::uint32_t> bound;
+    std::uint32_t pushType = 0;
+    for (std::size_t i = 5; i < code.count;) {
+        const std::uint32_t words = code.words[i] >> 16, op = code.words[i] & 0xffffu;
+        if (words == 0 || i + words > code.count) malformed("truncated instruction");
+        const std::uint32_t* a = code.words + i + 1;  // operands
+        switch (op) {
+        case OpExecutionMode:
+            if (words >= 6 && a[1] == ExecutionModeLocalSize) std::copy(a + 2, a + 5, layout.localSize);
+            break;
+        case OpTypeInt:
+        case OpTypeFloat:
+        case OpTypeVector:
+        case OpTypeArray:
+        case OpTypeStruct:
+        case OpTypePointer: {
+            std::vector<std::uint32_t>& t = types[a[0]];
+            t.push_back(op);
+            t.insert(t.end(), a + 1, a + words - 1);
+            break;
+        }
+        case OpConstant:
+            if (words >= 4) constants[a[1]] = a[2];
+            break;
+        case OpVariable:
+            if (words >= 4 && a[2] == StorageClassPushConstant) pushType = a[0];
+            break;
+        case OpDecorate:
+            if (words >= 4 && a[1] == DecorationBinding) bound.insert(a[0]);
+            if (words >= 4 && a[1] == DecorationArrayStride) strides[a[0]] = a[2];
+            break;
+        case OpMemberDecorate:
+            if (words >= 5 && a[2] == DecorationOffset) memberOffsets[{a[0], a[1]}] = a[3];
+            break;
+        default: break;
+        }
+        i += words;
+    }
+    layout.bindings = int(bound.size());
+    std::function<std::uint32_t(std::uint32_t)> sizeOf = [&](std::uint32_t id) -> std::uint32_t {
+        const auto it = types.find(id);
+        if (it == types.end() || it->second.empty()) malformed("push constant of unknown type");
+        const std::vector<std::uint32_t>& t = it->second;
+        switch (t[0]) {
+        case OpTypeInt:
+        case OpTypeFloat: return t[1] / 8;
+        case OpTypeVector: return t[2] * sizeOf(t[1]);
+        case OpTypeArray:
+            if (!strides.count(id) || !constants.count(t[2])) malformed("push-constant array without a stride");
+            return strides[id] * constants[t[2]];
+        case OpTypeStruct: {
+            std::uint32_t end = 0;
+            for (std::uint32_t m = 0; m + 1 < t.size(); ++m) {
+                const auto offset = memberOffsets.find({id, m});
+                if (offset == memberOffsets.end()) malformed("push-constant member without an offset");
+                end = std::max(end, offset->second + sizeOf(t[m + 1]));
+            }
+            return end;
+        }
+        default: malformed("push constant of a type that has no size here");
+        }
+    };
+    if (pushType) {
+        const auto it = types.find(pushType);
+        if (it == types.end() || it->second.size() < 3 || it->second[0] != OpTypePointer)
+            malformed("push-constant variable is not a pointer");
+        layout.pushConstantBytes = sizeOf(it->second[2]);
+    }
+    return layout;
+}
+
+} // namespace obscura::gpu

@@ -1,0 +1,31 @@
+// SPIR-V of the compute shaders (src/gpu/shaders/*.comp), compiled by glslc at build time and embedded as
+// word arrays (cmake/embed_spirv.cmake writes one source per shader), and the little reflection the host
+// needs to check that what it binds is what a shader declares.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+namespace obscura::gpu {
+
+struct Spirv {
+    const std::uint32_t* words;
+    std::size_t count;
+};
+
+namespace shaders {
+extern const Spirv alchemy;              // alchemy.comp
+extern const Spirv bilateral_separable;  // bilateral_separable.comp
+} // namespace shaders
+
+// What a compute shader declares: its resources and workgroup size.
+struct SpirvLayout {
+    int bindings = 0;                    // descriptor bindings (all in set 0 here)
+    std::uint32_t pushConstantBytes = 0; // size of the push-constant block, 0 if none
+    std::uint32_t localSize[3] = {0, 0, 0};
+};
+// Reads the layout from the module's decorations and types. Throws obscura::Error for a malformed module or
+// a type it cannot size (only scalars, vectors, arrays with strides and structs occur in push constants).
+SpirvLayout reflect(const Spirv& code);
+
+} // namespace obscura::gpu

@@ -1,0 +1,166 @@
+// The Alchemy compute pass (src/gpu/shaders/alchemy.comp) against the CPU reference ssao::alchemyPixel, on
+// lavapipe in CI, with validation on and no message allowed.
+#include "gpu_test_util.h"
+
+#include "obscura/alchemy.h"
+#include "obscura/error.h"
+#include "obscura/gpu.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace obscura::gpu {
+namespace {
+
+ssao::AlchemySettings chapter() {
+    ssao::AlchemySettings s;
+    s.formulation = ssao::AlchemyFormulation::Chapter;
+    return s;
+}
+
+// The chapter's "scene" preset (scale 2, contrast 3: the pow path) at r = 0.5 m, so that the corners of
+// these small views darken (at the preset's 5 cm, 0 to 2% of their pixels are occluded).
+ssao::AlchemySettings contrastCurve() {
+    ssao::AlchemySettings s = ssao::alchemyPreset("scene");
+    s.radius = 0.5f;
+    return s;
+}
+
+// ssao::alchemyPixel for every output pixel: the scalar reference the shader mirrors.
+Image reference(const GBuffer& g, const ssao::AlchemySettings& s) {
+    const ssao::AlchemyConstants k = ssao::alchemyConstants(s, g.camera);
+    const ssao::AlchemyInput in = ssao::alchemyInput(g, s.normalsFromDepth);
+    const ssao::SpiralTable spiral = ssao::alchemySpiral(k);
+    Image out(k.width - 2 * k.guardBand, k.height - 2 * k.guardBand, 1);
+    for (int y = 0; y < out.height; ++y)
+        for (int x = 0; x < out.width; ++x)
+            out.at(x, y) = ssao::alchemyPixel(k, in, spiral, x + k.guardBand, y + k.guardBand);
+    return out;
+}
+
+struct Difference {
+    double max = 0;      // over all pixels
+    double maxRest = 0;  // over the pixels within the bound
+    int beyond = 0;      // pixels beyond the bound
+    int occluded = 0;    // reference pixels below 1: the comparison is not vacuous
+};
+
+Difference compare(const Image& gpu, const Image& cpu, double bound) {
+    Difference d;
+    for (std::size_t i = 0; i < cpu.pixels.size(); ++i) {
+        const double diff = std::fabs(double(gpu.pixels[i]) - double(cpu.pixels[i]));
+        d.max = std::max(d.max, diff);
+        if (diff > bound) ++d.beyond;
+        else d.maxRest = std::max(d.maxRest, diff);
+        d.occluded += cpu.pixels[i] < 1.0f;
+    }
+    return d;
+}
+
+} // namespace
+
+// The acceptance test of the pass: three built-in scenes at three sizes (333 x 197 is odd in both axes and
+// not a multiple of the 8 x 8 workgroup), both formulations and a contrast curve. The shader performs
+// alchemyPixel's operations in its order; a GPU may still round differently (fused multiply-adds, a division
+// within 2.5 ulp, pow), and a sample whose |v| lies within that rounding of r then falls on the other side of
+// the radius and moves its pixel by one term. Bound: 2e-3 on every pixel but at most 0.1% of them. On
+// lavapipe (llvmpipe) the measured difference is 0 except through pow (contrast != 1): max 4.2e-7, no pixel
+// beyond 2e-3 (2026-11-23, LLVM 15.0.6); there every pixel is held to 1e-6, which catches any change to the
+// kernel's arithmetic.
+TEST(GpuAlchemy, MatchesTheCpuReference) {
+    OBSCURA_GPU_CONTEXT(context);
+    struct Case {
+        const char* scene;
+        int w, h;
+    };
+    for (const Case& c : {Case{"demo", 333, 197}, Case{"corner", 160, 96}, Case{"cabinet", 256, 144}}) {
+        const GBuffer g = testing::render(c.scene, c.w, c.h);
+        const bool lavapipe = context.device().name.rfind("llvmpipe", 0) == 0;
+        for (const auto& [name, s] : {std::pair{"paper", ssao::AlchemySettings{}}, std::pair{"chapter", chapter()},
+                                      std::pair{"contrast 3", contrastCurve()}}) {
+            const Image gpu = alchemyAO(context, g, s);
+            const Image cpu = reference(g, s);
+            ASSERT_EQ(gpu.width, cpu.width);
+            ASSERT_EQ(gpu.height, cpu.height);
+            const Difference d = compare(gpu, cpu, 2e-3);
+            std::printf("[ measured ] %s %dx%d %s: max %.3g (%d px beyond 2e-3, max %.3g on the rest), %d occluded, "
+                        "%.3f ms on the GPU\n",
+                        c.scene, c.w, c.h, name, d.max, d.beyond, d.maxRest, d.occluded, context.lastPassMs());
+            EXPECT_LE(d.beyond, c.w * c.h / 1000) << c.scene << " " << name;
+            EXPECT_LE(d.maxRest, 2e-3) << c.scene << " " << name;
+            EXPECT_GT(d.occluded, c.w * c.h / 20) << c.scene << " " << name;
+            if (lavapipe) {
+                EXPECT_LE(d.max, 1e-6) << c.scene << " " << name;
+            }
+            if (context.device().timestampPeriodNs > 0) {
+                EXPECT_GT(context.lastPassMs(), 0.0);
+            }
+        }
+    }
+    EXPECT_EQ(testing::validationReport(context), "");
+}
+
+// The settings that change what the shader does besides the formulation: the level of detail (per-pixel
+// sample counts read from the concatenated spiral table), a guard band (cropped output), normals rebuilt
+// from depth (on the CPU), more samples and another seed. Same bounds as above.
+TEST(GpuAlchemy, MatchesTheCpuReferenceWithEverySetting) {
+    OBSCURA_GPU_CONTEXT(context);
+    const GBuffer g = testing::render("stairs", 181, 123);
+    ssao::AlchemySettings lod;
+    lod.lodRadiusPixels = 40.0f;
+    ssao::AlchemySettings band = chapter();
+    band.guardBand = 9;
+    ssao::AlchemySettings rebuilt;
+    rebuilt.normalsFromDepth = true;
+    ssao::AlchemySettings many = chapter();
+    many.samples = 64;
+    many.contrast = 2.0f;
+    many.seed = 7;
+    for (const auto& [name, s] : {std::pair{"lod", lod}, std::pair{"guard band", band},
+                                  std::pair{"normals from depth", rebuilt}, std::pair{"64 samples", many}}) {
+        const Image gpu = alchemyAO(context, g, s);
+        const Image cpu = reference(g, s);
+        ASSERT_EQ(gpu.width, cpu.width);
+        ASSERT_EQ(gpu.height, cpu.height);
+        const Difference d = compare(gpu, cpu, 2e-3);
+        std::printf("[ measured ] stairs 181x123 %s: max %.3g (%d px beyond 2e-3)\n", name, d.max, d.beyond);
+        EXPECT_LE(d.beyond, gpu.width * gpu.height / 1000) << name;
+        EXPECT_LE(d.maxRest, 2e-3) << name;
+        if (context.device().name.rfind("llvmpipe", 0) == 0) {
+            EXPECT_LE(d.max, 1e-6) << name;
+        }
+    }
+    EXPECT_EQ(testing::validationReport(context), "");
+}
+
+// The same validation and messages as ssao::alchemyAO.
+TEST(GpuAlchemy, RejectsBadInputAsTheCpuPassDoes) {
+    OBSCURA_GPU_CONTEXT(context);
+    const GBuffer g = testing::render("plane", 16, 16);
+    ssao::AlchemySettings radius;
+    radius.radius = -1;
+    ssao::AlchemySettings band;
+    band.guardBand = 8;
+    GBuffer nan = g;
+    nan.depth.at(3, 4) = NAN;
+    GBuffer small = g;
+    small.normal = Image(8, 8, 3);
+    ssao::AlchemySettings rebuilt;
+    rebuilt.normalsFromDepth = true;
+    for (const auto& [buffer, s] : {std::pair{g, radius}, std::pair{g, band}, std::pair{nan, ssao::AlchemySettings{}},
+                                    std::pair{small, ssao::AlchemySettings{}}, std::pair{nan, rebuilt}}) {
+        const std::string cpu = testing::errorMessage([&] { ssao::alchemyAO(buffer, s); });
+        EXPECT_NE(cpu, "no error");
+        EXPECT_EQ(testing::errorMessage([&] { alchemyAO(context, buffer, s); }), cpu);
+    }
+    // With normals rebuilt from depth the G-buffer needs none.
+    GBuffer depthOnly = g;
+    depthOnly.normal = Image();
+    EXPECT_EQ(alchemyAO(context, depthOnly, rebuilt).pixels, ssao::alchemyAO(depthOnly, rebuilt).pixels);
+    EXPECT_EQ(testing::validationReport(context), "");
+}
+
+} // namespace obscura::gpu

@@ -1,0 +1,91 @@
+// The separable cross-bilateral blur as a compute pass (src/gpu/shaders/bilateral_separable.comp) against
+// ssao::bilateralFilter's separable mode, on lavapipe in CI, with validation on and no message allowed.
+#include "gpu_test_util.h"
+
+#include "obscura/alchemy.h"
+#include "obscura/bilateral.h"
+#include "obscura/error.h"
+#include "obscura/gpu.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace obscura::gpu {
+
+// The CPU filter weighs taps with a degree-3 polynomial exp2 (relative error 7.5e-5) and fused multiply-adds
+// where the CPU has them; the shader uses the GPU's exp2 and skips the taps outside the image that the CPU
+// reads as sky padding weighing 2^-125. Each output is a weighted mean of AO values in [0, 1]; weights off by
+// a relative e move it by at most 2e, so 1.5e-4 bounds the polynomial's share. Measured on lavapipe
+// (2026-11-23, LLVM 15.0.6): max 2.2e-5 over these cases. Bound 2e-4 (the issue asks for 2e-3), on the raw AO
+// of the estimator at the default blur, with the normal weight on, and at radius 1 and 32.
+TEST(GpuBilateral, SeparableMatchesTheCpuFilter) {
+    OBSCURA_GPU_CONTEXT(context);
+    struct Case {
+        const char* scene;
+        int w, h;
+    };
+    ssao::BilateralSettings paper;
+    ssao::BilateralSettings normals;
+    normals.normalWeight = ssao::NormalWeight::On;
+    ssao::BilateralSettings narrow;
+    narrow.radius = 1;
+    narrow.depthSigma = 0.01f;
+    ssao::BilateralSettings wide;
+    wide.radius = 32;
+    wide.normalWeight = ssao::NormalWeight::On;
+    for (const Case& c : {Case{"demo", 333, 197}, Case{"corner", 160, 96}, Case{"cabinet", 256, 144}}) {
+        const GBuffer g = testing::render(c.scene, c.w, c.h);
+        ssao::AlchemySettings estimator;
+        estimator.samples = 8;  // a noisy input, so the blur has something to do
+        const Image raw = ssao::alchemyAO(g, estimator);
+        for (const auto& [name, s] : {std::pair{"radius 6", paper}, std::pair{"radius 6 normals", normals},
+                                      std::pair{"radius 1 sigma 0.01", narrow}, std::pair{"radius 32 normals", wide}}) {
+            const Image gpu = bilateralFilter(context, raw, g, s);
+            const Image cpu = ssao::bilateralFilter(raw, g, s);
+            ASSERT_EQ(gpu.pixels.size(), cpu.pixels.size());
+            double worst = 0;
+            int changed = 0;
+            for (std::size_t i = 0; i < cpu.pixels.size(); ++i) {
+                worst = std::max(worst, std::fabs(double(gpu.pixels[i]) - double(cpu.pixels[i])));
+                changed += cpu.pixels[i] != raw.pixels[i];
+            }
+            std::printf("[ measured ] %s %dx%d %s: max %.3g, %.3f ms on the GPU\n", c.scene, c.w, c.h, name, worst,
+                        context.lastPassMs());
+            EXPECT_LE(worst, 2e-4) << c.scene << " " << name;
+            EXPECT_GT(changed, c.w * c.h / 20) << c.scene << " " << name;  // the blur did something
+            for (std::size_t i = 0; i < cpu.pixels.size(); ++i) {
+                if (!(g.depth.pixels[i] < 1e30f)) {
+                    ASSERT_EQ(gpu.pixels[i], raw.pixels[i]) << "sky keeps its input";
+                }
+            }
+        }
+    }
+    EXPECT_EQ(testing::validationReport(context), "");
+}
+
+// The same checks and messages as ssao::bilateralFilter; no blur is a copy; the 2-D filter has no GPU pass.
+TEST(GpuBilateral, RejectsBadInputAsTheCpuFilterDoes) {
+    OBSCURA_GPU_CONTEXT(context);
+    const GBuffer g = testing::render("corner", 24, 16);
+    const Image ao(24, 16, 1, 0.5f);
+    ssao::BilateralSettings radius;
+    radius.radius = 33;
+    const Image small(8, 8, 1);
+    for (const auto& [image, s] : {std::pair{ao, radius}, std::pair{small, ssao::BilateralSettings{}}}) {
+        const std::string cpu = testing::errorMessage([&] { ssao::bilateralFilter(image, g, s); });
+        EXPECT_NE(cpu, "no error");
+        EXPECT_EQ(testing::errorMessage([&] { bilateralFilter(context, image, g, s); }), cpu);
+    }
+    ssao::BilateralSettings none;
+    none.mode = ssao::BlurMode::None;
+    EXPECT_EQ(bilateralFilter(context, ao, g, none).pixels, ao.pixels);
+    ssao::BilateralSettings twoD;
+    twoD.mode = ssao::BlurMode::TwoD;
+    EXPECT_THROW(bilateralFilter(context, ao, g, twoD), Error);
+    EXPECT_EQ(testing::validationReport(context), "");
+}
+
+} // namespace obscura::gpu

@@ -1,0 +1,133 @@
+// The Vulkan context and its resources: device choice and its errors, the block suballocator's free list,
+// the SPIR-V reflection the passes check their layouts with, staged upload and download.
+#include "gpu_test_util.h"
+
+#include "gpu/allocator.h"
+#include "gpu/buffer.h"
+#include "gpu/spirv.h"
+#include "gpu/shaders/layouts.h"
+
+#include "obscura/alchemy_constants.h"
+#include "obscura/error.h"
+#include "obscura/gpu.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <numeric>
+#include <vector>
+
+namespace obscura::gpu {
+namespace {
+
+// The free list alone: first fit with alignment, the alignment gap kept free, and neighbours merged on
+// release in any order, so a block emptied in any order is one free range again.
+TEST(GpuAllocator, FirstFitAlignsAndMerges) {
+    RangeAllocator r(1024);
+    EXPECT_EQ(r.allocate(100, 1), 0u);
+    EXPECT_EQ(r.allocate(100, 256), 256u);  // [100, 256) stays free
+    EXPECT_EQ(r.allocate(50, 4), 100u);     // first fit: into the gap
+    EXPECT_EQ(r.freeBytes(), 1024u - 250u);
+    EXPECT_FALSE(r.allocate(1024, 1).has_value());
+    EXPECT_EQ(r.allocate(668, 1), 356u);  // exactly the tail
+    EXPECT_EQ(r.freeRanges(), 1u);        // [150, 256)
+    r.release(100, 50);
+    r.release(356, 668);
+    r.release(0, 100);
+    EXPECT_EQ(r.freeRanges(), 2u);  // [0, 256) and [356, 1024) around the block at 256
+    r.release(256, 100);
+    EXPECT_TRUE(r.empty());
+    EXPECT_EQ(r.allocate(1024, 1024), 0u);
+}
+
+// The embedded shaders declare what src/gpu/shaders/layouts.h says they do.
+TEST(GpuShaders, ReflectionReadsTheLayouts) {
+    const SpirvLayout l = reflect(shaders::alchemy);
+    EXPECT_EQ(l.bindings, kAlchemyBindingCount);
+    EXPECT_EQ(l.pushConstantBytes, std::uint32_t(kAlchemyPushConstantBytes));
+    EXPECT_EQ(l.localSize[0], std::uint32_t(ssao::kAlchemyWorkgroupX));
+    EXPECT_EQ(l.localSize[1], std::uint32_t(ssao::kAlchemyWorkgroupY));
+    EXPECT_EQ(l.localSize[2], 1u);
+    const SpirvLayout b = reflect(shaders::bilateral_separable);
+    EXPECT_EQ(b.bindings, kBilateralBindingCount);
+    EXPECT_EQ(b.pushConstantBytes, std::uint32_t(kBilateralPushConstantBytes));
+    const std::uint32_t junk[6] = {1, 2, 3, 4, 5, 6};
+    EXPECT_THROW(reflect(Spirv{junk, 6}), Error);
+}
+
+TEST(GpuContext, DeviceInfo) {
+    OBSCURA_GPU_CONTEXT(context);
+    EXPECT_FALSE(context.device().name.empty());
+    EXPECT_GE(context.device().apiVersion, std::uint32_t(VK_API_VERSION_1_2));
+    EXPECT_TRUE(context.validation());
+    std::printf("[ measured ] device %d: %s, timestamp period %g ns\n", context.device().index,
+                context.device().name.c_str(), context.device().timestampPeriodNs);
+}
+
+// The messenger records what the layer reports (so the tests' "no message" checks mean something): a
+// buffer of size 0 breaks VUID-VkBufferCreateInfo-size-00912. A context of its own, so the shared one stays
+// clean.
+TEST(GpuContext, ValidationRecordsMessages) {
+    if (deviceCount() == 0) GTEST_SKIP() << "no Vulkan device (install mesa-vulkan-drivers for lavapipe)";
+    ContextSettings settings;
+    settings.validation = true;
+    Context context(settings);
+    EXPECT_EQ(testing::validationReport(context), "");
+    Context::Impl& c = context.impl();
+    VkBufferCreateInfo info{};
+    info.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO;
+    info.size = 0;
+    info.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+    VkBuffer buffer = VK_NULL_HANDLE;
+    if (vkCreateBuffer(c.device, &info, nullptr, &buffer) == VK_SUCCESS) vkDestroyBuffer(c.device, buffer, nullptr);
+    const std::string report = testing::validationReport(context);
+    EXPECT_NE(report.find("VUID-VkBufferCreateInfo-size-00912"), std::string::npos) << report;
+}
+
+// A device index beyond the devices there are is an error naming the setting, from the settings and from
+// the environment alike.
+TEST(GpuContext, RejectsAMissingDevice) {
+    if (deviceCount() == 0) GTEST_SKIP() << "no Vulkan device (install mesa-vulkan-drivers for lavapipe)";
+    ContextSettings settings;
+    settings.deviceIndex = deviceCount();
+    try {
+        Context c(settings);
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("deviceIndex"), std::string::npos) << e.what();
+    }
+    const char* old = std::getenv("OBSCURA_GPU_DEVICE");
+    const std::string saved = old ? old : "";
+    setenv("OBSCURA_GPU_DEVICE", "x", 1);
+    EXPECT_THROW(Context{}, Error);
+    setenv("OBSCURA_GPU_DEVICE", "0", 1);
+    EXPECT_EQ(Context{}.device().index, 0);
+    if (old) setenv("OBSCURA_GPU_DEVICE", saved.c_str(), 1);
+    else unsetenv("OBSCURA_GPU_DEVICE");
+}
+
+// Upload and download through staging buffers, in sizes that straddle the allocator's 64 MiB block (a
+// larger buffer gets a block of its own, released with it), and suballocated buffers share blocks.
+TEST(GpuContext, UploadAndDownloadRoundTrip) {
+    OBSCURA_GPU_CONTEXT(context);
+    Context::Impl& c = context.impl();
+    for (std::size_t count : {std::size_t(1), std::size_t(1000), std::size_t(17) << 20}) {
+        std::vector<float> data(count);
+        std::iota(data.begin(), data.end(), 0.5f);
+        const Buffer b = upload(c, data.data(), count * sizeof(float));
+        std::vector<float> back(count, -1.0f);
+        download(c, b, back.data(), count * sizeof(float));
+        EXPECT_EQ(back, data) << count;
+    }
+    const std::size_t blocks = c.allocator->blockCount();
+    {
+        std::vector<Buffer> many;
+        for (int i = 0; i < 50; ++i) many.emplace_back(c, 4096 + 256 * i, MemoryUse::Device);
+        EXPECT_LE(c.allocator->blockCount(), blocks + 1);
+    }
+    EXPECT_LE(c.allocator->blockCount(), blocks + 1);
+    EXPECT_EQ(testing::validationReport(context), "");
+}
+
+} // namespace
+} // namespace obscura::gpu
