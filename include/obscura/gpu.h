@@ -21,6 +21,7 @@
 #include "obscura/alchemy.h"
 #include "obscura/bilateral.h"
 #include "obscura/gbuffer.h"
+#include "obscura/gtao.h"
 #include "obscura/image.h"
 
 #include <cstdint>
@@ -82,5 +83,13 @@ Image alchemyAO(Context& context, const GBuffer& gbuffer, const ssao::AlchemySet
 // BlurMode::TwoD has no GPU pass yet and throws obscura::Error.
 Image bilateralFilter(Context& context, const Image& ao, const GBuffer& gbuffer,
                       const ssao::BilateralSettings& settings);
+
+// ssao::computeGtao on the GPU (src/gpu/shaders/gtao.comp mirrors ssao::gtaoPixel): the same constants or
+// settings, validation, errors and output (visibility, sky 1; view-space bent normals, sky 0). Every option
+// of the constants is supported; the result differs from the CPU's by the GPU's sin, cos, acos, atan and
+// pow (tests/gpu bound it).
+ssao::GtaoResult computeGtao(Context& context, const GBuffer& gbuffer, const ssao::GtaoConstants& constants);
+// Validates the settings, then computeGtao(context, gbuffer, ssao::gtaoConstants(settings, gbuffer.camera)).
+ssao::GtaoResult computeGtao(Context& context, const GBuffer& gbuffer, const ssao::GtaoSettings& settings);
 
 } // namespace obscura::gpu

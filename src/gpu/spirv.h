@@ -16,6 +16,7 @@ struct Spirv {
 namespace shaders {
 extern const Spirv alchemy;              // alchemy.comp
 extern const Spirv bilateral_separable;  // bilateral_separable.comp
+extern const Spirv gtao;                 // gtao.comp
 } // namespace shaders
 
 // What a compute shader declares: its resources and workgroup size.

@@ -53,6 +53,14 @@ std::string errorMessage(Run&& run) {
     return "no error";
 }
 
+// Expects `cpu` to throw obscura::Error and `gpu` to throw one with the same message.
+template <class Cpu, class Gpu>
+void expectSameError(Cpu&& cpu, Gpu&& gpu) {
+    const std::string expected = errorMessage(cpu);
+    EXPECT_NE(expected, "no error");
+    EXPECT_EQ(errorMessage(gpu), expected);
+}
+
 } // namespace obscura::gpu::testing
 
 // Skips the test when there is no Vulkan device; `context` is then the validated shared context.

@@ -50,6 +50,19 @@ OBSCURA_CONST int kBilateralPushConstantBytes = 32;
 OBSCURA_CONST int kBilateralWorkgroupX = 8;
 OBSCURA_CONST int kBilateralWorkgroupY = 8;
 
+// ---- gtao.comp (src/gpu/gtao_pass.cpp) ----
+// Storage buffers of set 0 (float arrays, std430).
+OBSCURA_CONST int kGtaoBindingDepth = 0;       // width * height linear depths, +inf for sky
+OBSCURA_CONST int kGtaoBindingNormal = 1;      // width * height * 3 view normals
+OBSCURA_CONST int kGtaoBindingVisibility = 2;  // width * height visibility, the pass's output
+OBSCURA_CONST int kGtaoBindingBentNormal = 3;  // width * height * 3 bent normals, the pass's output
+OBSCURA_CONST int kGtaoBindingCount = 4;
+// The push constants are one GtaoConstants (obscura/gtao_constants.h).
+OBSCURA_CONST int kGtaoPushConstantBytes = 96;
+OBSCURA_CONST int kGtaoWorkgroupX = 8;
+OBSCURA_CONST int kGtaoWorkgroupY = 8;
+OBSCURA_CONST int kGtaoRotations = 6;  // ssao::kGtaoRotations, which GLSL cannot include
+
 #ifdef __cplusplus
 static_assert(sizeof(BilateralConstants) == kBilateralPushConstantBytes &&
                   offsetof(BilateralConstants, useNormal) == 16 && offsetof(BilateralConstants, depthScale) == 20,

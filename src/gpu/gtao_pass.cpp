@@ -1,0 +1,64 @@
+// Ground-Truth Ambient Occlusion as a compute pass (src/gpu/shaders/gtao.comp): Jimenez, Wu, Pesce and
+// Jarabo 2016, "Practical Realtime Strategies for Accurate Indirect Occlusion", §4 and App. A. The host
+// side of ssao::computeGtao: the same checks and messages, the same constants (ssao::gtaoConstants) as
+// push constants, so CPU and GPU differ only in the kernel. Contract in include/obscura/gpu.h.
+#include "gpu/buffer.h"
+#include "gpu/compute_pipeline.h"
+#include "gpu/context.h"
+#include "gpu/spirv.h"
+#include "shaders/layouts.h"
+
+#include "obscura/error.h"
+#include "obscura/gpu.h"
+
+#include <string>
+
+namespace obscura::gpu {
+
+static_assert(sizeof(ssao::GtaoConstants) == kGtaoPushConstantBytes,
+              "the push constants of gtao.comp are one GtaoConstants");
+static_assert(ssao::kGtaoRotations == kGtaoRotations, "gtao.comp rotates the interleave as the CPU kernel does");
+
+ssao::GtaoResult computeGtao(Context& context, const GBuffer& g, const ssao::GtaoConstants& k) {
+    // ssao::computeGtao's check and message; the shader checks nothing.
+    if (g.width() != k.width || g.height() != k.height || g.depth.width != k.width || g.depth.height != k.height ||
+        g.normal.width != k.width || g.normal.height != k.height || g.normal.channels != 3)
+        fail("gtao", "G-buffer is " + std::to_string(g.depth.width) + "x" + std::to_string(g.depth.height) +
+                         " but the constants are for " + std::to_string(k.width) + "x" + std::to_string(k.height) +
+                         " (or its normal image is not 3 channels)");
+
+    ssao::GtaoResult r;
+    r.visibility = Image(k.width, k.height, 1, 1.0f);
+    r.bentNormal = Image(k.width, k.height, 3, 0.0f);
+    const std::size_t pixels = std::size_t(k.width) * std::size_t(k.height);
+    if (pixels == 0) return r;  // no buffer of 0 bytes
+
+    Context::Impl& c = context.impl();
+    ComputePipeline& pipeline = c.pipeline("gtao", shaders::gtao, kGtaoBindingCount, kGtaoPushConstantBytes);
+    // The dispatch below divides the image into workgroups of the size the shared header gives the shader.
+    if (pipeline.layout().localSize[0] != std::uint32_t(kGtaoWorkgroupX) ||
+        pipeline.layout().localSize[1] != std::uint32_t(kGtaoWorkgroupY))
+        fail("shader gtao", "workgroup size differs from kGtaoWorkgroupX x kGtaoWorkgroupY");
+    const Buffer depth = upload(c, g.depth.pixels.data(), pixels * sizeof(float));
+    const Buffer normal = upload(c, g.normal.pixels.data(), 3 * pixels * sizeof(float));
+    const Buffer visibility(c, pixels * sizeof(float), MemoryUse::Device);
+    const Buffer bent(c, 3 * pixels * sizeof(float), MemoryUse::Device);
+    c.submit(
+        [&](VkCommandBuffer cmd) {
+            // In binding order: kGtaoBindingDepth, Normal, Visibility, BentNormal.
+            pipeline.dispatch(cmd, {&depth, &normal, &visibility, &bent}, &k, sizeof k,
+                              std::uint32_t((k.width + kGtaoWorkgroupX - 1) / kGtaoWorkgroupX),
+                              std::uint32_t((k.height + kGtaoWorkgroupY - 1) / kGtaoWorkgroupY));
+        },
+        true);
+    download(c, visibility, r.visibility.pixels.data(), pixels * sizeof(float));
+    download(c, bent, r.bentNormal.pixels.data(), 3 * pixels * sizeof(float));
+    return r;
+}
+
+ssao::GtaoResult computeGtao(Context& context, const GBuffer& gbuffer, const ssao::GtaoSettings& settings) {
+    settings.validate();
+    return computeGtao(context, gbuffer, ssao::gtaoConstants(settings, gbuffer.camera));
+}
+
+} // namespace obscura::gpu

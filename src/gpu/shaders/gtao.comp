@@ -1,0 +1,277 @@
+// Ground-Truth Ambient Occlusion as a compute pass: Jimenez, Wu, Pesce and Jarabo 2016, "Practical Realtime
+// Strategies for Accurate Indirect Occlusion", §4 (eq. 5-9) and App. A (eq. 22-23); the visibility bitmask
+// follows Therrien et al. 2023, "Screen Space Indirect Lighting with Visibility Bitmask". One invocation
+// per pixel.
+//
+// gtaoPixel below is src/ssao/gtao.cpp's gtaoPixel line for line, with the same names and helpers (and
+// hash32, hashCombine, toUnitFloat and interleaveIndex of obscura/sampling.h and gtao.cpp, in the same
+// integer arithmetic); read them side by side. The differences are GLSL's: Vec3 is vec3, but dot, length,
+// normalize and cross are written out as the C++ ones compute them (a GPU's built-ins may fuse or use an
+// inverse square root); mix is `lerp`, since GLSL's mix rounds differently; the G-buffer planes are the
+// buffers `depthPlane` and `normalPlane` (C++: g.depth, g.normal), the result `out` is `result` (a GLSL
+// keyword); std::lround is roundHalfUp (its arguments are >= 0); std::atan2(0, 0) is
+// atan2's 0. The constants are the push constants `k`, filled by ssao::gtaoConstants().
+// What remains is the GPU's sin, cos, acos, atan and pow, which round differently from libm: tests/gpu
+// measure the difference.
+#version 460
+#extension GL_GOOGLE_include_directive : require
+
+#include "obscura/gtao_constants.h"
+#include "layouts.h"
+
+layout(local_size_x = kGtaoWorkgroupX, local_size_y = kGtaoWorkgroupY, local_size_z = 1) in;
+
+layout(push_constant, std430) uniform Constants { GtaoConstants k; };
+layout(std430, binding = kGtaoBindingDepth) readonly buffer DepthPlane { float depthPlane[]; };
+layout(std430, binding = kGtaoBindingNormal) readonly buffer NormalPlane { float normalPlane[]; };
+layout(std430, binding = kGtaoBindingVisibility) writeonly buffer Visibility { float visibilityOut[]; };
+layout(std430, binding = kGtaoBindingBentNormal) writeonly buffer BentNormal { float bentNormalOut[]; };
+
+const float kPi = 3.14159265358979323846;
+const float kHalfPi = 0.5 * kPi;
+
+// ---- obscura/sampling.h ----
+uint hash32(uint x) {
+    x ^= x >> 16;
+    x *= 0x7feb352du;
+    x ^= x >> 15;
+    x *= 0x846ca68bu;
+    x ^= x >> 16;
+    return x;
+}
+uint hashCombine(uint seed, uint value) { return hash32(seed ^ (value + 0x9e3779b9u + (seed << 6) + (seed >> 2))); }
+float toUnitFloat(uint x) { return float(x >> 8) * (1.0 / 16777216.0); }
+
+// ---- obscura/math.h ----
+float dot3(vec3 a, vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+vec3 cross3(vec3 a, vec3 b) { return vec3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x); }
+float length3(vec3 a) { return sqrt(dot3(a, a)); }
+vec3 normalize3(vec3 a) {
+    const float l = length3(a);
+    return l > 0.0 ? a / l : vec3(0.0);
+}
+
+// ---- src/ssao/gtao.cpp ----
+float saturate(float v) { return clamp(v, 0.0, 1.0); }
+float lerp(float a, float b, float t) { return a + (b - a) * t; }
+float signOf(float v) { return v < 0.0 ? -1.0 : 1.0; }
+// std::lround for v >= 0: halves away from zero; v - float(r) is exact for v < 2^23.
+int roundHalfUp(float v) {
+    const int r = int(v);
+    return v - float(r) >= 0.5 ? r + 1 : r;
+}
+// std::atan2, whose (0, 0) GLSL leaves undefined.
+float atan2(float y, float x) { return x == 0.0 && y == 0.0 ? 0.0 : atan(y, x); }
+
+float arcIntegral(float t, float n) { return signOf(t) * (0.5 * t * sin(n) - 0.25 * cos(2.0 * t - n) + 0.25 * cos(n)); }
+float uniformArcIntegral(float t) { return signOf(t) * (1.0 - cos(t)); }
+
+void bentIntegrals(float t, float n, out float alongV, out float alongT) {
+    const float cn = cos(n), sn = sin(n), c = cos(t), s = sin(t);
+    const float a = cn * (-c * c * c / 3.0) + sn * (s * s * s / 3.0) + cn / 3.0;
+    const float b = cn * (s * s * s / 3.0) + sn * (-c + c * c * c / 3.0) + sn * (2.0 / 3.0);
+    alongV = signOf(t) * a;
+    alongT = signOf(t) * b;
+}
+
+vec3 viewPosition(float px, float py, float depth) {
+    return vec3((px * k.viewFromPixelMulX + k.viewFromPixelAddX) * depth,
+                (py * k.viewFromPixelMulY + k.viewFromPixelAddY) * depth, -depth);
+}
+
+float depthAt(int x, int y) { return depthPlane[uint(y) * uint(k.width) + uint(x)]; }
+
+bool samplePosition(float sx, float sy, int cx, int cy, out vec3 result) {
+    result = vec3(0.0);
+    const int ix = int(sx), iy = int(sy);
+    if (ix == cx && iy == cy) return false;
+    const float nearest = depthAt(ix, iy);
+    if (!(nearest < 1e30)) return false;
+    const float gx = sx - 0.5, gy = sy - 0.5;
+    if (k.width > 1 && k.height > 1) {
+        const int bx = int(floor(gx)), by = int(floor(gy));
+        const int ox = bx == ix ? ix - 1 : ix, oy = by == iy ? iy - 1 : iy;
+        const ivec2 quads[4] = ivec2[4](ivec2(bx, by), ivec2(ox, by), ivec2(bx, oy), ivec2(ox, oy));
+        for (int q = 0; q < 4; ++q) {
+            const int x0 = clamp(quads[q].x, 0, k.width - 2);
+            const int y0 = clamp(quads[q].y, 0, k.height - 2);
+            if (ix < x0 || ix > x0 + 1 || iy < y0 || iy > y0 + 1) continue;
+            const float w00 = 1.0 / depthAt(x0, y0), w10 = 1.0 / depthAt(x0 + 1, y0);
+            const float w01 = 1.0 / depthAt(x0, y0 + 1), w11 = 1.0 / depthAt(x0 + 1, y0 + 1);
+            if (!(w00 > 0.0 && w10 > 0.0 && w01 > 0.0 && w11 > 0.0)) continue;
+            const float crossTerm = abs(w00 + w11 - w10 - w01);
+            if (crossTerm > 1e-4 * max(max(w00, w10), max(w01, w11))) continue;
+            const float fx = gx - float(x0), fy = gy - float(y0);
+            const float w = (w00 * (1.0 - fx) + w10 * fx) * (1.0 - fy) + (w01 * (1.0 - fx) + w11 * fx) * fy;
+            if (!(w > 0.0)) continue;
+            result = viewPosition(sx, sy, 1.0 / w);
+            return true;
+        }
+    }
+    result = viewPosition(float(ix) + 0.5, float(iy) + 0.5, nearest);
+    return true;
+}
+
+struct ArcWeights {
+    float visibility;
+    float alongV, alongT;
+};
+ArcWeights arc(float t0, float t1, float n) {
+    ArcWeights w;
+    if (k.weighting == GTAO_WEIGHTING_UNIFORM)
+        w.visibility = 0.5 * (uniformArcIntegral(t1) - uniformArcIntegral(t0));
+    else
+        w.visibility = arcIntegral(t1, n) - arcIntegral(t0, n);
+    float v0, v1, s0, s1;
+    bentIntegrals(t0, n, v0, s0);
+    bentIntegrals(t1, n, v1, s1);
+    w.alongV = v1 - v0;
+    w.alongT = s1 - s0;
+    return w;
+}
+
+const int kBayer[16] = int[16](0, 8, 2, 10, 12, 4, 14, 6, 3, 11, 1, 9, 15, 7, 13, 5);
+int interleaveIndex(int x, int y) { return kBayer[(y & 3) * 4 + (x & 3)]; }
+
+struct GtaoPixel {
+    float visibility;
+    vec3 bentNormal;
+};
+
+GtaoPixel gtaoPixel(int x, int y, int interleave) {
+    GtaoPixel result = GtaoPixel(1.0, vec3(0.0));
+    const uint c = uint(y) * uint(k.width) + uint(x);
+    const float depth = depthPlane[c];
+    if (!(depth < 1e30)) return result;
+    const vec3 p = viewPosition(float(x) + 0.5, float(y) + 0.5, depth);
+    const vec3 v = normalize3(-p);
+    const vec3 normal = vec3(normalPlane[3 * c], normalPlane[3 * c + 1], normalPlane[3 * c + 2]);
+    result.bentNormal = normal;
+
+    const float screenRadius = min(k.radius * k.focalPixels / depth, k.maxRadiusPixels);
+    if (screenRadius < k.minStepPixels) return result;
+
+    float sliceJitter = 0.5, stepJitter = 0.5;
+    if (k.interleaved != 0) {
+        const int rotation = ((k.frameIndex % kGtaoRotations) + kGtaoRotations) % kGtaoRotations;
+        sliceJitter = (float(interleave) + (float(rotation) + 0.5) / float(kGtaoRotations)) / 16.0;
+        stepJitter = fract(0.5 + 0.6180340 * float(interleave) + 0.3819660 * float(rotation));
+    } else if (k.noiseMode != 0) {
+        const uint h = hashCombine(hashCombine(uint(x), uint(y)), uint(k.frameIndex));
+        sliceJitter = toUnitFloat(h);
+        stepJitter = toUnitFloat(hash32(h));
+    }
+
+    float visibility = 0.0, unoccluded = 0.0;
+    vec3 bent = vec3(0.0);
+    const float minS = k.minStepPixels / screenRadius;
+    for (int slice = 0; slice < k.sliceCount; ++slice) {
+        const float phi = (float(slice) + sliceJitter) / float(k.sliceCount) * kPi;
+        const float cosPhi = cos(phi), sinPhi = sin(phi);
+        const vec3 direction = vec3(cosPhi, sinPhi, 0.0);
+        const vec3 t = normalize3(direction - v * dot3(direction, v));
+        const vec3 axis = cross3(t, v);
+        const vec3 projectedNormal = normal - axis * dot3(normal, axis);
+        const float projectedLength = length3(projectedNormal);
+        if (!(projectedLength > 1e-6)) continue;
+        const float cosN = saturate(dot3(projectedNormal, v) / projectedLength);
+        const float n = signOf(dot3(projectedNormal, t)) * acos(cosN);
+
+        const float lowCos0 = cos(n + kHalfPi), lowCos1 = cos(n - kHalfPi);
+        float horizonCos0 = lowCos0, horizonCos1 = lowCos1;
+        uint occluded = 0u;
+
+        for (int step = 0; step < k.stepsPerSide; ++step) {
+            float s = (float(step) + stepJitter) / float(k.stepsPerSide);
+            // std::pow(s, 1) is s exactly; the GPU's pow (exp2 of log2) is not.
+            s = (k.stepPower == 1.0 ? s : pow(s, k.stepPower)) + minS;
+            const float offset = s * screenRadius;
+            for (int side = 0; side < 2; ++side) {
+                const float sign = side == 0 ? 1.0 : -1.0;
+                const float sx = float(x) + 0.5 + sign * offset * cosPhi;
+                const float sy = float(y) + 0.5 - sign * offset * sinPhi;
+                if (!(sx >= 0.0 && sy >= 0.0 && sx < float(k.width) && sy < float(k.height))) continue;
+                vec3 sp;
+                if (!samplePosition(sx, sy, x, y, sp)) continue;
+                const vec3 delta = sp - p;
+                const float distance = length3(delta);
+                if (!(distance > 0.0)) continue;
+                const float weight = saturate((k.radius - distance) * k.falloffInvRange);
+
+                if (k.thicknessMode == GTAO_THICKNESS_BITMASK) {
+                    if (weight <= 0.0) continue;
+                    const vec3 back = sp + normalize3(sp) * k.bitmaskThickness - p;
+                    const float tFront = atan2(dot3(delta, t), dot3(delta, v));
+                    const float tBack = atan2(dot3(back, t), dot3(back, v));
+                    const float a = (min(tFront, tBack) - (n - kHalfPi)) / kPi;
+                    const float b = (max(tFront, tBack) - (n - kHalfPi)) / kPi;
+                    if (abs(tFront - tBack) > kPi) continue;
+                    const int first = roundHalfUp(saturate(a) * GTAO_BITMASK_SECTORS);
+                    const int last = roundHalfUp(saturate(b) * GTAO_BITMASK_SECTORS);
+                    for (int i = first; i < last; ++i) occluded |= 1u << i;
+                    continue;
+                }
+                const float lowCos = side == 0 ? lowCos0 : lowCos1;
+                float sampleCos = lerp(lowCos, dot3(delta, v) / distance, weight);
+                if (k.beyondRadius == GTAO_BEYOND_COLUMN && distance > k.falloffFrom) {
+                    const vec3 u = normalize3(sp);
+                    const float du = dot3(delta, u);
+                    const float disc = du * du - (distance - k.falloffFrom) * (distance + k.falloffFrom);
+                    if (du < 0.0 && disc >= 0.0) {
+                        const vec3 entry = delta + u * (-du - sqrt(disc));
+                        const float entryLength = length3(entry);
+                        if (entryLength > 0.0) sampleCos = max(sampleCos, dot3(entry, v) / entryLength);
+                    }
+                }
+                float horizonCos = side == 0 ? horizonCos0 : horizonCos1;
+                if (sampleCos >= horizonCos)
+                    horizonCos = sampleCos;
+                else
+                    horizonCos = lerp(horizonCos, sampleCos, k.thicknessBlend);
+                if (side == 0) horizonCos0 = horizonCos;
+                else horizonCos1 = horizonCos;
+            }
+        }
+
+        float sliceVisibility = 0.0, alongV = 0.0, alongT = 0.0;
+        if (k.thicknessMode == GTAO_THICKNESS_BITMASK) {
+            for (int i = 0; i < GTAO_BITMASK_SECTORS; ++i) {
+                if ((occluded & (1u << i)) != 0u) continue;
+                const float t0 = n - kHalfPi + kPi * float(i) / GTAO_BITMASK_SECTORS;
+                const ArcWeights w = arc(t0, t0 + kPi / GTAO_BITMASK_SECTORS, n);
+                sliceVisibility += w.visibility;
+                alongV += w.alongV;
+                alongT += w.alongT;
+            }
+        } else {
+            float h0 = -acos(clamp(horizonCos1, -1.0, 1.0));
+            float h1 = acos(clamp(horizonCos0, -1.0, 1.0));
+            h0 = h0 - n < -kHalfPi + 2e-3 ? n - kHalfPi : min(h0, n + kHalfPi);
+            h1 = h1 - n > kHalfPi - 2e-3 ? n + kHalfPi : max(h1, n - kHalfPi);
+            const ArcWeights w = arc(h0, h1, n);
+            sliceVisibility = w.visibility;
+            alongV = w.alongV;
+            alongT = w.alongT;
+        }
+        const float normalScale = k.weighting == GTAO_WEIGHTING_UNIFORM ? 1.0 : projectedLength;
+        visibility += normalScale * sliceVisibility;
+        const ArcWeights open = arc(n - kHalfPi, n + kHalfPi, n);
+        unoccluded += normalScale * open.visibility;
+        bent += (v * (alongV - open.alongV) + t * (alongT - open.alongT)) * projectedLength;
+    }
+    if (unoccluded > 0.0) result.visibility = saturate(visibility / unoccluded);
+    const vec3 b = normalize3(bent / float(k.sliceCount) + normal * (2.0 / 3.0));
+    if (dot3(b, b) > 0.0) result.bentNormal = b;
+    return result;
+}
+
+void main() {
+    const ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (p.x >= k.width || p.y >= k.height) return;
+    const GtaoPixel px = gtaoPixel(p.x, p.y, interleaveIndex(p.x, p.y));
+    const uint i = uint(p.y) * uint(k.width) + uint(p.x);
+    visibilityOut[i] = px.visibility;
+    bentNormalOut[3 * i] = px.bentNormal.x;
+    bentNormalOut[3 * i + 1] = px.bentNormal.y;
+    bentNormalOut[3 * i + 2] = px.bentNormal.z;
+}
