@@ -8,6 +8,7 @@
 #include "obscura/ao_methods.h"
 #include "obscura/camera_io.h"
 #include "obscura/error.h"
+#include "obscura/gpu.h"
 #include "obscura/image_io.h"
 #include "obscura/parallel.h"
 
@@ -26,6 +27,8 @@ struct AoOptions {
     std::string depth, normal, camera, output;
     std::string method = "alchemy";
     int threads = 0;
+    bool gpu = false;
+    int gpuDevice = -1;
     AlchemyFlags alchemy;
     BlurFlags blur;
 };
@@ -71,6 +74,11 @@ void run(const AoOptions& o) {
     if (o.method == "alchemy-chapter") alchemy.formulation = ssao::AlchemyFormulation::Chapter;
     if (!o.method.starts_with("alchemy") && o.normal.empty())
         fail("--normal", "method " + o.method + " needs a normal buffer");
+    if (o.gpu && !o.method.starts_with("alchemy"))
+        fail("--gpu", "method " + o.method + " has no GPU path in this command yet (alchemy, alchemy-chapter)");
+    if (o.gpu && blur.mode == ssao::BlurMode::TwoD)
+        fail("--gpu", "the 2-D blur has no GPU pass yet (use --blur separable or none)");
+    if (o.gpuDevice < -1) fail("--gpu-device", "must be a device index >= 0 (or -1: the default device)");
     ThreadLimit limit(o.threads);
 
     GBuffer g;
@@ -96,11 +104,26 @@ void run(const AoOptions& o) {
     }
 
     Image ao;
+    std::string device = "CPU";
     if (o.method.starts_with("alchemy")) {
-        Image raw = ssao::alchemyAO(g, alchemy);
         const int band = alchemy.guardBand;
         const GBuffer cropped = ssao::cropGuardBand(g, ssao::guardBandCamera(g.camera, -band), band);
-        ao = ssao::bilateralFilter(raw, cropped, blur);
+        if (o.gpu) {
+            const int devices = gpu::deviceCount();
+            if (devices == 0) fail("--gpu", "no Vulkan device (install a driver, or mesa-vulkan-drivers for lavapipe)");
+            if (o.gpuDevice >= devices)
+                fail("--gpu-device", std::to_string(o.gpuDevice) + " asked for, but there are " + std::to_string(devices) +
+                                         " Vulkan device(s)");
+            gpu::ContextSettings cs;
+            cs.deviceIndex = o.gpuDevice;
+            gpu::Context context(cs);
+            device = context.device().name;
+            ao = gpu::bilateralFilter(context, gpu::alchemyAO(context, g, alchemy), cropped, blur);
+            for (const std::string& m : context.validationMessages())
+                std::fprintf(stderr, "obscura: warning: Vulkan validation: %s\n", m.c_str());
+        } else {
+            ao = ssao::bilateralFilter(ssao::alchemyAO(g, alchemy), cropped, blur);
+        }
     } else {
         eval::MethodOptions mo;
         mo.blur = blur;
@@ -108,8 +131,8 @@ void run(const AoOptions& o) {
     }
     ao.channelNames = {"Y"};
     writeExr(o.output, ao);
-    std::printf("wrote %s: %dx%d %s AO, %.2f s\n", o.output.c_str(), ao.width, ao.height, o.method.c_str(),
-                secondsSince(start));
+    std::printf("wrote %s: %dx%d %s AO on %s, %.2f s\n", o.output.c_str(), ao.width, ao.height, o.method.c_str(),
+                device.c_str(), secondsSince(start));
 }
 
 } // namespace
@@ -127,6 +150,12 @@ void addAoCommand(CLI::App& app) {
     cmd->add_option("-o,--output", o->output, "Output AO EXR (1 channel Y, 1 = unoccluded)")->required();
     cmd->add_option("--method", o->method, "AO method: alchemy or alchemy-chapter")->capture_default_str();
     cmd->add_option("--threads", o->threads, "Worker threads (0 = all cores)")->capture_default_str();
+    cmd->add_flag("--gpu", o->gpu,
+                  "Run the Alchemy estimator and the blur (none or separable) as Vulkan compute passes; "
+                  "OBSCURA_VALIDATION=1 turns on the validation layers");
+    cmd->add_option("--gpu-device", o->gpuDevice,
+                    "Vulkan device index with --gpu (-1: OBSCURA_GPU_DEVICE, else the first discrete GPU)")
+        ->capture_default_str();
     o->alchemy.add(*cmd, true);
     o->blur.add(*cmd);
     cmd->callback([o] { run(*o); });
