@@ -121,6 +121,11 @@ bool alchemyRow(const AlchemyConstants& k, const AlchemyInput& in, const SpiralT
 bool alchemyRowPortable(const AlchemyConstants& k, const AlchemyInput& in, const SpiralTable& spiral, int y, int x0,
                         int x1, float* out);
 
+// Checks every pixel the estimator reads: depth and, unless settings.normalsFromDepth, normals (which may
+// then be absent); throws obscura::Error naming the first bad pixel. alchemyAO checks as it goes instead
+// where it can; the GPU pass calls this.
+void validateAlchemyGBuffer(const GBuffer& gbuffer, const AlchemySettings& settings);
+
 // Raw obscurance A in [0,1] for every pixel, guard band cropped: a 1-channel image of
 // (width - 2 guardBand) x (height - 2 guardBand). Sky pixels are 1. Validates the G-buffer (size, NaN
 // depths, normals) and settings; throws obscura::Error naming the problem. Deterministic: the same bits

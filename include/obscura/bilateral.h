@@ -77,6 +77,10 @@ Image bilateralPass(const Image& ao, const GBuffer& gbuffer, const BilateralSett
 // The square (2 radius + 1)^2 filter of the chapter.
 Image bilateral2D(const Image& ao, const GBuffer& gbuffer, const BilateralSettings& settings);
 
+// Validates settings and that `ao` is 1 channel of the G-buffer's size with depth and normal present;
+// throws obscura::Error otherwise. What every filter here (and its GPU pass) checks first.
+void checkBilateralInputs(const Image& ao, const GBuffer& gbuffer, const BilateralSettings& settings);
+
 // Filters by settings.mode (None returns a copy). Validates settings and that `ao` is 1 channel of the
 // G-buffer's size with depth and normal present; throws obscura::Error otherwise. Deterministic: the same
 // bits for any number of threads.

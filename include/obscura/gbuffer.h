@@ -38,4 +38,11 @@ struct GBuffer {
     bool pixelsValid(int x0, int x1, int y0, int y1) const;
 };
 
+// One pixel's test of pixelsValid, for kernels that check the pixels they load: depth > 0 (+inf for sky;
+// false for NaN, zero, negative) and a finite normal n[0..2]. Branch-free: x - x is 0 for finite x, NaN
+// otherwise.
+inline bool pixelValid(float depth, const float* n) {
+    return (depth > 0.0f) & ((n[0] - n[0]) == 0.0f) & ((n[1] - n[1]) == 0.0f) & ((n[2] - n[2]) == 0.0f);
+}
+
 } // namespace obscura

@@ -35,6 +35,7 @@ struct ContextSettings {
     // Physical device index in the loader's order: [0, deviceCount()); -1 = OBSCURA_GPU_DEVICE, else the
     // first discrete GPU, else device 0.
     int deviceIndex = -1;
+    std::string deviceIndexName = "ContextSettings::deviceIndex";  // how errors name it (a CLI: its flag)
     bool validation = false;  // also on when the environment has OBSCURA_VALIDATION=1
 };
 

@@ -82,6 +82,10 @@ struct GtaoResult {
     Image bentNormal;  // 3 channels, view-space unit vectors; sky (0, 0, 0)
 };
 
+// Throws obscura::Error if the G-buffer does not match the constants' size (or its normals are not 3
+// channels): computeGtao's check, and its GPU pass's.
+void checkGtaoBuffers(const GBuffer& gbuffer, const GtaoConstants& constants);
+
 // Every pixel. Throws obscura::Error if the G-buffer does not match the constants' size.
 GtaoResult computeGtao(const GBuffer& gbuffer, const GtaoConstants& constants);
 // Validates the settings, then computeGtao(gbuffer, gtaoConstants(settings, gbuffer.camera)).

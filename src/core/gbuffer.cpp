@@ -36,11 +36,7 @@ bool GBuffer::pixelsValid(int x0, int x1, int y0, int y1) const {
     bool bad = false;
     for (int y = y0; y < y1; ++y) {
         const std::size_t row = std::size_t(y) * std::size_t(camera.width);
-        for (std::size_t i = row + std::size_t(x0); i < row + std::size_t(x1); ++i) {
-            // !(depth > 0) is NaN, zero or negative (-inf included); x - x is nonzero (NaN) for inf and NaN.
-            const float nx = n[3 * i], ny = n[3 * i + 1], nz = n[3 * i + 2];
-            bad |= !(dp[i] > 0.0f) | ((nx - nx) != 0.0f) | ((ny - ny) != 0.0f) | ((nz - nz) != 0.0f);
-        }
+        for (std::size_t i = row + std::size_t(x0); i < row + std::size_t(x1); ++i) bad |= !pixelValid(dp[i], &n[3 * i]);
     }
     return !bad;
 }

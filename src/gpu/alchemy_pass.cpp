@@ -15,29 +15,14 @@
 
 namespace obscura::gpu {
 
-namespace {
-
-// The depth plane with zero normals, for validating a G-buffer whose normals are rebuilt from depth.
-GBuffer withPlaceholderNormals(const GBuffer& g) {
-    GBuffer depthOnly;
-    depthOnly.camera = g.camera;
-    depthOnly.depth = g.depth;
-    depthOnly.normal = Image(g.width(), g.height(), 3);
-    return depthOnly;
-}
-
-} // namespace
-
 static_assert(sizeof(ssao::AlchemyConstants) == kAlchemyPushConstantBytes,
               "the push constants of alchemy.comp are one AlchemyConstants");
 
 Image alchemyAO(Context& context, const GBuffer& g, const ssao::AlchemySettings& s) {
     const ssao::AlchemyConstants k = ssao::alchemyConstants(s, g.camera);
     // ssao::alchemyAO's checks and messages (the shader checks nothing, and a NaN depth would reach a
-    // float-to-int conversion). Normals rebuilt from depth replace the G-buffer's, which may then be absent.
-    const std::string what = "alchemy G-buffer";
-    if (s.normalsFromDepth) withPlaceholderNormals(g).validate(what);
-    else g.validate(what);
+    // float-to-int conversion).
+    ssao::validateAlchemyGBuffer(g, s);
     const ssao::AlchemyInput in = ssao::alchemyInput(g, s.normalsFromDepth);
     const ssao::SpiralTable spiral = ssao::alchemySpiral(k);
     // SpiralTable::offsets concatenated; the shader finds (count, class) by alchemySpiralAt.
@@ -45,12 +30,8 @@ Image alchemyAO(Context& context, const GBuffer& g, const ssao::AlchemySettings&
     for (const std::vector<float>& o : spiral.offsets) offsets.insert(offsets.end(), o.begin(), o.end());
 
     Context::Impl& c = context.impl();
-    ComputePipeline& pipeline =
-        c.pipeline("alchemy", shaders::alchemy, kAlchemyBindingCount, kAlchemyPushConstantBytes);
-    // The dispatch below divides the image into workgroups of the size the shared header gives the shader.
-    if (pipeline.layout().localSize[0] != std::uint32_t(ssao::kAlchemyWorkgroupX) ||
-        pipeline.layout().localSize[1] != std::uint32_t(ssao::kAlchemyWorkgroupY))
-        fail("shader alchemy", "workgroup size differs from kAlchemyWorkgroupX x kAlchemyWorkgroupY");
+    ComputePipeline& pipeline = c.pipeline("alchemy", shaders::alchemy, kAlchemyBindingCount, kAlchemyPushConstantBytes,
+                                           ssao::kAlchemyWorkgroupX, ssao::kAlchemyWorkgroupY);
     const std::size_t pixels = std::size_t(k.width) * std::size_t(k.height);
     const Buffer depth = upload(c, in.depth, pixels * sizeof(float));
     const Buffer normal = upload(c, in.normal, 3 * pixels * sizeof(float));
@@ -61,9 +42,7 @@ Image alchemyAO(Context& context, const GBuffer& g, const ssao::AlchemySettings&
     c.submit(
         [&](VkCommandBuffer cmd) {
             // In binding order: kAlchemyBindingDepth, Normal, Spiral, Output.
-            pipeline.dispatch(cmd, {&depth, &normal, &table, &ao}, &k, sizeof k,
-                              std::uint32_t((w + ssao::kAlchemyWorkgroupX - 1) / ssao::kAlchemyWorkgroupX),
-                              std::uint32_t((h + ssao::kAlchemyWorkgroupY - 1) / ssao::kAlchemyWorkgroupY));
+            pipeline.dispatchGrid(cmd, {&depth, &normal, &table, &ao}, &k, sizeof k, w, h);
         },
         true);
     download(c, ao, out.pixels.data(), out.pixels.size() * sizeof(float));

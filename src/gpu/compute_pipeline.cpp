@@ -9,9 +9,15 @@
 namespace obscura::gpu {
 
 ComputePipeline::ComputePipeline(Context::Impl& context, const Spirv& code, const std::string& name, int bindings,
-                                 std::uint32_t pushConstantBytes)
+                                 std::uint32_t pushConstantBytes, int workgroupX, int workgroupY)
     : context_(context), name_(name), layout_(reflect(code)) {
     const std::string what = "shader " + name;
+    // dispatchGrid divides the image by the size the shared header gives the shader.
+    if (layout_.localSize[0] != std::uint32_t(workgroupX) || layout_.localSize[1] != std::uint32_t(workgroupY) ||
+        layout_.localSize[2] != 1)
+        fail(what, "has workgroups of " + std::to_string(layout_.localSize[0]) + "x" +
+                       std::to_string(layout_.localSize[1]) + "x" + std::to_string(layout_.localSize[2]) +
+                       ", the host dispatches " + std::to_string(workgroupX) + "x" + std::to_string(workgroupY));
     if (layout_.bindings != bindings || layout_.pushConstantBytes != pushConstantBytes)
         fail(what, "declares " + std::to_string(layout_.bindings) + " bindings and " +
                        std::to_string(layout_.pushConstantBytes) + " bytes of push constants, the host binds " +
@@ -111,6 +117,12 @@ void ComputePipeline::dispatch(VkCommandBuffer cmd, std::initializer_list<const 
     if (pushBytes > 0)
         vkCmdPushConstants(cmd, pipelineLayout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, pushBytes, pushConstants);
     vkCmdDispatch(cmd, groupsX, groupsY, 1);
+}
+
+void ComputePipeline::dispatchGrid(VkCommandBuffer cmd, std::initializer_list<const Buffer*> buffers,
+                                   const void* pushConstants, std::uint32_t pushBytes, int width, int height) {
+    dispatch(cmd, buffers, pushConstants, pushBytes, (std::uint32_t(width) + layout_.localSize[0] - 1) / layout_.localSize[0],
+             (std::uint32_t(height) + layout_.localSize[1] - 1) / layout_.localSize[1]);
 }
 
 } // namespace obscura::gpu

@@ -87,9 +87,9 @@ VkInstance createInstance(bool validation, const VkDebugUtilsMessengerCreateInfo
     return instance;
 }
 
-int chooseDevice(const std::vector<VkPhysicalDevice>& devices, int asked) {
+int chooseDevice(const std::vector<VkPhysicalDevice>& devices, int asked, const std::string& askedName) {
     const int count = int(devices.size());
-    std::string from = "ContextSettings::deviceIndex";
+    std::string from = askedName;
     if (asked < 0)
         if (const char* env = std::getenv("OBSCURA_GPU_DEVICE"); env && *env) {
             char* end = nullptr;
@@ -159,7 +159,7 @@ Context::Context(const ContextSettings& settings) : impl_(std::make_unique<Impl>
 
     const std::vector<VkPhysicalDevice> devices = physicalDevices(c.instance);
     if (devices.empty()) fail("Vulkan", "no Vulkan device (on Debian install mesa-vulkan-drivers for lavapipe)");
-    const int index = chooseDevice(devices, settings.deviceIndex);
+    const int index = chooseDevice(devices, settings.deviceIndex, settings.deviceIndexName);
     c.physical = devices[std::size_t(index)];
     vkGetPhysicalDeviceProperties(c.physical, &c.properties);
     c.info.name = c.properties.deviceName;
@@ -276,9 +276,9 @@ void Context::Impl::submit(const std::function<void(VkCommandBuffer)>& record, b
 }
 
 ComputePipeline& Context::Impl::pipeline(const std::string& name, const Spirv& code, int bindings,
-                                         std::uint32_t pushConstantBytes) {
+                                         std::uint32_t pushConstantBytes, int workgroupX, int workgroupY) {
     std::unique_ptr<ComputePipeline>& p = pipelines[name];
-    if (!p) p = std::make_unique<ComputePipeline>(*this, code, name, bindings, pushConstantBytes);
+    if (!p) p = std::make_unique<ComputePipeline>(*this, code, name, bindings, pushConstantBytes, workgroupX, workgroupY);
     return *p;
 }
 

@@ -54,7 +54,7 @@ struct Context::Impl {
     void submit(const std::function<void(VkCommandBuffer)>& record, bool timed = false);
     // The pipeline of shader `name`, made on first use (see ComputePipeline for the checks).
     ComputePipeline& pipeline(const std::string& name, const Spirv& code, int bindings,
-                              std::uint32_t pushConstantBytes);
+                              std::uint32_t pushConstantBytes, int workgroupX, int workgroupY);
 };
 
 // A Vulkan object owned by a device, destroyed with it: move-only.

@@ -20,12 +20,7 @@ static_assert(sizeof(ssao::GtaoConstants) == kGtaoPushConstantBytes,
 static_assert(ssao::kGtaoRotations == kGtaoRotations, "gtao.comp rotates the interleave as the CPU kernel does");
 
 ssao::GtaoResult computeGtao(Context& context, const GBuffer& g, const ssao::GtaoConstants& k) {
-    // ssao::computeGtao's check and message; the shader checks nothing.
-    if (g.width() != k.width || g.height() != k.height || g.depth.width != k.width || g.depth.height != k.height ||
-        g.normal.width != k.width || g.normal.height != k.height || g.normal.channels != 3)
-        fail("gtao", "G-buffer is " + std::to_string(g.depth.width) + "x" + std::to_string(g.depth.height) +
-                         " but the constants are for " + std::to_string(k.width) + "x" + std::to_string(k.height) +
-                         " (or its normal image is not 3 channels)");
+    ssao::checkGtaoBuffers(g, k);  // ssao::computeGtao's check and message; the shader checks nothing
 
     ssao::GtaoResult r;
     r.visibility = Image(k.width, k.height, 1, 1.0f);
@@ -34,11 +29,8 @@ ssao::GtaoResult computeGtao(Context& context, const GBuffer& g, const ssao::Gta
     if (pixels == 0) return r;  // no buffer of 0 bytes
 
     Context::Impl& c = context.impl();
-    ComputePipeline& pipeline = c.pipeline("gtao", shaders::gtao, kGtaoBindingCount, kGtaoPushConstantBytes);
-    // The dispatch below divides the image into workgroups of the size the shared header gives the shader.
-    if (pipeline.layout().localSize[0] != std::uint32_t(kGtaoWorkgroupX) ||
-        pipeline.layout().localSize[1] != std::uint32_t(kGtaoWorkgroupY))
-        fail("shader gtao", "workgroup size differs from kGtaoWorkgroupX x kGtaoWorkgroupY");
+    ComputePipeline& pipeline = c.pipeline("gtao", shaders::gtao, kGtaoBindingCount, kGtaoPushConstantBytes,
+                                           kGtaoWorkgroupX, kGtaoWorkgroupY);
     const Buffer depth = upload(c, g.depth.pixels.data(), pixels * sizeof(float));
     const Buffer normal = upload(c, g.normal.pixels.data(), 3 * pixels * sizeof(float));
     const Buffer visibility(c, pixels * sizeof(float), MemoryUse::Device);
@@ -46,9 +38,7 @@ ssao::GtaoResult computeGtao(Context& context, const GBuffer& g, const ssao::Gta
     c.submit(
         [&](VkCommandBuffer cmd) {
             // In binding order: kGtaoBindingDepth, Normal, Visibility, BentNormal.
-            pipeline.dispatch(cmd, {&depth, &normal, &visibility, &bent}, &k, sizeof k,
-                              std::uint32_t((k.width + kGtaoWorkgroupX - 1) / kGtaoWorkgroupX),
-                              std::uint32_t((k.height + kGtaoWorkgroupY - 1) / kGtaoWorkgroupY));
+            pipeline.dispatchGrid(cmd, {&depth, &normal, &visibility, &bent}, &k, sizeof k, k.width, k.height);
         },
         true);
     download(c, visibility, r.visibility.pixels.data(), pixels * sizeof(float));

@@ -275,9 +275,7 @@ bool alchemyRowPortable(const AlchemyConstants& k, const AlchemyInput& in, const
     for (int j = 0; j < n; ++j) {
         const std::size_t c = rowStart + std::size_t(x0 + j);
         const float d = in.depth[c];
-        // GBuffer::pixelsValid's test: x - x is nonzero (NaN) for inf and NaN.
-        bad |= !(d > 0.0f) | ((in.normal[3 * c] - in.normal[3 * c]) != 0.0f) |
-               ((in.normal[3 * c + 1] - in.normal[3 * c + 1]) != 0.0f) | ((in.normal[3 * c + 2] - in.normal[3 * c + 2]) != 0.0f);
+        bad |= !pixelValid(d, &in.normal[3 * c]);
         fx[j] = float(x0 + j) + 0.5f;
         cx[j] = (fx[j] * k.viewScaleX + k.viewOffsetX) * d;
         cy[j] = (fy * k.viewScaleY + k.viewOffsetY) * d;
@@ -335,17 +333,21 @@ bool alchemyRow(const AlchemyConstants& k, const AlchemyInput& in, const SpiralT
     return alchemyRowPortable(k, in, spiral, y, x0, x1, out);
 }
 
+void validateAlchemyGBuffer(const GBuffer& g, const AlchemySettings& s) {
+    const std::string what = "alchemy G-buffer";
+    if (!s.normalsFromDepth) return g.validate(what);
+    GBuffer depthOnly;
+    depthOnly.camera = g.camera;
+    depthOnly.depth = g.depth;
+    depthOnly.normal = Image(g.width(), g.height(), 3);  // validate() wants one; it is rebuilt
+    depthOnly.validate(what);
+}
+
 Image alchemyAO(const GBuffer& g, const AlchemySettings& s) {
     const AlchemyConstants k = alchemyConstants(s, g.camera);
     const std::string what = "alchemy G-buffer";
-    if (s.normalsFromDepth) {
-        GBuffer depthOnly;
-        depthOnly.camera = g.camera;
-        depthOnly.depth = g.depth;
-        depthOnly.normal = Image(g.width(), g.height(), 3);  // validate() wants one; it is rebuilt
-        depthOnly.validate(what);
-    } else if (s.guardBand > 0) {
-        g.validate(what);
+    if (s.normalsFromDepth || s.guardBand > 0) {
+        validateAlchemyGBuffer(g, s);
     } else {
         // The pixels are checked where the kernel reads them anyway (the row kernels check the centres they
         // load; the level-of-detail path scans its tile): the G-buffer comes from memory once, not twice.

@@ -167,7 +167,10 @@ Image pass2D(const Image& ao, const Planes& p, const BilateralSettings& s) {
     return out;
 }
 
-void checkInputs(const Image& ao, const GBuffer& g) {
+} // namespace
+
+void checkBilateralInputs(const Image& ao, const GBuffer& g, const BilateralSettings& settings) {
+    settings.validate();
     if (g.width() < 1 || g.height() < 1) fail("bilateral filter", "G-buffer has zero size");
     if (g.depth.width != g.width() || g.depth.height != g.height() || g.depth.channels != 1)
         fail("bilateral filter", "depth buffer does not match the camera's size or is not 1 channel");
@@ -179,24 +182,19 @@ void checkInputs(const Image& ao, const GBuffer& g) {
                                      "x" + std::to_string(g.height()) + " (needs 1 channel of the same size)");
 }
 
-} // namespace
-
 Image bilateralPass(const Image& ao, const GBuffer& gbuffer, const BilateralSettings& settings, int axis) {
-    settings.validate();
-    checkInputs(ao, gbuffer);
+    checkBilateralInputs(ao, gbuffer, settings);
     assert(axis == 0 || axis == 1);
     return detail::separableBlur(ao, gbuffer, settings, axis == 0, axis == 1);
 }
 
 Image bilateral2D(const Image& ao, const GBuffer& gbuffer, const BilateralSettings& settings) {
-    settings.validate();
-    checkInputs(ao, gbuffer);
+    checkBilateralInputs(ao, gbuffer, settings);
     return pass2D(ao, Planes(gbuffer), settings);
 }
 
 Image bilateralFilter(const Image& ao, const GBuffer& gbuffer, const BilateralSettings& settings) {
-    settings.validate();
-    checkInputs(ao, gbuffer);
+    checkBilateralInputs(ao, gbuffer, settings);
     switch (settings.mode) {
     case BlurMode::None:
         return ao;

@@ -275,15 +275,21 @@ void filterTile(const Job& job, TilePlanes& p, int x0, int x1, int y0, int y1) {
 
 } // namespace
 
+SeparableWeights separableWeights(const BilateralSettings& s) {
+    SeparableWeights weights;
+    const std::vector<float> kernel = gaussianHalfKernel(s.radius);
+    weights.logSpatial.resize(2 * std::size_t(s.radius) + 1);
+    for (int t = -s.radius; t <= s.radius; ++t)
+        weights.logSpatial[std::size_t(t + s.radius)] = std::log2(kernel[std::size_t(std::abs(t))]);
+    weights.depthScale = 1.44269504f / (2.0f * s.depthSigma * s.depthSigma);
+    return weights;
+}
+
 Image separableBlur(const Image& ao, const GBuffer& g, const BilateralSettings& s, bool horizontal, bool vertical) {
     const int w = g.width(), h = g.height();
     Image out(w, h, 1);
-    const std::vector<float> kernel = gaussianHalfKernel(s.radius);
-    std::vector<float> logSpatial(2 * std::size_t(s.radius) + 1);
-    for (int t = -s.radius; t <= s.radius; ++t)
-        logSpatial[std::size_t(t + s.radius)] = std::log2(kernel[std::size_t(std::abs(t))]);
-    const float depthScale = 1.44269504f / (2.0f * s.depthSigma * s.depthSigma);
-    const Job job{ao, g, s, horizontal, vertical, s.usesNormals(), logSpatial, depthScale, out};
+    SeparableWeights weights = separableWeights(s);
+    const Job job{ao, g, s, horizontal, vertical, s.usesNormals(), std::move(weights.logSpatial), weights.depthScale, out};
     const int tilesX = (w + kTileW - 1) / kTileW, tilesY = (h + kTileH - 1) / kTileH;
     parallelFor(std::size_t(tilesX) * std::size_t(tilesY), [&](std::size_t t0, std::size_t t1) {
         static thread_local TilePlanes planes;

@@ -329,7 +329,7 @@ GtaoPixel gtaoPixel(const GtaoConstants& c, const GBuffer& g, int x, int y, int 
     return out;
 }
 
-GtaoResult computeGtao(const GBuffer& gbuffer, const GtaoConstants& constants) {
+void checkGtaoBuffers(const GBuffer& gbuffer, const GtaoConstants& constants) {
     if (gbuffer.width() != constants.width || gbuffer.height() != constants.height ||
         gbuffer.depth.width != constants.width || gbuffer.depth.height != constants.height ||
         gbuffer.normal.width != constants.width || gbuffer.normal.height != constants.height ||
@@ -337,6 +337,10 @@ GtaoResult computeGtao(const GBuffer& gbuffer, const GtaoConstants& constants) {
         fail("gtao", "G-buffer is " + std::to_string(gbuffer.depth.width) + "x" + std::to_string(gbuffer.depth.height) +
                          " but the constants are for " + std::to_string(constants.width) + "x" +
                          std::to_string(constants.height) + " (or its normal image is not 3 channels)");
+}
+
+GtaoResult computeGtao(const GBuffer& gbuffer, const GtaoConstants& constants) {
+    checkGtaoBuffers(gbuffer, constants);
     GtaoResult r;
     r.visibility = Image(constants.width, constants.height, 1, 1.0f);
     r.bentNormal = Image(constants.width, constants.height, 3, 0.0f);
