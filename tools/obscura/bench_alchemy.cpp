@@ -78,9 +78,12 @@ void runAlchemy(const AlchemyBenchOptions& o) {
             ThreadLimit limit(threads);
             Image ao;
             const RunTimes tAo = timeRuns(o.repeats, [&] { ao = ssao::alchemyAO(g, settings); });
-            Image blurInput = ao;
-            if (o.dense)
-                for (float& v : blurInput.pixels) v = std::min(v, 0.99999994f);  // the float below 1
+            Image dense;
+            if (o.dense) {
+                dense = ao;
+                for (float& v : dense.pixels) v = std::min(v, 0.99999994f);  // the float below 1
+            }
+            const Image& blurInput = o.dense ? dense : ao;
             const RunTimes tSep = timeRuns(o.repeats, [&] { (void)ssao::bilateralFilter(blurInput, g, separable); });
             const RunTimes t2d =
                 o.skip2d ? RunTimes{} : timeRuns(o.repeats, [&] { (void)ssao::bilateralFilter(blurInput, g, twoD); });
