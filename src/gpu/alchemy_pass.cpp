@@ -2,6 +2,7 @@
 // Screen-Space Ambient Obscurance Algorithm", eq. 10. The host side of ssao::alchemyAO: the same
 // validation, the same constants (ssao::alchemyConstants) and the same spiral table, so CPU and GPU differ
 // only in the kernel. Contract in include/obscura/gpu.h.
+#include "gpu/alchemy_pass.h"
 #include "gpu/buffer.h"
 #include "gpu/compute_pipeline.h"
 #include "gpu/context.h"
@@ -18,33 +19,36 @@ namespace obscura::gpu {
 static_assert(sizeof(ssao::AlchemyConstants) == kAlchemyPushConstantBytes,
               "the push constants of alchemy.comp are one AlchemyConstants");
 
+std::vector<float> alchemySpiralOffsets(const ssao::AlchemyConstants& k) {
+    std::vector<float> offsets;
+    for (const std::vector<float>& o : ssao::alchemySpiral(k).offsets) offsets.insert(offsets.end(), o.begin(), o.end());
+    return offsets;
+}
+
+void recordAlchemy(Context::Impl& c, VkCommandBuffer cmd, const AlchemyBuffers& b, const ssao::AlchemyConstants& k) {
+    ComputePipeline& pipeline = c.pipeline("alchemy", shaders::alchemy, kAlchemyBindingCount, kAlchemyPushConstantBytes,
+                                           ssao::kAlchemyWorkgroupX, ssao::kAlchemyWorkgroupY);
+    // In binding order: kAlchemyBindingDepth, Normal, Spiral, Output.
+    pipeline.dispatchGrid(cmd, {&b.depth, &b.normal, &b.spiral, &b.output}, &k, sizeof k, k.width - 2 * k.guardBand,
+                          k.height - 2 * k.guardBand);
+}
+
 Image alchemyAO(Context& context, const GBuffer& g, const ssao::AlchemySettings& s) {
     const ssao::AlchemyConstants k = ssao::alchemyConstants(s, g.camera);
     // ssao::alchemyAO's checks and messages (the shader checks nothing, and a NaN depth would reach a
     // float-to-int conversion).
     ssao::validateAlchemyGBuffer(g, s);
     const ssao::AlchemyInput in = ssao::alchemyInput(g, s.normalsFromDepth);
-    const ssao::SpiralTable spiral = ssao::alchemySpiral(k);
-    // SpiralTable::offsets concatenated; the shader finds (count, class) by alchemySpiralAt.
-    std::vector<float> offsets;
-    for (const std::vector<float>& o : spiral.offsets) offsets.insert(offsets.end(), o.begin(), o.end());
+    const std::vector<float> offsets = alchemySpiralOffsets(k);
 
     Context::Impl& c = context.impl();
-    ComputePipeline& pipeline = c.pipeline("alchemy", shaders::alchemy, kAlchemyBindingCount, kAlchemyPushConstantBytes,
-                                           ssao::kAlchemyWorkgroupX, ssao::kAlchemyWorkgroupY);
     const std::size_t pixels = std::size_t(k.width) * std::size_t(k.height);
     const Buffer depth = upload(c, in.depth, pixels * sizeof(float));
     const Buffer normal = upload(c, in.normal, 3 * pixels * sizeof(float));
     const Buffer table = upload(c, offsets.data(), offsets.size() * sizeof(float));
-    const int w = k.width - 2 * k.guardBand, h = k.height - 2 * k.guardBand;
-    Image out(w, h, 1);
+    Image out(k.width - 2 * k.guardBand, k.height - 2 * k.guardBand, 1);
     const Buffer ao(c, out.pixels.size() * sizeof(float), MemoryUse::Device);
-    c.submit(
-        [&](VkCommandBuffer cmd) {
-            // In binding order: kAlchemyBindingDepth, Normal, Spiral, Output.
-            pipeline.dispatchGrid(cmd, {&depth, &normal, &table, &ao}, &k, sizeof k, w, h);
-        },
-        true);
+    c.submit([&](VkCommandBuffer cmd) { recordAlchemy(c, cmd, {depth, normal, table, ao}, k); }, true);
     download(c, ao, out.pixels.data(), out.pixels.size() * sizeof(float));
     return out;
 }

@@ -96,6 +96,9 @@ private:
 // complete and visible to the `dst` accesses of `dstStage` (in commands after it, in any later submission).
 void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags srcStage, VkAccessFlags src, VkPipelineStageFlags dstStage,
                    VkAccessFlags dst);
+// The barrier between two compute passes of one submission: the earlier one's writes are visible to the
+// later one's reads and writes.
+void computeBarrier(VkCommandBuffer cmd);
 
 // vkCreate<T>(device, &info) wrapped in a Unique; throws obscura::Error saying what was `doing`.
 template <class T, class Info>

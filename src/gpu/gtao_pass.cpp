@@ -3,6 +3,7 @@
 // side of ssao::computeGtao: the same checks and messages, the same constants (ssao::gtaoConstants) as
 // push constants, so CPU and GPU differ only in the kernel. Contract in include/obscura/gpu.h.
 #include "gpu/buffer.h"
+#include "gpu/gtao_pass.h"
 #include "gpu/compute_pipeline.h"
 #include "gpu/context.h"
 #include "gpu/spirv.h"
@@ -19,6 +20,13 @@ static_assert(sizeof(ssao::GtaoConstants) == kGtaoPushConstantBytes,
               "the push constants of gtao.comp are one GtaoConstants");
 static_assert(ssao::kGtaoRotations == kGtaoRotations, "gtao.comp rotates the interleave as the CPU kernel does");
 
+void recordGtao(Context::Impl& c, VkCommandBuffer cmd, const GtaoBuffers& b, const ssao::GtaoConstants& k) {
+    ComputePipeline& pipeline = c.pipeline("gtao", shaders::gtao, kGtaoBindingCount, kGtaoPushConstantBytes,
+                                           kGtaoWorkgroupX, kGtaoWorkgroupY);
+    // In binding order: kGtaoBindingDepth, Normal, Visibility, BentNormal.
+    pipeline.dispatchGrid(cmd, {&b.depth, &b.normal, &b.visibility, &b.bentNormal}, &k, sizeof k, k.width, k.height);
+}
+
 ssao::GtaoResult computeGtao(Context& context, const GBuffer& g, const ssao::GtaoConstants& k) {
     ssao::checkGtaoBuffers(g, k);  // ssao::computeGtao's check and message; the shader checks nothing
 
@@ -29,18 +37,11 @@ ssao::GtaoResult computeGtao(Context& context, const GBuffer& g, const ssao::Gta
     if (pixels == 0) return r;  // no buffer of 0 bytes
 
     Context::Impl& c = context.impl();
-    ComputePipeline& pipeline = c.pipeline("gtao", shaders::gtao, kGtaoBindingCount, kGtaoPushConstantBytes,
-                                           kGtaoWorkgroupX, kGtaoWorkgroupY);
     const Buffer depth = upload(c, g.depth.pixels.data(), pixels * sizeof(float));
     const Buffer normal = upload(c, g.normal.pixels.data(), 3 * pixels * sizeof(float));
     const Buffer visibility(c, pixels * sizeof(float), MemoryUse::Device);
     const Buffer bent(c, 3 * pixels * sizeof(float), MemoryUse::Device);
-    c.submit(
-        [&](VkCommandBuffer cmd) {
-            // In binding order: kGtaoBindingDepth, Normal, Visibility, BentNormal.
-            pipeline.dispatchGrid(cmd, {&depth, &normal, &visibility, &bent}, &k, sizeof k, k.width, k.height);
-        },
-        true);
+    c.submit([&](VkCommandBuffer cmd) { recordGtao(c, cmd, {depth, normal, visibility, bent}, k); }, true);
     download(c, visibility, r.visibility.pixels.data(), pixels * sizeof(float));
     download(c, bent, r.bentNormal.pixels.data(), 3 * pixels * sizeof(float));
     return r;

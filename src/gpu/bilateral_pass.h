@@ -1,0 +1,37 @@
+// The separable cross-bilateral blur on GPU-resident buffers, for callers that chain passes in one submission
+// (the public gpu::bilateralFilter uploads, records this and downloads).
+#pragma once
+
+#include "gpu/buffer.h"
+#include "gpu/context.h"
+#include "shaders/layouts.h"
+
+#include "obscura/bilateral.h"
+
+#include <vector>
+
+namespace obscura::gpu {
+
+// Storage buffers of bilateral_separable.comp (shaders/layouts.h states their contents).
+struct SeparableBilateralBuffers {
+    const Buffer& depth;       // width * height linear depths
+    const Buffer& normal;      // width * height * 3 view normals
+    const Buffer& logSpatial;  // SeparableBilateral::logSpatial
+    const Buffer& input;       // width * height AO
+    const Buffer& scratch;     // width * height floats: the horizontal pass's result
+    const Buffer& output;      // width * height AO
+};
+
+// The CPU filter's own constants (src/ssao/bilateral_separable.h) in the shader's layout; axis 0.
+struct SeparableBilateral {
+    BilateralConstants constants{};
+    std::vector<float> logSpatial;
+};
+SeparableBilateral separableBilateral(const ssao::BilateralSettings& settings, int width, int height);
+
+// Records the horizontal and the vertical dispatch with a barrier between them. The inputs must be visible
+// to compute shaders (the caller's barrier); the settings were checked by ssao::checkBilateralInputs.
+void recordSeparableBilateral(Context::Impl& context, VkCommandBuffer cmd, const SeparableBilateralBuffers& buffers,
+                              const SeparableBilateral& filter);
+
+} // namespace obscura::gpu
