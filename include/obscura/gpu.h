@@ -15,7 +15,8 @@
 // loader or driver, no device (or none at the index asked for), a device below Vulkan 1.2, validation asked
 // for but not installed, device lost, out of device or host memory; and the CPU references' errors for bad
 // settings or buffers. The Vulkan library is loaded when the first Context is made, so a program that makes
-// none runs without it.
+// none runs without it; it is libvulkan.so.1, or the file OBSCURA_VULKAN_LIBRARY names (a loader carried to a
+// machine that lacks one). A request larger than the device's memory heap fails before the driver sees it.
 #pragma once
 
 #include "obscura/alchemy.h"

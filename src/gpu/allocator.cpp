@@ -97,6 +97,13 @@ Allocation Allocator::allocate(const VkMemoryRequirements& req, MemoryUse use) {
     b.type = type;
     b.shared = req.size <= kBlockBytes;
     const VkDeviceSize bytes = b.shared ? kBlockBytes : req.size;
+    // Asked of the driver, a request beyond the heap is undefined enough that some drivers crash or the
+    // validation layer objects; named here in the words of a failed allocation instead.
+    const VkDeviceSize heap = properties_.memoryHeaps[properties_.memoryTypes[type].heapIndex].size;
+    if (bytes > heap)
+        fail("Vulkan device '" + deviceName_ + "'", "allocating " + std::to_string(bytes >> 20) +
+                                                       " MiB of device memory: out of device memory (the heap has " +
+                                                       std::to_string(heap >> 20) + " MiB)");
     VkMemoryAllocateInfo info{};
     info.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
     info.allocationSize = bytes;

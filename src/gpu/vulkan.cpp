@@ -3,6 +3,7 @@
 
 #include <dlfcn.h>
 
+#include <cstdlib>
 #include <mutex>
 
 namespace obscura::gpu {
@@ -16,16 +17,20 @@ bool loadVulkan(std::string* why) {
     static std::string failure;
     std::call_once(once, [] {
         // Never closed: the function pointers live as long as the process.
-        void* lib = dlopen("libvulkan.so.1", RTLD_NOW | RTLD_LOCAL);
+        // OBSCURA_VULKAN_LIBRARY names another loader, e.g. one carried to a machine without it installed.
+        const char* asked = std::getenv("OBSCURA_VULKAN_LIBRARY");
+        const std::string path = asked && *asked ? asked : "libvulkan.so.1";
+        void* lib = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
         if (!lib) {
-            failure = "no Vulkan loader (libvulkan.so.1 not found; on Debian install libvulkan1 and a driver such "
-                      "as mesa-vulkan-drivers)";
+            failure = asked && *asked ? "no Vulkan loader at OBSCURA_VULKAN_LIBRARY='" + path + "'"
+                                      : "no Vulkan loader (libvulkan.so.1 not found; on Debian install libvulkan1 "
+                                        "and a driver such as mesa-vulkan-drivers)";
             return;
         }
         // dlsym returns void*; the loader exports each core function under its own name and type.
 #define OBSCURA_VK_LOAD(name)                                                                     \
     name = reinterpret_cast<PFN_##name>(dlsym(lib, #name));                                      \
-    if (!name && failure.empty()) failure = "the Vulkan loader libvulkan.so.1 lacks " #name " (Vulkan 1.2 needed)";
+    if (!name && failure.empty()) failure = "the Vulkan loader " + path + " lacks " #name " (Vulkan 1.2 needed)";
         OBSCURA_VK_FUNCTIONS(OBSCURA_VK_LOAD)
 #undef OBSCURA_VK_LOAD
     });
