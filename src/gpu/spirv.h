@@ -17,6 +17,8 @@ namespace shaders {
 extern const Spirv alchemy;              // alchemy.comp
 extern const Spirv bilateral_separable;  // bilateral_separable.comp
 extern const Spirv gtao;                 // gtao.comp
+extern const Spirv normals_from_depth;   // normals_from_depth.comp
+extern const Spirv prepare_depth;        // prepare_depth.comp
 } // namespace shaders
 
 // What a compute shader declares: its resources and workgroup size.

@@ -1,0 +1,57 @@
+// View-space normals rebuilt from linear depth, as ssao::normalsFromDepth (src/ssao/alchemy.cpp) computes
+// them: on each axis the neighbour that continues the centre's plane (misfit, the same rule and comments'
+// reasoning as there), a cross product of the two differences, turned towards the camera. Sky pixels get 0
+// (the G-buffer's sky normal; ssao::prepareGBuffer does the same). One invocation per pixel.
+#version 460
+#extension GL_GOOGLE_include_directive : require
+
+#include "obscura/depth_prep_constants.h"
+#include "prep_layouts.h"
+
+layout(local_size_x = kDepthPrepWorkgroupX, local_size_y = kDepthPrepWorkgroupY, local_size_z = 1) in;
+
+layout(push_constant, std430) uniform Constants { DepthPrepConstants k; };
+layout(std430, binding = kRebuildBindingDepth) readonly buffer DepthPlane { float depth[]; };
+layout(std430, binding = kRebuildBindingNormal) writeonly buffer NormalPlane { float normal[]; };
+
+const float kInf = 1.0 / 0.0;  // +inf: glslang folds it, as the C++ reference uses INFINITY
+
+float depthAt(int x, int y) { return depth[y * k.width + x]; }
+bool usable(int x, int y) { return x >= 0 && y >= 0 && x < k.width && y < k.height && depthAt(x, y) < 1e30; }
+// Camera::viewFromPixel at the pixel's centre.
+vec3 position(int x, int y) {
+    const float d = depthAt(x, y);
+    return vec3((float(x) + 0.5) * k.mulX + k.addX, (float(y) + 0.5) * k.mulY + k.addY, -1.0) * d;
+}
+
+float misfit(int x, int y, int dx, int dy) {
+    if (!usable(x + dx, y + dy)) return kInf;
+    const float d0 = depthAt(x, y), d1 = depthAt(x + dx, y + dy);
+    if (!usable(x + 2 * dx, y + 2 * dy)) return abs(d1 - d0) / d0;
+    const float d2 = depthAt(x + 2 * dx, y + 2 * dy);
+    return abs(2.0 / d1 - 1.0 / d2 - 1.0 / d0) * d0;
+}
+
+void main() {
+    const ivec2 q = ivec2(gl_GlobalInvocationID.xy);
+    if (q.x >= k.width || q.y >= k.height) return;
+    const int x = q.x, y = q.y;
+    vec3 n = vec3(0.0);
+    if (depthAt(x, y) < 1e30) {
+        const vec3 p = position(x, y);
+        const float l = misfit(x, y, -1, 0), r = misfit(x, y, 1, 0);
+        const float u = misfit(x, y, 0, -1), d = misfit(x, y, 0, 1);
+        if ((l < kInf || r < kInf) && (u < kInf || d < kInf)) {
+            const vec3 ddx = r <= l ? position(x + 1, y) - p : p - position(x - 1, y);
+            const vec3 ddy = d <= u ? position(x, y + 1) - p : p - position(x, y - 1);
+            n = normalize(cross(ddy, ddx));
+            if (dot(n, p) > 0.0) n = -n;
+        } else {
+            n = -normalize(p);
+        }
+    }
+    const uint i = uint(y) * uint(k.width) + uint(x);
+    normal[3 * i] = n.x;
+    normal[3 * i + 1] = n.y;
+    normal[3 * i + 2] = n.z;
+}
