@@ -18,6 +18,7 @@
 namespace obscura::gpu {
 
 SeparableBilateral separableBilateral(const ssao::BilateralSettings& s, int width, int height) {
+    s.validate();
     const ssao::detail::SeparableWeights weights = ssao::detail::separableWeights(s);
     SeparableBilateral f;
     f.logSpatial = weights.logSpatial;

@@ -7,6 +7,7 @@
 #include "shaders/layouts.h"
 
 #include "obscura/bilateral.h"
+#include "obscura/gpu_shaders.h"  // SeparableBilateral
 
 #include <vector>
 
@@ -21,13 +22,6 @@ struct SeparableBilateralBuffers {
     const Buffer& scratch;     // width * height floats: the horizontal pass's result
     const Buffer& output;      // width * height AO
 };
-
-// The CPU filter's own constants (src/ssao/bilateral_separable.h) in the shader's layout; axis 0.
-struct SeparableBilateral {
-    BilateralConstants constants{};
-    std::vector<float> logSpatial;
-};
-SeparableBilateral separableBilateral(const ssao::BilateralSettings& settings, int width, int height);
 
 // Records the horizontal and the vertical dispatch with a barrier between them. The inputs must be visible
 // to compute shaders (the caller's barrier); the settings were checked by ssao::checkBilateralInputs.
