@@ -77,7 +77,7 @@ private:
 
 // ssao::alchemyAO on the GPU: the same settings, validation, errors and output (raw obscurance, guard band
 // cropped, sky 1); equal to ssao::alchemyPixel to within GPU rounding (tests/gpu bound the difference).
-// Normals rebuilt from depth (settings.normalsFromDepth) are computed on the CPU, as ssao::alchemyInput does.
+// Normals rebuilt from depth (settings.normalsFromDepth) come from the GPU mirror of ssao::normalsFromDepth.
 Image alchemyAO(Context& context, const GBuffer& gbuffer, const ssao::AlchemySettings& settings);
 
 // ssao::bilateralFilter on the GPU for BlurMode::Separable (two 1-D passes; BlurMode::None returns a copy):

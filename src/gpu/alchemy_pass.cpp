@@ -6,6 +6,7 @@
 #include "gpu/buffer.h"
 #include "gpu/compute_pipeline.h"
 #include "gpu/context.h"
+#include "gpu/depth_prep_pass.h"
 #include "gpu/spirv.h"
 #include "shaders/layouts.h"
 
@@ -38,17 +39,26 @@ Image alchemyAO(Context& context, const GBuffer& g, const ssao::AlchemySettings&
     // ssao::alchemyAO's checks and messages (the shader checks nothing, and a NaN depth would reach a
     // float-to-int conversion).
     ssao::validateAlchemyGBuffer(g, s);
-    const ssao::AlchemyInput in = ssao::alchemyInput(g, s.normalsFromDepth);
     const std::vector<float> offsets = alchemySpiralOffsets(k);
 
     Context::Impl& c = context.impl();
     const std::size_t pixels = std::size_t(k.width) * std::size_t(k.height);
-    const Buffer depth = upload(c, in.depth, pixels * sizeof(float));
-    const Buffer normal = upload(c, in.normal, 3 * pixels * sizeof(float));
+    const Buffer depth = upload(c, g.depth.pixels.data(), pixels * sizeof(float));
+    // Normals rebuilt from depth: normals_from_depth.comp, ssao::normalsFromDepth's mirror, before the pass.
+    const Buffer normal = s.normalsFromDepth ? Buffer(c, 3 * pixels * sizeof(float), MemoryUse::Device)
+                                             : upload(c, g.normal.pixels.data(), 3 * pixels * sizeof(float));
     const Buffer table = upload(c, offsets.data(), offsets.size() * sizeof(float));
     Image out(k.width - 2 * k.guardBand, k.height - 2 * k.guardBand, 1);
     const Buffer ao(c, out.pixels.size() * sizeof(float), MemoryUse::Device);
-    c.submit([&](VkCommandBuffer cmd) { recordAlchemy(c, cmd, {depth, normal, table, ao}, k); }, true);
+    c.submit(
+        [&](VkCommandBuffer cmd) {
+            if (s.normalsFromDepth) {
+                recordNormalsFromDepth(c, cmd, depth, normal, ssao::depthPrepConstants({}, g.camera));
+                computeBarrier(cmd);
+            }
+            recordAlchemy(c, cmd, {depth, normal, table, ao}, k);
+        },
+        true);
     download(c, ao, out.pixels.data(), out.pixels.size() * sizeof(float));
     return out;
 }

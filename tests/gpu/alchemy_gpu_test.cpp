@@ -105,7 +105,10 @@ TEST(GpuAlchemy, MatchesTheCpuReference) {
 
 // The settings that change what the shader does besides the formulation: the level of detail (per-pixel
 // sample counts read from the concatenated spiral table), a guard band (cropped output), normals rebuilt
-// from depth (on the CPU), more samples and another seed. Same bounds as above.
+// from depth, more samples and another seed. Same bounds as above, but for the rebuilt normals: they come
+// from normals_from_depth.comp, whose normals differ from ssao::normalsFromDepth's by up to 2.2e-5
+// (tests/gpu/depth_prep_gpu_test.cpp), which moved AO by up to 8.2e-6 here on lavapipe (2026-11-23); held
+// to 2e-5 there.
 TEST(GpuAlchemy, MatchesTheCpuReferenceWithEverySetting) {
     OBSCURA_GPU_CONTEXT(context);
     const GBuffer g = testing::render("stairs", 181, 123);
@@ -130,7 +133,7 @@ TEST(GpuAlchemy, MatchesTheCpuReferenceWithEverySetting) {
         EXPECT_LE(d.beyond, gpu.width * gpu.height / 1000) << name;
         EXPECT_LE(d.maxRest, 2e-3) << name;
         if (context.device().name.rfind("llvmpipe", 0) == 0) {
-            EXPECT_LE(d.max, 1e-6) << name;
+            EXPECT_LE(d.max, s.normalsFromDepth ? 2e-5 : 1e-6) << name;
         }
     }
     // The level of detail is exercised: some pixels of this view get fewer samples than without it.
