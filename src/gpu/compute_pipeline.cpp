@@ -14,7 +14,8 @@ namespace {
 const char* kindName(BindingKind k) { return k == BindingKind::SampledImage ? "a sampled image" : "a storage buffer"; }
 
 VkDescriptorType descriptorType(BindingKind k) {
-    return k == BindingKind::SampledImage ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    return k == BindingKind::SampledImage ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER
+                                          : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
 }
 
 } // namespace

@@ -1,7 +1,7 @@
 // The diffuse IBL composite as a compute pass (src/gpu/shaders/shade.comp): albedo x SH irradiance / pi x AO
 // (Ramamoorthi and Hanrahan 2001), or x G(A, albedo) (Jimenez et al. 2016, eq. 10). The CPU references are
-// render::shade (src/render/composite.cpp) and the CLI's multi-bounce composite (tools/obscura gtao_cli
-// shadeGtao). Contract in include/obscura/gpu_lighting.h.
+// render::shade (src/render/composite.cpp) and the CLI's multi-bounce composite (cli::shadeGtao in
+// gtao_cli.cpp). Contract in include/obscura/gpu_lighting.h.
 #include "gpu/shade_pass.h"
 #include "gpu/compute_pipeline.h"
 #include "gpu/image_planes.h"

@@ -1,5 +1,6 @@
 // Minimal SPIR-V reflection (SPIR-V 1.5 specification, section 2.3 "Physical Layout" and 3 "Binary Form"):
-// enough to count a compute shader's descriptor bindings and size its push-constant block, as niagara's
+// enough to count a compute shader's descriptor bindings (telling combined image samplers from storage
+// buffers) and specialization constants and size its push-constant block, as niagara's
 // shaders.cpp does, so a pass cannot bind a layout its shader does not declare.
 #include "gpu/spirv.h"
 

@@ -51,7 +51,7 @@ double maxRelativeDifference(const Image& a, const Image& b, double floor = 1e-2
     return worst;
 }
 
-// The CLI's multi-bounce image (tools/obscura gtao_cli): G(A, albedo) per channel, sky 1.
+// The CLI's multi-bounce image (cli::renderGtaoFrames in gtao_cli.cpp): G(A, albedo) per channel, sky 1.
 Image cpuMultiBounce(const GBuffer& g, const Image& visibility) {
     Image out(g.width(), g.height(), 3, 1.0f);
     for (int y = 0; y < g.height(); ++y)
