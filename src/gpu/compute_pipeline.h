@@ -16,10 +16,11 @@
 
 namespace obscura::gpu {
 
-// What a dispatch binds at one binding: a storage buffer or a sampled texture (implicit from either).
+// What a dispatch binds at one binding: a storage buffer or a sampled texture. Implicit from either, so a
+// pass lists its resources as {&depth, &table, ...}.
 struct Resource {
-    Resource(const Buffer* b) : buffer(b) {}   // NOLINT(google-explicit-constructor): {&a, &b} lists
-    Resource(const Texture* t) : texture(t) {} // NOLINT(google-explicit-constructor)
+    Resource(const Buffer* b) : buffer(b) {}
+    Resource(const Texture* t) : texture(t) {}
     const Buffer* buffer = nullptr;
     const Texture* texture = nullptr;
 };
