@@ -80,9 +80,9 @@ private:
 // Normals rebuilt from depth (settings.normalsFromDepth) come from the GPU mirror of ssao::normalsFromDepth.
 Image alchemyAO(Context& context, const GBuffer& gbuffer, const ssao::AlchemySettings& settings);
 
-// ssao::bilateralFilter on the GPU for BlurMode::Separable (two 1-D passes; BlurMode::None returns a copy):
-// the same settings, validation and errors; equal to the CPU filter to within 2e-3 (tests/gpu measure it).
-// BlurMode::TwoD has no GPU pass yet and throws obscura::Error.
+// ssao::bilateralFilter on the GPU: BlurMode::Separable as two 1-D passes, BlurMode::TwoD as one square pass
+// (src/gpu/bilateral_2d_pass.cpp), BlurMode::None returns a copy; the same settings, validation and errors;
+// equal to the CPU filter to within 2e-3 (tests/gpu measure it).
 Image bilateralFilter(Context& context, const Image& ao, const GBuffer& gbuffer,
                       const ssao::BilateralSettings& settings);
 

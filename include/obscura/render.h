@@ -31,6 +31,10 @@ SH9 projectEnvironment(const Image& equirect);
 // Irradiance E(n) = sum_l A_l sum_m L_lm Y_lm(n), A_0 = pi, A_1 = 2pi/3, A_2 = pi/4. For a constant
 // radiance L it is pi L for every n.
 Vec3 irradiance(const SH9& sh, Vec3 n);
+// irradiance() as a polynomial: term i (SH9's order) is A_l times the normalisation of Y_lm, so that
+// E(n) = max(0, sum_i scale_i L_i m_i(n)) with the bare monomials m = (1, y, z, x, xy, yz, 3z^2 - 1, xz,
+// x^2 - y^2) of the unit n. For passes that evaluate it elsewhere (gpu::shade).
+std::array<double, 9> irradianceScales();
 
 struct SkySettings {
     Vec3 zenith{0.25f, 0.45f, 0.95f};    // radiance straight up, linear RGB
@@ -58,6 +62,8 @@ struct Frame {
 // `environment` is the equirect map shown behind geometry (may be empty: black). Throws obscura::Error on
 // a size mismatch.
 Frame shade(const GBuffer& gbuffer, const SH9& sh, const Image& ao, const Image& environment);
+// shade()'s checks and messages, for the passes that composite the same inputs elsewhere (gpu::shade).
+void checkShadeInputs(const GBuffer& gbuffer, const Image& ao, const Image& environment);
 
 // Exposure, tonemap and the sRGB transfer function: a 3-channel image in [0,1] ready for writePng.
 Image toDisplay(const Image& linear, const ShadeSettings& settings);

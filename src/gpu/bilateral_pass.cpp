@@ -2,6 +2,7 @@
 // McGuire et al. 2011, "The Alchemy Screen-Space Ambient Obscurance Algorithm", Fig. 6. The host side of
 // ssao::bilateralFilter's separable mode; the CPU reference is src/ssao/bilateral_separable.cpp. Contract
 // in include/obscura/gpu.h.
+#include "gpu/bilateral_2d_pass.h"
 #include "gpu/bilateral_pass.h"
 #include "gpu/buffer.h"
 #include "gpu/compute_pipeline.h"
@@ -48,7 +49,7 @@ void recordSeparableBilateral(Context::Impl& c, VkCommandBuffer cmd, const Separ
 Image bilateralFilter(Context& context, const Image& ao, const GBuffer& g, const ssao::BilateralSettings& s) {
     ssao::checkBilateralInputs(ao, g, s);  // ssao::bilateralFilter's checks and messages
     if (s.mode == ssao::BlurMode::None) return ao;
-    if (s.mode == ssao::BlurMode::TwoD) fail("blur", "the 2-D filter has no GPU pass yet (use separable)");
+    if (s.mode == ssao::BlurMode::TwoD) return bilateral2D(context.impl(), ao, g, s);
 
     const SeparableBilateral f = separableBilateral(s, g.width(), g.height());
     Context::Impl& c = context.impl();

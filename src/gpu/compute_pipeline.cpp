@@ -3,14 +3,33 @@
 
 #include "obscura/error.h"
 
+#include <algorithm>
 #include <cassert>
 #include <vector>
 
 namespace obscura::gpu {
 
+namespace {
+
+const char* kindName(BindingKind k) { return k == BindingKind::SampledImage ? "a sampled image" : "a storage buffer"; }
+
+VkDescriptorType descriptorType(BindingKind k) {
+    return k == BindingKind::SampledImage ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER
+                                          : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+}
+
+} // namespace
+
 ComputePipeline::ComputePipeline(Context::Impl& context, const Spirv& code, const std::string& name, int bindings,
                                  std::uint32_t pushConstantBytes, int workgroupX, int workgroupY)
-    : context_(context), name_(name), layout_(reflect(code)) {
+    : ComputePipeline(context, code, name, std::vector<BindingKind>(std::size_t(bindings), BindingKind::StorageBuffer),
+                      pushConstantBytes, workgroupX, workgroupY) {}
+
+ComputePipeline::ComputePipeline(Context::Impl& context, const Spirv& code, const std::string& name,
+                                 const std::vector<BindingKind>& kinds, std::uint32_t pushConstantBytes, int workgroupX,
+                                 int workgroupY, const std::vector<std::int32_t>& specialization)
+    : context_(context), name_(name), layout_(reflect(code)), kinds_(kinds) {
+    const int bindings = int(kinds.size());
     const std::string what = "shader " + name;
     // dispatchGrid divides the image by the size the shared header gives the shader.
     if (layout_.localSize[0] != std::uint32_t(workgroupX) || layout_.localSize[1] != std::uint32_t(workgroupY) ||
@@ -22,6 +41,13 @@ ComputePipeline::ComputePipeline(Context::Impl& context, const Spirv& code, cons
         fail(what, "declares " + std::to_string(layout_.bindings) + " bindings and " +
                        std::to_string(layout_.pushConstantBytes) + " bytes of push constants, the host binds " +
                        std::to_string(bindings) + " and " + std::to_string(pushConstantBytes));
+    for (int b = 0; b < bindings; ++b)
+        if (std::size_t(b) >= layout_.kinds.size() || layout_.kinds[std::size_t(b)] != kinds[std::size_t(b)])
+            fail(what, "binding " + std::to_string(b) + " is not " + kindName(kinds[std::size_t(b)]) +
+                           " as the host binds it");
+    if (layout_.specConstants != int(specialization.size()))
+        fail(what, "declares " + std::to_string(layout_.specConstants) + " specialization constants, the host sets " +
+                       std::to_string(specialization.size()));
     if (pushConstantBytes > context.properties.limits.maxPushConstantsSize)
         fail("Vulkan device '" + context.info.name + "'", what + " needs " + std::to_string(pushConstantBytes) +
                                                               " bytes of push constants");
@@ -30,7 +56,7 @@ ComputePipeline::ComputePipeline(Context::Impl& context, const Spirv& code, cons
     std::vector<VkDescriptorSetLayoutBinding> slots(static_cast<std::size_t>(bindings));
     for (int i = 0; i < bindings; ++i) {
         slots[std::size_t(i)].binding = std::uint32_t(i);
-        slots[std::size_t(i)].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        slots[std::size_t(i)].descriptorType = descriptorType(kinds[std::size_t(i)]);
         slots[std::size_t(i)].descriptorCount = 1;
         slots[std::size_t(i)].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
     }
@@ -66,18 +92,32 @@ ComputePipeline::ComputePipeline(Context::Impl& context, const Spirv& code, cons
     pipelineInfo.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
     pipelineInfo.stage.module = module.get();
     pipelineInfo.stage.pName = "main";
+    // constant_id i is the i-th int of `specialization`.
+    std::vector<VkSpecializationMapEntry> entries;
+    for (std::size_t i = 0; i < specialization.size(); ++i)
+        entries.push_back({std::uint32_t(i), std::uint32_t(i * sizeof(std::int32_t)), sizeof(std::int32_t)});
+    VkSpecializationInfo specInfo{};
+    specInfo.mapEntryCount = std::uint32_t(entries.size());
+    specInfo.pMapEntries = entries.data();
+    specInfo.dataSize = specialization.size() * sizeof(std::int32_t);
+    specInfo.pData = specialization.data();
+    if (!specialization.empty()) pipelineInfo.stage.pSpecializationInfo = &specInfo;
     pipelineInfo.layout = pipelineLayout_.get();
     VkPipeline pipeline = VK_NULL_HANDLE;
     context.check(vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &pipelineInfo, nullptr, &pipeline),
                   "compiling " + what);
     pipeline_ = Unique<VkPipeline>(device, pipeline, vkDestroyPipeline);
 
-    const VkDescriptorPoolSize poolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, std::uint32_t(bindings * kSetsPerSubmit)};
+    std::vector<VkDescriptorPoolSize> poolSizes;
+    for (const BindingKind k : {BindingKind::StorageBuffer, BindingKind::SampledImage}) {
+        const auto n = std::count(kinds.begin(), kinds.end(), k);
+        if (n > 0) poolSizes.push_back({descriptorType(k), std::uint32_t(n * kSetsPerSubmit)});
+    }
     VkDescriptorPoolCreateInfo poolInfo{};
     poolInfo.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
     poolInfo.maxSets = kSetsPerSubmit;
-    poolInfo.poolSizeCount = 1;
-    poolInfo.pPoolSizes = &poolSize;
+    poolInfo.poolSizeCount = std::uint32_t(poolSizes.size());
+    poolInfo.pPoolSizes = poolSizes.data();
     pool_ = create(context, vkCreateDescriptorPool, poolInfo, vkDestroyDescriptorPool,
                    "creating " + what + "'s descriptors");
     VkDescriptorSetAllocateInfo allocInfo{};
@@ -89,27 +129,36 @@ ComputePipeline::ComputePipeline(Context::Impl& context, const Spirv& code, cons
     context.check(vkAllocateDescriptorSets(device, &allocInfo, sets_), "allocating " + what + "'s descriptors");
 }
 
-void ComputePipeline::dispatch(VkCommandBuffer cmd, std::initializer_list<const Buffer*> buffers,
+void ComputePipeline::dispatch(VkCommandBuffer cmd, std::initializer_list<Resource> resources,
                                const void* pushConstants, std::uint32_t pushBytes, std::uint32_t groupsX,
                                std::uint32_t groupsY) {
     // The shader's declared layout, checked at creation, is what is bound here.
-    assert(int(buffers.size()) == layout_.bindings && pushBytes == layout_.pushConstantBytes);
+    assert(resources.size() == kinds_.size() && pushBytes == layout_.pushConstantBytes);
     if (used_ == kSetsPerSubmit)
         fail("shader " + name_, "more than " + std::to_string(kSetsPerSubmit) + " dispatches in one submission");
     const VkDescriptorSet set = sets_[used_++];
-    std::vector<VkDescriptorBufferInfo> infos;
+    std::vector<VkDescriptorBufferInfo> buffers(resources.size());
+    std::vector<VkDescriptorImageInfo> images(resources.size());
     std::vector<VkWriteDescriptorSet> writes;
-    infos.reserve(buffers.size());
-    for (const Buffer* b : buffers) infos.push_back({b->handle(), 0, b->size()});
-    for (std::size_t i = 0; i < infos.size(); ++i) {
+    std::size_t i = 0;
+    for (const Resource& r : resources) {
         VkWriteDescriptorSet w{};
         w.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
         w.dstSet = set;
         w.dstBinding = std::uint32_t(i);
         w.descriptorCount = 1;
-        w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-        w.pBufferInfo = &infos[i];
+        w.descriptorType = descriptorType(kinds_[i]);
+        if (kinds_[i] == BindingKind::SampledImage) {
+            assert(r.texture);
+            images[i] = {r.texture->sampler(), r.texture->view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+            w.pImageInfo = &images[i];
+        } else {
+            assert(r.buffer);
+            buffers[i] = {r.buffer->handle(), 0, r.buffer->size()};
+            w.pBufferInfo = &buffers[i];
+        }
         writes.push_back(w);
+        ++i;
     }
     vkUpdateDescriptorSets(context_.device, std::uint32_t(writes.size()), writes.data(), 0, nullptr);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.get());
@@ -119,9 +168,9 @@ void ComputePipeline::dispatch(VkCommandBuffer cmd, std::initializer_list<const 
     vkCmdDispatch(cmd, groupsX, groupsY, 1);
 }
 
-void ComputePipeline::dispatchGrid(VkCommandBuffer cmd, std::initializer_list<const Buffer*> buffers,
+void ComputePipeline::dispatchGrid(VkCommandBuffer cmd, std::initializer_list<Resource> resources,
                                    const void* pushConstants, std::uint32_t pushBytes, int width, int height) {
-    dispatch(cmd, buffers, pushConstants, pushBytes, (std::uint32_t(width) + layout_.localSize[0] - 1) / layout_.localSize[0],
+    dispatch(cmd, resources, pushConstants, pushBytes, (std::uint32_t(width) + layout_.localSize[0] - 1) / layout_.localSize[0],
              (std::uint32_t(height) + layout_.localSize[1] - 1) / layout_.localSize[1]);
 }
 

@@ -1,17 +1,29 @@
-// A compute pipeline whose layout is checked against its shader: storage buffers at bindings 0..n-1 of set
-// 0 and one push-constant block. After niagara's dispatch(), which asserts that what it binds matches the
+// A compute pipeline whose layout is checked against its shader: storage buffers and combined image
+// samplers at bindings 0..n-1 of set 0, one push-constant block and the specialization constants that pick
+// the shader's variant. After niagara's dispatch(), which asserts that what it binds matches the
 // compiled shader.
 #pragma once
 
 #include "gpu/buffer.h"
 #include "gpu/context.h"
 #include "gpu/spirv.h"
+#include "gpu/texture.h"
 
 #include <cstdint>
 #include <initializer_list>
 #include <string>
+#include <vector>
 
 namespace obscura::gpu {
+
+// What a dispatch binds at one binding: a storage buffer or a sampled texture. Implicit from either, so a
+// pass lists its resources as {&depth, &table, ...}.
+struct Resource {
+    Resource(const Buffer* b) : buffer(b) {}
+    Resource(const Texture* t) : texture(t) {}
+    const Buffer* buffer = nullptr;
+    const Texture* texture = nullptr;
+};
 
 class ComputePipeline {
 public:
@@ -20,14 +32,19 @@ public:
     // something else or the device's limits are too small.
     ComputePipeline(Context::Impl& context, const Spirv& code, const std::string& name, int bindings,
                     std::uint32_t pushConstantBytes, int workgroupX, int workgroupY);
+    // The same with binding b of kind bindings[b], and constant_id i specialized to specialization[i] (32-bit
+    // int constants; the shader must declare exactly as many).
+    ComputePipeline(Context::Impl& context, const Spirv& code, const std::string& name,
+                    const std::vector<BindingKind>& bindings, std::uint32_t pushConstantBytes, int workgroupX,
+                    int workgroupY, const std::vector<std::int32_t>& specialization = {});
 
-    // Records a dispatch of `groupsX` x `groupsY` workgroups with these buffers at bindings 0, 1, ... and
+    // Records a dispatch of `groupsX` x `groupsY` workgroups with these resources at bindings 0, 1, ... and
     // these push constants. Each dispatch of one submission takes its own descriptor set (kSetsPerSubmit at
     // most); sets are rewritten in the next submission, after Context::Impl::submit has waited for this one.
-    void dispatch(VkCommandBuffer cmd, std::initializer_list<const Buffer*> buffers, const void* pushConstants,
+    void dispatch(VkCommandBuffer cmd, std::initializer_list<Resource> resources, const void* pushConstants,
                   std::uint32_t pushBytes, std::uint32_t groupsX, std::uint32_t groupsY);
     // The same over a width x height grid of invocations: enough workgroups to cover it.
-    void dispatchGrid(VkCommandBuffer cmd, std::initializer_list<const Buffer*> buffers, const void* pushConstants,
+    void dispatchGrid(VkCommandBuffer cmd, std::initializer_list<Resource> resources, const void* pushConstants,
                       std::uint32_t pushBytes, int width, int height);
 
     const SpirvLayout& layout() const { return layout_; }
@@ -40,6 +57,7 @@ private:
     Context::Impl& context_;
     std::string name_;
     SpirvLayout layout_;
+    std::vector<BindingKind> kinds_;
     Unique<VkDescriptorSetLayout> setLayout_;
     Unique<VkPipelineLayout> pipelineLayout_;
     Unique<VkPipeline> pipeline_;

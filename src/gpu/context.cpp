@@ -282,6 +282,22 @@ ComputePipeline& Context::Impl::pipeline(const std::string& name, const Spirv& c
     return *p;
 }
 
+ComputePipeline& Context::Impl::pipeline(const std::string& name, const Spirv& code,
+                                         const std::vector<BindingKind>& bindings, std::uint32_t pushConstantBytes,
+                                         int workgroupX, int workgroupY, const std::vector<std::int32_t>& specialization) {
+    std::string key = name;  // name<v0,v1,...>
+    for (std::size_t i = 0; i < specialization.size(); ++i) {
+        key.push_back(i == 0 ? '<' : ',');
+        key.append(std::to_string(specialization[i]));
+    }
+    if (!specialization.empty()) key.push_back('>');
+    std::unique_ptr<ComputePipeline>& p = pipelines[key];
+    if (!p)
+        p = std::make_unique<ComputePipeline>(*this, code, key, bindings, pushConstantBytes, workgroupX, workgroupY,
+                                              specialization);
+    return *p;
+}
+
 void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags srcStage, VkAccessFlags src, VkPipelineStageFlags dstStage,
                    VkAccessFlags dst) {
     VkMemoryBarrier b{};

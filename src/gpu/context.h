@@ -17,6 +17,7 @@ namespace obscura::gpu {
 
 class ComputePipeline;
 struct Spirv;
+enum class BindingKind : int;  // gpu/spirv.h
 
 struct Context::Impl {
     VkInstance instance = VK_NULL_HANDLE;
@@ -55,6 +56,11 @@ struct Context::Impl {
     // The pipeline of shader `name`, made on first use (see ComputePipeline for the checks).
     ComputePipeline& pipeline(const std::string& name, const Spirv& code, int bindings,
                               std::uint32_t pushConstantBytes, int workgroupX, int workgroupY);
+    // The variant of shader `name` with these binding kinds and specialization constants, made on first use
+    // and cached per variant (the key holds the constants).
+    ComputePipeline& pipeline(const std::string& name, const Spirv& code, const std::vector<BindingKind>& bindings,
+                              std::uint32_t pushConstantBytes, int workgroupX, int workgroupY,
+                              const std::vector<std::int32_t>& specialization = {});
 };
 
 // A Vulkan object owned by a device, destroyed with it: move-only.

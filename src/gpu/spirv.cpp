@@ -1,5 +1,6 @@
 // Minimal SPIR-V reflection (SPIR-V 1.5 specification, section 2.3 "Physical Layout" and 3 "Binary Form"):
-// enough to count a compute shader's descriptor bindings and size its push-constant block, as niagara's
+// enough to count a compute shader's descriptor bindings (telling combined image samplers from storage
+// buffers) and specialization constants and size its push-constant block, as niagara's
 // shaders.cpp does, so a pass cannot bind a layout its shader does not declare.
 #include "gpu/spirv.h"
 
@@ -21,6 +22,7 @@ enum : std::uint32_t {
     OpTypeInt = 21,
     OpTypeFloat = 22,
     OpTypeVector = 23,
+    OpTypeSampledImage = 27,
     OpTypeArray = 28,
     OpTypeStruct = 30,
     OpTypePointer = 32,
@@ -29,6 +31,7 @@ enum : std::uint32_t {
     OpDecorate = 71,
     OpMemberDecorate = 72,
     ExecutionModeLocalSize = 17,
+    DecorationSpecId = 1,
     DecorationArrayStride = 6,
     DecorationBinding = 33,
     DecorationOffset = 35,
@@ -45,7 +48,9 @@ SpirvLayout reflect(const Spirv& code) {
     std::map<std::uint32_t, std::vector<std::uint32_t>> types;  // id -> opcode followed by operands
     std::map<std::uint32_t, std::uint32_t> constants, strides;
     std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> memberOffsets;
-    std::set<std::uint32_t> bound;
+    std::map<std::uint32_t, std::uint32_t> bound;  // variable id -> binding
+    std::map<std::uint32_t, std::uint32_t> variableTypes;  // variable id -> its pointer type
+    std::set<std::uint32_t> specIds;
     std::uint32_t pushType = 0;
     for (std::size_t i = 5; i < code.count;) {
         const std::uint32_t words = code.words[i] >> 16, op = code.words[i] & 0xffffu;
@@ -57,6 +62,7 @@ SpirvLayout reflect(const Spirv& code) {
             break;
         case OpTypeInt:
         case OpTypeFloat:
+        case OpTypeSampledImage:
         case OpTypeVector:
         case OpTypeArray:
         case OpTypeStruct:
@@ -71,9 +77,11 @@ SpirvLayout reflect(const Spirv& code) {
             break;
         case OpVariable:
             if (words >= 4 && a[2] == StorageClassPushConstant) pushType = a[0];
+            if (words >= 4) variableTypes[a[1]] = a[0];
             break;
         case OpDecorate:
-            if (words >= 4 && a[1] == DecorationBinding) bound.insert(a[0]);
+            if (words >= 4 && a[1] == DecorationBinding) bound[a[0]] = a[2];
+            if (words >= 4 && a[1] == DecorationSpecId) specIds.insert(a[2]);
             if (words >= 4 && a[1] == DecorationArrayStride) strides[a[0]] = a[2];
             break;
         case OpMemberDecorate:
@@ -84,6 +92,17 @@ SpirvLayout reflect(const Spirv& code) {
         i += words;
     }
     layout.bindings = int(bound.size());
+    layout.specConstants = int(specIds.size());
+    // A binding is a combined image sampler when its variable points to an OpTypeSampledImage (the
+    // variable's pointer type is OpTypePointer storage-class pointee).
+    for (const auto& [variable, binding] : bound) {
+        if (binding >= layout.kinds.size()) layout.kinds.resize(binding + 1, BindingKind::StorageBuffer);
+        const auto pointer = types.find(variableTypes[variable]);
+        if (pointer == types.end() || pointer->second.size() < 3 || pointer->second[0] != OpTypePointer) continue;
+        const auto pointee = types.find(pointer->second[2]);
+        if (pointee != types.end() && !pointee->second.empty() && pointee->second[0] == OpTypeSampledImage)
+            layout.kinds[binding] = BindingKind::SampledImage;
+    }
     std::function<std::uint32_t(std::uint32_t)> sizeOf = [&](std::uint32_t id) -> std::uint32_t {
         const auto it = types.find(id);
         if (it == types.end() || it->second.empty()) malformed("push constant of unknown type");

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 namespace obscura::gpu {
 
@@ -19,11 +20,21 @@ extern const Spirv bilateral_separable;  // bilateral_separable.comp
 extern const Spirv gtao;                 // gtao.comp
 extern const Spirv normals_from_depth;   // normals_from_depth.comp
 extern const Spirv prepare_depth;        // prepare_depth.comp
+extern const Spirv bilateral_2d;         // bilateral_2d.comp
+extern const Spirv multibounce;          // multibounce.comp
+extern const Spirv shade;                // shade.comp
+extern const Spirv specular_occlusion;   // specular_occlusion.comp
 } // namespace shaders
+
+// The descriptor type of a binding: a storage buffer (std430 block) or a combined image sampler
+// (sampler2D, sampler3D).
+enum class BindingKind : int { StorageBuffer, SampledImage };
 
 // What a compute shader declares: its resources and workgroup size.
 struct SpirvLayout {
     int bindings = 0;                    // descriptor bindings (all in set 0 here)
+    std::vector<BindingKind> kinds;      // kinds[b]: the type of binding b (b < bindings when they are 0..n-1)
+    int specConstants = 0;               // specialization constants (constant_id decorations)
     std::uint32_t pushConstantBytes = 0; // size of the push-constant block, 0 if none
     std::uint32_t localSize[3] = {0, 0, 0};
 };

@@ -42,7 +42,7 @@ float srgbOetf(float v) {
 
 } // namespace
 
-Frame shade(const GBuffer& gbuffer, const SH9& sh, const Image& ao, const Image& environment) {
+void checkShadeInputs(const GBuffer& gbuffer, const Image& ao, const Image& environment) {
     const int w = gbuffer.width(), h = gbuffer.height();
     requireSize(gbuffer.depth, "G-buffer depth", w, h);
     requireSize(gbuffer.normal, "G-buffer normal", w, h);
@@ -55,6 +55,11 @@ Frame shade(const GBuffer& gbuffer, const SH9& sh, const Image& ao, const Image&
     }
     if (!environment.empty() && environment.channels < 3)
         fail("environment", "needs at least 3 channels (RGB), got " + std::to_string(environment.channels));
+}
+
+Frame shade(const GBuffer& gbuffer, const SH9& sh, const Image& ao, const Image& environment) {
+    checkShadeInputs(gbuffer, ao, environment);
+    const int w = gbuffer.width(), h = gbuffer.height();
 
     Frame frame{Image(w, h, 3), Image(w, h, 3)};
     frame.color.channelNames = {"R", "G", "B"};

@@ -126,11 +126,23 @@ SH9 projectEnvironment(const Image& equirect) {
     return sh;
 }
 
+namespace {
+// R&H's A_l: the clamped cosine's zonal coefficient times sqrt(4pi / (2l + 1)) (Funk-Hecke).
+constexpr double kA[9] = {pi,
+                          2.0 * pi / 3.0, 2.0 * pi / 3.0, 2.0 * pi / 3.0,
+                          pi / 4.0, pi / 4.0, pi / 4.0, pi / 4.0, pi / 4.0};
+} // namespace
+
+std::array<double, 9> irradianceScales() {
+    // basis() of the monomials' coefficient 1: its normalisations.
+    const std::array<double, 9> n = {kY00, kY1, kY1, kY1, kY2a, kY2a, kY20, kY2a, kY22};
+    std::array<double, 9> s{};
+    for (std::size_t k = 0; k < 9; ++k) s[k] = kA[k] * n[k];
+    return s;
+}
+
 Vec3 irradiance(const SH9& sh, Vec3 n) {
-    // R&H's A_l: the clamped cosine's zonal coefficient times sqrt(4pi / (2l + 1)) (Funk-Hecke).
-    constexpr double a[9] = {pi,
-                             2.0 * pi / 3.0, 2.0 * pi / 3.0, 2.0 * pi / 3.0,
-                             pi / 4.0, pi / 4.0, pi / 4.0, pi / 4.0, pi / 4.0};
+    const double* a = kA;
     std::array<double, 9> y = basis(double(n.x), double(n.y), double(n.z));
     double e[3] = {0, 0, 0};
     for (std::size_t k = 0; k < 9; ++k)

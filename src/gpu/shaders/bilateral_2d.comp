@@ -1,0 +1,52 @@
+// The square cross-bilateral blur of "Where Corners Stay Dark" (Alchemy SSAO in an IBL renderer) as one
+// compute pass, one invocation per pixel: a (2 radius + 1)^2 window weighted by the spatial Gaussian, the
+// relative depth Gaussian and max(0, N . N_t).
+//
+// The CPU reference is ssao::bilateral2D (src/ssao/bilateral.cpp, pass2D and accumulateTaps): the same
+// taps in the same order (rows ty, then columns tx), the same weights and the same keep rule. The
+// differences: the depth weight is the GPU's exp2 of the separable pass's depthScale form (the same value
+// as the CPU's degree-6 polynomial exp to a relative 2e-5), and sky taps weigh exactly 0 instead of 2^-125.
+#version 460
+#extension GL_GOOGLE_include_directive : require
+
+#include "layouts.h"
+#include "lighting_layouts.h"
+
+layout(local_size_x = kBilateralWorkgroupX, local_size_y = kBilateralWorkgroupY, local_size_z = 1) in;
+
+layout(push_constant, std430) uniform Constants { BilateralConstants k; };
+layout(std430, binding = kBilateralBindingDepth) readonly buffer DepthPlane { float depth[]; };
+layout(std430, binding = kBilateralBindingNormal) readonly buffer NormalPlane { float normal[]; };
+layout(std430, binding = kBilateral2DBindingKernel) readonly buffer Kernel { float kernel[]; };
+layout(std430, binding = kBilateralBindingInput) readonly buffer Input { float aoIn[]; };
+layout(std430, binding = kBilateralBindingOutput) writeonly buffer Output { float aoOut[]; };
+
+vec3 normalAt(uint i) { return vec3(normal[3 * i], normal[3 * i + 1], normal[3 * i + 2]); }
+
+void main() {
+    const ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (p.x >= k.width || p.y >= k.height) return;
+    const uint x = uint(p.y) * uint(k.width) + uint(p.x);
+    const float d = depth[x];
+    // A centre on sky keeps its input (its weights would be 0 / 0).
+    if (!(d < 1e30)) {
+        aoOut[x] = aoIn[x];
+        return;
+    }
+    const float c = k.depthScale / (d * d);  // 0 on sky: its output is its input anyway
+    const vec3 n = normalAt(x);
+    float sum = 0.0, wsum = 0.0;
+    for (int ty = max(-k.radius, -p.y); ty <= min(k.radius, k.height - 1 - p.y); ++ty) {
+        const float ky = kernel[abs(ty)];
+        for (int tx = max(-k.radius, -p.x); tx <= min(k.radius, k.width - 1 - p.x); ++tx) {
+            const uint o = uint((p.y + ty) * k.width + p.x + tx);
+            const float dd = depth[o] - d;
+            float w = kernel[abs(tx)] * ky * exp2(-dd * dd * c);
+            if (k.useNormal != 0) w *= max(0.0, dot(n, normalAt(o)));
+            sum += w * aoIn[o];
+            wsum += w;
+        }
+    }
+    // No weight is impossible for a surface (its own tap counts); kept as the CPU keeps it.
+    aoOut[x] = wsum > 0.0 ? sum / wsum : aoIn[x];
+}

@@ -1,0 +1,129 @@
+// Ground-Truth Specular Occlusion: Jimenez et al. 2016, "Practical Realtime Strategies for Accurate
+// Indirect Occlusion", §6 (eq. 14-21) and App. B (eq. 25-26), one invocation per pixel; the mode (4-D
+// table, 3-D table, cone intersection) is a specialization constant.
+//
+// The CPU reference is src/ssao/specular_occlusion.cpp: specularOcclusion, gridCoordinate,
+// SpecularOcclusionTable::lookup, capIntersectionSolidAngle and specularOcclusionCone below are its
+// functions of the same names. The table is a 3-D texture (lighting_layouts.h gives the packing).
+//
+// Interpolation: kSpecularLookupFetch reads the 2^d nodes with texelFetch and weighs them in float as the
+// CPU's multilinear lookup does; kSpecularLookupHardware lets the sampler's trilinear filter do it (the 4-D
+// table: two filtered reads along theta_o, lerped here). The fetch variant is the one the public pass uses.
+// tests/gpu/lighting_gpu_test.cpp measures both: on lavapipe, which filters with float weights, they agree
+// with the CPU alike (max 3.8e-4); but filtering hardware quantises the sub-texel weight to
+// subTexelPrecisionBits (8 on most GPUs, 4 the Vulkan minimum), and neighbouring nodes of these tables differ
+// by up to 1.0 (the mirror's step), so the quantisation alone could reach 2e-3 (8 bits) to 3e-2 (4 bits).
+#version 460
+#extension GL_GOOGLE_include_directive : require
+
+#include "lighting_layouts.h"
+
+layout(local_size_x = kLightingWorkgroupX, local_size_y = kLightingWorkgroupY, local_size_z = 1) in;
+
+layout(constant_id = kSpecularSpecMode) const int kMode = kSpecularModeLut4;
+layout(constant_id = kSpecularSpecLookup) const int kLookup = kSpecularLookupFetch;
+
+layout(push_constant, std430) uniform Constants { SpecularConstants k; };
+layout(std430, binding = kSpecularBindingDepth) readonly buffer DepthPlane { float depth[]; };
+layout(std430, binding = kSpecularBindingNormal) readonly buffer NormalPlane { float normal[]; };
+layout(std430, binding = kSpecularBindingAo) readonly buffer AoPlane { float ao[]; };
+layout(std430, binding = kSpecularBindingBentNormal) readonly buffer BentPlane { float bent[]; };
+layout(binding = kSpecularBindingTable) uniform sampler3D table;
+layout(std430, binding = kSpecularBindingOutput) writeonly buffer Output { float result[]; };
+
+const float kPi = 3.14159265358979;
+const float kHalfPi = 0.5 * kPi;
+
+// Fractional grid coordinate of v in [0, range] on tableSize nodes: a cell index and a weight.
+void gridCoordinate(float v, float range, out int i, out float f) {
+    const int n = k.tableSize;
+    const float g = clamp(v / (range / float(n - 1)), 0.0, float(n - 1));
+    i = min(int(g), n - 2);
+    f = g - float(i);
+}
+
+float node4(int i, int j, int kk, int l) { return texelFetch(table, ivec3(i, j, l * k.tableSize + kk), 0).r; }
+float node3(int i, int kk, int l) { return texelFetch(table, ivec3(i, kk, l), 0).r; }
+
+// SpecularOcclusionTable::lookup: the same loop order and weights; beta is ignored by the 3-D table.
+float lookup(float alphaV, float beta, float roughness, float thetaO) {
+    const bool fourD = kMode == kSpecularModeLut4;
+    int i, j = 0, kk, l;
+    float fi, fj = 0.0, fk, fl;
+    gridCoordinate(alphaV, kHalfPi, i, fi);
+    if (fourD) gridCoordinate(beta, kPi, j, fj);
+    gridCoordinate(roughness, 1.0, kk, fk);
+    gridCoordinate(thetaO, kHalfPi, l, fl);
+    if (kLookup == kSpecularLookupHardware) {
+        // Texel centres at (index + 0.5) / size; the filter interpolates i, j (or kk) and the z axis.
+        const vec3 size = vec3(textureSize(table, 0));
+        if (fourD) {
+            const vec2 xy = (vec2(float(i) + fi, float(j) + fj) + 0.5) / size.xy;
+            const float z0 = (float(l * k.tableSize + kk) + fk + 0.5) / size.z;
+            const float z1 = (float((l + 1) * k.tableSize + kk) + fk + 0.5) / size.z;
+            return mix(texture(table, vec3(xy, z0)).r, texture(table, vec3(xy, z1)).r, fl);
+        }
+        return texture(table, (vec3(float(i) + fi, float(kk) + fk, float(l) + fl) + 0.5) / size).r;
+    }
+    float r = 0.0;
+    for (int dl = 0; dl < 2; ++dl)
+        for (int dk = 0; dk < 2; ++dk)
+            for (int dj = 0; dj < (fourD ? 2 : 1); ++dj)
+                for (int di = 0; di < 2; ++di) {
+                    float w = (di != 0 ? fi : 1.0 - fi) * (dk != 0 ? fk : 1.0 - fk) * (dl != 0 ? fl : 1.0 - fl);
+                    if (fourD) w *= dj != 0 ? fj : 1.0 - fj;
+                    if (w > 0.0)
+                        r += w * (fourD ? node4(i + di, j + dj, kk + dk, l + dl) : node3(i + di, kk + dk, l + dl));
+                }
+    return r;
+}
+
+float clampCos(float c) { return clamp(c, -1.0, 1.0); }
+
+float capIntersectionSolidAngle(float a1, float a2, float beta) {
+    if (beta >= a1 + a2) return 0.0;
+    if (beta <= abs(a1 - a2)) return 2.0 * kPi * (1.0 - cos(min(a1, a2)));
+    const float c1 = cos(a1), c2 = cos(a2), cb = cos(beta);
+    const float s1 = sin(a1), s2 = sin(a2), sb = sin(beta);
+    const float g = acos(clampCos((cb - c1 * c2) / (s1 * s2)));
+    const float b1 = acos(clampCos((c2 - cb * c1) / (sb * s1)));
+    const float b2 = acos(clampCos((c1 - cb * c2) / (sb * s2)));
+    return max(0.0, 2.0 * (kPi - g - c1 * b1 - c2 * b2));
+}
+
+float specularOcclusionCone(float alphaV, float beta, float roughness) {
+    const float alphaS = acos(exp(-2.30259 * roughness * roughness));  // eq. 26
+    const float specular = 2.0 * kPi * (1.0 - cos(alphaS));
+    if (!(specular > 0.0)) return beta <= alphaV ? 1.0 : 0.0;  // a mirror: the reflection ray's visibility
+    return clamp(capIntersectionSolidAngle(alphaV, alphaS, beta) / specular, 0.0, 1.0);
+}
+
+vec3 vec3At(uint i, bool bentPlane) {
+    return bentPlane ? vec3(bent[3 * i], bent[3 * i + 1], bent[3 * i + 2])
+                     : vec3(normal[3 * i], normal[3 * i + 1], normal[3 * i + 2]);
+}
+
+void main() {
+    const ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (p.x >= k.width || p.y >= k.height) return;
+    const uint x = uint(p.y) * uint(k.width) + uint(p.x);
+    if (!(depth[x] < 1e30)) {
+        result[x] = 1.0;
+        return;
+    }
+    // normalize(-viewPosition): the depth cancels, so the ray through the pixel centre at depth 1.
+    const vec2 c = vec2(p) + 0.5;
+    const vec3 view = normalize(-vec3(c.x * k.viewFromPixelMulX + k.viewFromPixelAddX,
+                                      c.y * k.viewFromPixelMulY + k.viewFromPixelAddY, -1.0));
+    const vec3 n = vec3At(x, false), b = vec3At(x, true);
+    const float alphaV = acos(sqrt(clamp(1.0 - ao[x], 0.0, 1.0)));  // eq. 18
+    const float nv = clamp(dot(n, view), 0.0, 1.0);
+    const vec3 reflected = n * (2.0 * nv) - view;
+    const float thetaO = acos(nv);
+    const float beta = acos(clampCos(dot(b, reflected)));
+    float s;
+    if (kMode == kSpecularModeLut4) s = lookup(alphaV, beta, k.roughness, thetaO);
+    else if (kMode == kSpecularModeLut3) s = lookup(alphaV, thetaO, k.roughness, thetaO);
+    else s = specularOcclusionCone(alphaV, beta, k.roughness);
+    result[x] = s;
+}
