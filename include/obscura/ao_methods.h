@@ -8,6 +8,7 @@
 
 #include "obscura/bilateral.h"
 #include "obscura/gbuffer.h"
+#include "obscura/gpu.h"
 #include "obscura/image.h"
 #include "obscura/trace.h"
 
@@ -24,6 +25,7 @@ struct MethodOptions {
     float radius = 0.0f;                  // world-space radius, m
     ssao::BilateralSettings blur{ssao::BlurMode::None};  // filter applied after the raw estimate
     std::uint32_t seed = 0;
+    gpu::Context* gpu = nullptr;          // set: the estimator and the filter run as Vulkan compute passes
 };
 
 struct AoMethod {

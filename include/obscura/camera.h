@@ -48,4 +48,8 @@ struct Camera {
     Vec2 pixelFromView(Vec3 p, float* depth = nullptr) const;
 };
 
+// `base` with its position turned by `radians` about the world's vertical (+Y) through its target, looking
+// at the same target: the camera path the temporal passes are shown and tested on.
+Camera turnedAboutTarget(const Camera& base, float radians);
+
 } // namespace obscura

@@ -45,6 +45,7 @@ struct DeviceInfo {
     int index = 0;                  // in the loader's order
     bool discrete = false;
     std::uint32_t apiVersion = 0;   // VK_MAKE_API_VERSION encoding
+    std::string driver;             // the driver's name and version, e.g. "llvmpipe Mesa 22.3.6"
     double timestampPeriodNs = 0;   // ns per timestamp tick; 0 when the compute queue has no timestamps
 };
 

@@ -96,4 +96,11 @@ Vec2 Camera::pixelFromView(Vec3 p, float* depth) const {
     return {(ndcX + 1.0f) * 0.5f * float(width), (1.0f - ndcY) * 0.5f * float(height)};
 }
 
+Camera turnedAboutTarget(const Camera& base, float radians) {
+    Camera c = base;
+    const Mat4 turn = Mat4::rotation({0.0f, 1.0f, 0.0f}, radians);
+    c.position = base.target + transformVector(turn, base.position - base.target);
+    return c;
+}
+
 } // namespace obscura

@@ -3,6 +3,7 @@
 
 #include "obscura/alchemy.h"
 #include "obscura/error.h"
+#include "obscura/gpu.h"
 #include "obscura/gtao.h"
 
 #include <algorithm>
@@ -23,6 +24,7 @@ ssao::AlchemySettings alchemySettings(ssao::AlchemyFormulation formulation, cons
 AoMethod alchemy(const char* name, const char* description, ssao::AlchemyFormulation f) {
     return {name, description,
             [f](const GBuffer& g, const MethodOptions& o) {
+                if (o.gpu) return gpu::bilateralFilter(*o.gpu, gpu::alchemyAO(*o.gpu, g, alchemySettings(f, o)), g, o.blur);
                 Image raw = ssao::alchemyAO(g, alchemySettings(f, o));
                 return ssao::bilateralFilter(raw, g, o.blur);
             },
@@ -42,6 +44,10 @@ ssao::GtaoSettings gtaoSettings(ssao::GtaoQuality quality, const MethodOptions& 
 AoMethod gtao(const char* name, const char* description, ssao::GtaoQuality quality) {
     return {name, description,
             [quality](const GBuffer& g, const MethodOptions& o) {
+                if (o.gpu) {
+                    ssao::GtaoResult r = gpu::computeGtao(*o.gpu, g, gtaoSettings(quality, o));
+                    return gpu::bilateralFilter(*o.gpu, r.visibility, g, o.blur);
+                }
                 ssao::GtaoResult r = ssao::computeGtao(g, gtaoSettings(quality, o));
                 return ssao::bilateralFilter(r.visibility, g, o.blur);
             },

@@ -170,6 +170,14 @@ Context::Context(const ContextSettings& settings) : impl_(std::make_unique<Impl>
         fail("Vulkan device '" + c.info.name + "'",
              "supports Vulkan " + std::to_string(VK_API_VERSION_MAJOR(c.properties.apiVersion)) + "." +
                  std::to_string(VK_API_VERSION_MINOR(c.properties.apiVersion)) + ", 1.2 needed");
+    // The driver's own name and version, for benchmark records (core in Vulkan 1.2).
+    VkPhysicalDeviceDriverProperties driver{};
+    driver.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES;
+    VkPhysicalDeviceProperties2 properties2{};
+    properties2.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2;
+    properties2.pNext = &driver;
+    vkGetPhysicalDeviceProperties2(c.physical, &properties2);
+    c.info.driver = std::string(driver.driverName) + (driver.driverInfo[0] ? std::string(" ") + driver.driverInfo : "");
 
     // A compute queue; a family with compute and no graphics is the dedicated one, so it is preferred.
     std::uint32_t n = 0;
@@ -217,7 +225,7 @@ Context::Context(const ContextSettings& settings) : impl_(std::make_unique<Impl>
         VkQueryPoolCreateInfo query{};
         query.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO;
         query.queryType = VK_QUERY_TYPE_TIMESTAMP;
-        query.queryCount = 2;
+        query.queryCount = Context::Impl::kMaxTimestamps;
         c.check(vkCreateQueryPool(c.device, &query, nullptr, &c.timestamps), "creating timestamp queries");
         c.info.timestampPeriodNs = double(c.properties.limits.timestampPeriod);
     }
@@ -241,23 +249,28 @@ Context::Impl::~Impl() {
 void Context::Impl::check(VkResult r, const std::string& doing) const { gpu::check(r, info.name, doing); }
 
 void Context::Impl::submit(const std::function<void(VkCommandBuffer)>& record, bool timed) {
-    const bool timing = timed && timestamps != VK_NULL_HANDLE;
+    timing = timed && timestamps != VK_NULL_HANDLE;
+    markNames.clear();
     for (auto& [name, p] : pipelines) p->beginCommands();
     VkCommandBufferBeginInfo begin{};
     begin.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
     begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     check(vkBeginCommandBuffer(commandBuffer, &begin), "recording commands");
     if (timing) {
-        vkCmdResetQueryPool(commandBuffer, timestamps, 0, 2);
+        vkCmdResetQueryPool(commandBuffer, timestamps, 0, kMaxTimestamps);
         vkCmdWriteTimestamp(commandBuffer, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, timestamps, 0);
     }
     try {
         record(commandBuffer);
     } catch (...) {
+        timing = false;
         vkEndCommandBuffer(commandBuffer);  // out of the recording state, so the next submit can begin again
         throw;
     }
-    if (timing) vkCmdWriteTimestamp(commandBuffer, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, timestamps, 1);
+    const std::uint32_t last = std::uint32_t(markNames.size()) + 1;
+    if (timing) vkCmdWriteTimestamp(commandBuffer, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, timestamps, last);
+    const bool timedHere = timing;
+    timing = false;
     check(vkEndCommandBuffer(commandBuffer), "recording commands");
     VkSubmitInfo work{};
     work.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
@@ -266,13 +279,25 @@ void Context::Impl::submit(const std::function<void(VkCommandBuffer)>& record, b
     check(vkResetFences(device, 1, &fence), "resetting a fence");
     check(vkQueueSubmit(queue, 1, &work, fence), "submitting commands");
     check(vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX), "waiting for the GPU");
-    if (timing) {
-        std::uint64_t ticks[2] = {0, 0};
-        check(vkGetQueryPoolResults(device, timestamps, 0, 2, sizeof ticks, ticks, sizeof ticks[0],
+    if (timedHere) {
+        std::uint64_t ticks[kMaxTimestamps] = {};
+        check(vkGetQueryPoolResults(device, timestamps, 0, last + 1, sizeof ticks, ticks, sizeof ticks[0],
                                     VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
               "reading timestamps");
-        lastPassMs = double(ticks[1] - ticks[0]) * info.timestampPeriodNs * 1e-6;
+        const auto ms = [&](std::uint32_t from, std::uint32_t to) {
+            return double(ticks[to] - ticks[from]) * info.timestampPeriodNs * 1e-6;
+        };
+        lastPassMs = ms(0, last);
+        lastMarks.clear();
+        for (std::uint32_t i = 0; i < markNames.size(); ++i) lastMarks.emplace_back(markNames[i], ms(i, i + 1));
     }
+}
+
+void Context::Impl::mark(VkCommandBuffer cmd, const std::string& name) {
+    if (!timing || markNames.size() + 2 >= kMaxTimestamps) return;
+    markNames.push_back(name);
+    // BOTTOM_OF_PIPE: the timestamp is written once every earlier command has completed.
+    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, timestamps, std::uint32_t(markNames.size()));
 }
 
 ComputePipeline& Context::Impl::pipeline(const std::string& name, const Spirv& code, int bindings,

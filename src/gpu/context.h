@@ -10,6 +10,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,12 @@ struct Context::Impl {
     bool validation = false;
     std::unique_ptr<Allocator> allocator;
     double lastPassMs = -1.0;
+    // Timestamps of the submission being recorded: slot 0 at its start, one per mark(), one at its end.
+    static constexpr std::uint32_t kMaxTimestamps = 64;
+    bool timing = false;                  // the submission being recorded is timed
+    std::vector<std::string> markNames;   // mark() names of that submission, in order
+    // The last timed submission's marks: each name with the GPU ms since the previous mark (or the start).
+    std::vector<std::pair<std::string, double>> lastMarks;
 
     // Made once per context: creating a pipeline compiles its shader to the device's machine code.
     std::map<std::string, std::unique_ptr<ComputePipeline>> pipelines;
@@ -53,6 +60,9 @@ struct Context::Impl {
     // Records commands with `record` into the context's command buffer, submits them and waits for them.
     // With `timed`, the commands are bracketed by timestamps and lastPassMs is set from them.
     void submit(const std::function<void(VkCommandBuffer)>& record, bool timed = false);
+    // In a timed submission, a timestamp after every command recorded so far has finished, named `name`;
+    // submit() then sets lastMarks. Ignored in an untimed one, and past kMaxTimestamps - 2 marks.
+    void mark(VkCommandBuffer cmd, const std::string& name);
     // The pipeline of shader `name`, made on first use (see ComputePipeline for the checks).
     ComputePipeline& pipeline(const std::string& name, const Spirv& code, int bindings,
                               std::uint32_t pushConstantBytes, int workgroupX, int workgroupY);

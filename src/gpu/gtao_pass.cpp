@@ -8,11 +8,14 @@
 #include "gpu/context.h"
 #include "gpu/spirv.h"
 #include "shaders/layouts.h"
+#include "shaders/temporal_layouts.h"
 
 #include "obscura/error.h"
 #include "obscura/gpu.h"
 
+#include <cassert>
 #include <string>
+#include <vector>
 
 namespace obscura::gpu {
 
@@ -20,11 +23,15 @@ static_assert(sizeof(ssao::GtaoConstants) == kGtaoPushConstantBytes,
               "the push constants of gtao.comp are one GtaoConstants");
 static_assert(ssao::kGtaoRotations == kGtaoRotations, "gtao.comp rotates the interleave as the CPU kernel does");
 
-void recordGtao(Context::Impl& c, VkCommandBuffer cmd, const GtaoBuffers& b, const ssao::GtaoConstants& k) {
-    ComputePipeline& pipeline = c.pipeline("gtao", shaders::gtao, kGtaoBindingCount, kGtaoPushConstantBytes,
-                                           kGtaoWorkgroupX, kGtaoWorkgroupY);
+void recordGtao(Context::Impl& c, VkCommandBuffer cmd, const GtaoBuffers& b, const ssao::GtaoConstants& k,
+                int gridStep) {
+    assert(gridStep == 1 || gridStep == 2);
+    ComputePipeline& pipeline =
+        c.pipeline("gtao", shaders::gtao, std::vector<BindingKind>(kGtaoBindingCount, BindingKind::StorageBuffer),
+                   kGtaoPushConstantBytes, kGtaoWorkgroupX, kGtaoWorkgroupY, {gridStep});  // kGtaoSpecGridStep
     // In binding order: kGtaoBindingDepth, Normal, Visibility, BentNormal.
-    pipeline.dispatchGrid(cmd, {&b.depth, &b.normal, &b.visibility, &b.bentNormal}, &k, sizeof k, k.width, k.height);
+    pipeline.dispatchGrid(cmd, {&b.depth, &b.normal, &b.visibility, &b.bentNormal}, &k, sizeof k,
+                          (k.width + gridStep - 1) / gridStep, (k.height + gridStep - 1) / gridStep);
 }
 
 ssao::GtaoResult computeGtao(Context& context, const GBuffer& g, const ssao::GtaoConstants& k) {

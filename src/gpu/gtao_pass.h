@@ -13,12 +13,15 @@ namespace obscura::gpu {
 struct GtaoBuffers {
     const Buffer& depth;       // width * height linear depths
     const Buffer& normal;      // width * height * 3 view normals
-    const Buffer& visibility;  // width * height visibility
-    const Buffer& bentNormal;  // width * height * 3 view-space bent normals
+    const Buffer& visibility;  // gridWidth * gridHeight visibility
+    const Buffer& bentNormal;  // gridWidth * gridHeight * 3 view-space bent normals
 };
 
-// Records one dispatch. The inputs must be visible to compute shaders (the caller's barrier); the buffers
-// were checked by ssao::checkGtaoBuffers.
-void recordGtao(Context::Impl& context, VkCommandBuffer cmd, const GtaoBuffers& buffers, const ssao::GtaoConstants& k);
+// Records one dispatch over the grid of ceil(width / gridStep) x ceil(height / gridStep) pixels (gridStep 1:
+// the whole image; 2: the half-resolution grid of ssao::GtaoTemporal, see kGtaoSpecGridStep). The inputs
+// must be visible to compute shaders (the caller's barrier); the buffers were checked by
+// ssao::checkGtaoBuffers.
+void recordGtao(Context::Impl& context, VkCommandBuffer cmd, const GtaoBuffers& buffers, const ssao::GtaoConstants& k,
+                int gridStep = 1);
 
 } // namespace obscura::gpu

@@ -24,6 +24,9 @@ extern const Spirv bilateral_2d;         // bilateral_2d.comp
 extern const Spirv multibounce;          // multibounce.comp
 extern const Spirv shade;                // shade.comp
 extern const Spirv specular_occlusion;   // specular_occlusion.comp
+extern const Spirv reconstruct_interleaved;  // reconstruct_interleaved.comp
+extern const Spirv upsample_depth_aware;     // upsample_depth_aware.comp
+extern const Spirv gtao_temporal;            // gtao_temporal.comp
 } // namespace shaders
 
 // The descriptor type of a binding: a storage buffer (std430 block) or a combined image sampler

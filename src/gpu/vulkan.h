@@ -30,7 +30,7 @@
     X(vkCmdBindPipeline) X(vkCmdBindDescriptorSets) X(vkCmdPushConstants) X(vkCmdDispatch)                    \
     X(vkCreateImage) X(vkDestroyImage) X(vkGetImageMemoryRequirements) X(vkBindImageMemory)                   \
     X(vkCreateImageView) X(vkDestroyImageView) X(vkCreateSampler) X(vkDestroySampler)                         \
-    X(vkCmdCopyBufferToImage) X(vkGetPhysicalDeviceFormatProperties)
+    X(vkCmdCopyBufferToImage) X(vkGetPhysicalDeviceFormatProperties) X(vkGetPhysicalDeviceProperties2)
 
 namespace obscura::gpu {
 

@@ -86,3 +86,19 @@ TEST(Camera, ValidateNamesTheProblem) {
     c.target = c.position;
     EXPECT_THROW(c.validate(), Error);
 }
+
+// A quarter turn about the vertical through the target, worked by hand: the offset from the target
+// (1.5, 1.8, 4) goes to (z, y, -x) = (4, 1.8, -1.5) for a right-handed turn of +90 degrees about +Y.
+TEST(Camera, TurnedAboutTargetRotatesThePositionAboutTheVertical) {
+    const Camera c = testCamera();
+    const Camera q = turnedAboutTarget(c, 0.5f * kPi);
+    EXPECT_NEAR(q.position.x, -0.5f + 4.0f, 1e-5f);
+    EXPECT_NEAR(q.position.y, 2.0f, 1e-5f);
+    EXPECT_NEAR(q.position.z, -1.0f - 1.5f, 1e-5f);
+    EXPECT_EQ(q.target.x, c.target.x);
+    EXPECT_EQ(q.target.z, c.target.z);
+    EXPECT_EQ(q.width, c.width);
+    const Camera full = turnedAboutTarget(c, 2.0f * kPi);
+    EXPECT_NEAR(full.position.x, c.position.x, 1e-5f);
+    EXPECT_NEAR(full.position.z, c.position.z, 1e-5f);
+}

@@ -1,6 +1,7 @@
 // The GTAO compute pass (src/gpu/shaders/gtao.comp) against the CPU reference ssao::computeGtao, on
 // lavapipe in CI, with validation on and no message allowed.
 #include "gpu_test_util.h"
+#include "gtao_difference.h"
 
 #include "obscura/error.h"
 #include "obscura/gpu.h"
@@ -16,37 +17,9 @@
 namespace obscura::gpu {
 namespace {
 
-constexpr double kVisibilityBound = 2e-3;
-constexpr double kBentBound = 1e-2;
-
-struct Difference {
-    double visibility = 0;      // max |GPU - CPU| over all pixels
-    double bent = 0;            // max over all pixels and bent-normal components
-    double visibilityRest = 0;  // the same over the pixels within both bounds
-    double bentRest = 0;
-    int beyond = 0;             // pixels beyond either bound
-    int occluded = 0;           // CPU pixels below 0.99: the comparison is not vacuous
-};
-
-Difference compare(const ssao::GtaoResult& gpu, const ssao::GtaoResult& cpu) {
-    Difference d;
-    for (std::size_t i = 0; i < cpu.visibility.pixels.size(); ++i) {
-        const double dv = std::fabs(double(gpu.visibility.pixels[i]) - double(cpu.visibility.pixels[i]));
-        double db = 0;
-        for (std::size_t j = 3 * i; j < 3 * i + 3; ++j)
-            db = std::max(db, std::fabs(double(gpu.bentNormal.pixels[j]) - double(cpu.bentNormal.pixels[j])));
-        d.visibility = std::max(d.visibility, dv);
-        d.bent = std::max(d.bent, db);
-        if (dv > kVisibilityBound || db > kBentBound) {
-            ++d.beyond;
-        } else {
-            d.visibilityRest = std::max(d.visibilityRest, dv);
-            d.bentRest = std::max(d.bentRest, db);
-        }
-        d.occluded += cpu.visibility.pixels[i] < 0.99f;
-    }
-    return d;
-}
+using testing::GtaoDifference;
+using testing::kBentBound;
+using testing::kVisibilityBound;
 
 // Pixels allowed beyond the bounds. The kernel has one discontinuity in the angles the GPU computes with
 // its own sin, cos, acos and atan: the bitmask rounds each occluder's angular span to 32 sectors, so an edge
@@ -68,7 +41,7 @@ void expectMatch(Context& context, const GBuffer& g, const ssao::GtaoConstants& 
     const ssao::GtaoResult cpu = ssao::computeGtao(g, k);
     ASSERT_EQ(gpu.visibility.pixels.size(), cpu.visibility.pixels.size()) << name;
     ASSERT_EQ(gpu.bentNormal.pixels.size(), cpu.bentNormal.pixels.size()) << name;
-    const Difference d = compare(gpu, cpu);
+    const GtaoDifference d = testing::compareGtao(gpu, cpu);
     std::printf("[ measured ] %s %dx%d: visibility max %.3g (%.3g within bounds), bent max %.3g (%.3g), "
                 "%d px beyond, %d occluded, %.3f ms on the GPU\n",
                 name.c_str(), k.width, k.height, d.visibility, d.visibilityRest, d.bent, d.bentRest, d.beyond,

@@ -13,13 +13,20 @@
 // atan2's 0. The constants are the push constants `k`, filled by ssao::gtaoConstants().
 // What remains is the GPU's sin, cos, acos, atan and pow, which round differently from libm: tests/gpu
 // measure the difference.
+//
+// The grid step (a specialization constant, temporal_layouts.h) is the loop of step 1 of
+// ssao::GtaoTemporal::frame (src/ssao/gtao_temporal.cpp): with step 2 each invocation evaluates every other
+// pixel in x and y, with the interleave index of its place in the half-resolution grid.
 #version 460
 #extension GL_GOOGLE_include_directive : require
 
 #include "obscura/gtao_constants.h"
 #include "layouts.h"
+#include "temporal_layouts.h"
 
 layout(local_size_x = kGtaoWorkgroupX, local_size_y = kGtaoWorkgroupY, local_size_z = 1) in;
+
+layout(constant_id = kGtaoSpecGridStep) const int kGridStep = 1;
 
 layout(push_constant, std430) uniform Constants { GtaoConstants k; };
 layout(std430, binding = kGtaoBindingDepth) readonly buffer DepthPlane { float depthPlane[]; };
@@ -267,9 +274,10 @@ GtaoPixel gtaoPixel(int x, int y, int interleave) {
 
 void main() {
     const ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-    if (p.x >= k.width || p.y >= k.height) return;
-    const GtaoPixel px = gtaoPixel(p.x, p.y, interleaveIndex(p.x, p.y));
-    const uint i = uint(p.y) * uint(k.width) + uint(p.x);
+    const int gridWidth = (k.width + kGridStep - 1) / kGridStep, gridHeight = (k.height + kGridStep - 1) / kGridStep;
+    if (p.x >= gridWidth || p.y >= gridHeight) return;
+    const GtaoPixel px = gtaoPixel(p.x * kGridStep, p.y * kGridStep, interleaveIndex(p.x, p.y));
+    const uint i = uint(p.y) * uint(gridWidth) + uint(p.x);
     visibilityOut[i] = px.visibility;
     bentNormalOut[3 * i] = px.bentNormal.x;
     bentNormalOut[3 * i + 1] = px.bentNormal.y;

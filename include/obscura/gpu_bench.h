@@ -1,0 +1,68 @@
+// GPU timing of the screen-space passes: per-pass milliseconds from timestamp queries, frame after frame on
+// buffers that stay on the device, so what is timed is the dispatches alone (no uploads, no host work).
+// `obscura bench --gpu` prints these; docs/PERFORMANCE.md records them per device.
+//
+// Each timed frame is one submission: a timestamp at its start, one after each pass (the GPU has finished
+// every earlier command when it is written) and one at its end. The frames rotate through the input
+// G-buffers, so a frame's inputs are not the ones the previous frame left in the caches.
+//
+// Errors: GpuBenchSettings::validate() and benchGpuCase() throw obscura::Error naming the bad setting, case
+// or buffer; Vulkan errors as in obscura/gpu.h. A device without timestamp queries fails with a message.
+#pragma once
+
+#include "obscura/gbuffer.h"
+#include "obscura/gpu.h"
+#include "obscura/gtao.h"
+
+#include <string>
+#include <vector>
+
+namespace obscura::gpu {
+
+struct GpuBenchSettings {
+    int frames = 200;       // timed frames per case and size, [1, 100000]; medians over them are reported
+    int warmup = 20;        // untimed frames before them (pipelines, clocks, caches), [0, 10000]
+    int alchemySamples = 12;                          // the `alchemy` case's samples per pixel, [1, 1024]
+    ssao::GtaoQuality quality = ssao::GtaoQuality::High;  // the GTAO cases' preset (slices x steps)
+    int temporalSlices = 1;  // slices of the `gtao-temporal` cases, [1, 64]: the paper's 1, times the 16
+                             // interleave directions and 6 rotations of the history
+    void validate() const;   // throws obscura::Error("gpu-bench-<field>: ...")
+};
+
+struct GpuPassTime {
+    std::string name;       // "alchemy", "blur", "gtao", "denoise", "upsample", "temporal", "resolve"
+    double medianMs = 0;    // median over the timed frames of this pass's GPU time
+};
+
+struct GpuBenchCase {
+    std::string name;         // the case, as gpuBenchCases() lists it
+    std::string description;  // one line: what the frame runs
+    int width = 0, height = 0;
+    int frames = 0;           // timed frames
+    std::vector<GpuPassTime> passes;  // in dispatch order
+    double medianMs = 0;      // median over the frames of the frame's GPU time, first to last timestamp
+    double minMs = 0;         // fastest frame
+    double bytes = 0;         // compulsory memory traffic per frame: every buffer element each dispatch
+                              // reads or writes, counted once per dispatch (cache reuse between neighbours
+                              // is free, so the real traffic is at least this)
+    double mpixelsPerSecond() const { return medianMs > 0 ? double(width) * double(height) / (medianMs * 1e3) : 0; }
+    double gigabytesPerSecond() const { return medianMs > 0 ? bytes / (medianMs * 1e6) : 0; }
+};
+
+struct GpuBenchCaseInfo {
+    std::string name;
+    std::string description;
+};
+// The cases: alchemy (estimator + separable 13-tap blur), gtao (full GTAO + separable blur), gtao-spatial
+// (4x4 interleaved GTAO + its reconstruction), gtao-temporal (interleaved + reconstruction + reprojected
+// history), gtao-temporal-half (the same at half resolution, with the depth-aware upsample).
+std::vector<GpuBenchCaseInfo> gpuBenchCases();
+
+// Times one case on `inputs`: G-buffers (depth and view normals; albedo unused) of one size whose cameras
+// are the frames' (the temporal cases reproject between them). Frame i uses inputs[i % inputs.size()].
+// Throws obscura::Error for an unknown case, no inputs, inputs of different sizes, bad settings, or a device
+// without timestamps.
+GpuBenchCase benchGpuCase(Context& context, const std::string& name, const std::vector<GBuffer>& inputs,
+                          const GpuBenchSettings& settings);
+
+} // namespace obscura::gpu

@@ -1,0 +1,72 @@
+// Spatio-temporal GTAO (Jimenez et al. 2016, "Practical Realtime Strategies for Accurate Indirect
+// Occlusion", §4.1) as Vulkan compute passes on a gpu::Context: the mirror of obscura/gtao_temporal.h. Each
+// function and GtaoTemporal take their CPU reference's inputs and settings, run its checks with the same
+// messages, and return the same images to within GPU rounding (tests/gpu/gtao_temporal_gpu_test.cpp states
+// and measures the bounds). A frame is four stages, each a dispatch or two: the interleaved GTAO pass
+// (gtao.comp, every other pixel at half resolution), the 4x4 reconstruction (reconstruct_interleaved.comp),
+// the depth-aware upsampling at half resolution (upsample_depth_aware.comp), and the reprojected
+// accumulation (gtao_temporal.comp). The history stays on the GPU between frames.
+//
+// Errors: as in obscura/gpu.h; the CPU's errors for bad settings and buffers. reconstructInterleaved and
+// upsampleDepthAware check nothing on the CPU; here they throw obscura::Error for buffers the GPU cannot read
+// safely (the message is this pass's own).
+#pragma once
+
+#include "obscura/gbuffer.h"
+#include "obscura/gpu.h"
+#include "obscura/gtao.h"
+#include "obscura/gtao_temporal.h"
+#include "obscura/image.h"
+
+#include "temporal_layouts.h"
+
+#include <memory>
+
+namespace obscura::gpu {
+
+class GtaoTemporalPasses;  // src/gpu/gtao_temporal_pass.h
+
+// ssao::reconstructInterleaved: `values` 1 or 3 channels, `depth` and `normal` (at least 3 channels) of the
+// same size; the first 1 and 3 channels are read, as the CPU does. Sky pixels keep their value.
+Image reconstructInterleaved(Context& context, const Image& values, const Image& depth, const Image& normal,
+                             float depthSigma);
+// ssao::upsampleDepthAware: `low` 1 or 3 channels and `lowDepth` of the same, non-empty size; the G-buffer's
+// depth of its camera's size (their first channels are read). The output has the G-buffer's size; sky 1
+// (1 channel) or 0.
+Image upsampleDepthAware(Context& context, const Image& low, const Image& lowDepth, const GBuffer& full,
+                         float depthSigma);
+
+// ssao::GtaoTemporal on the GPU. The context must outlive it. Results differ from the CPU's by the GPU's
+// trigonometry in the GTAO pass and its exp in the filters, and by what they feed through the rejection
+// tests over frames.
+class GtaoTemporal {
+public:
+    // Validates both settings (throws obscura::Error with the CPU's messages).
+    GtaoTemporal(Context& context, const ssao::GtaoSettings& settings, const ssao::GtaoTemporalSettings& temporal);
+    ~GtaoTemporal();
+    GtaoTemporal(GtaoTemporal&&) noexcept;
+    GtaoTemporal& operator=(GtaoTemporal&&) noexcept;
+
+    // Uploads the G-buffer's depth and normals, runs one frame in one submission and downloads its result
+    // (visibility and view-space bent normal). The camera may move; the size must stay.
+    const ssao::GtaoResult& frame(const GBuffer& gbuffer);
+    // Frames accumulated per pixel in the last result (downloaded on each call); empty before the first.
+    Image historyLength() const;
+    int framesRendered() const;
+
+private:
+    Context* context_;
+    ssao::GtaoSettings settings_;
+    ssao::GtaoTemporalSettings temporal_;
+    int frame_ = 0;
+    ssao::GtaoResult result_;
+    std::unique_ptr<GtaoTemporalPasses> passes_;  // made for the first frame's size
+};
+
+// The push constants of gtao_temporal.comp (temporal_layouts.h), for an engine that records the shaders
+// itself: what GtaoTemporal pushes. `previous` is the last frame's camera (ignored when useHistory is false,
+// as on the first frame or with temporal.temporal off), of `current`'s size. Assumes validated settings.
+GtaoTemporalConstants gtaoTemporalConstants(const ssao::GtaoTemporalSettings& temporal, const Camera& current,
+                                            const Camera& previous, bool useHistory);
+
+} // namespace obscura::gpu

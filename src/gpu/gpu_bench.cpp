@@ -1,0 +1,219 @@
+// GPU timing of the screen-space passes (include/obscura/gpu_bench.h): the record functions the public
+// passes use, on resident buffers, one timed submission per frame with a timestamp after each pass.
+#include "obscura/gpu_bench.h"
+
+#include "gpu/alchemy_pass.h"
+#include "gpu/bilateral_pass.h"
+#include "gpu/buffer.h"
+#include "gpu/context.h"
+#include "gpu/gtao_pass.h"
+#include "gpu/gtao_temporal_pass.h"
+
+#include "obscura/alchemy.h"
+#include "obscura/error.h"
+#include "obscura/gpu_shaders.h"
+#include "obscura/gtao_temporal.h"
+
+#include <algorithm>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace obscura::gpu {
+
+namespace {
+
+// One input G-buffer on the device.
+struct ResidentInput {
+    Buffer depth, normal;
+    Camera camera;
+};
+
+double median(std::vector<double> v) {
+    if (v.empty()) return 0.0;
+    std::sort(v.begin(), v.end());
+    const std::size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// Records frame `index` (on input `in`); calls mark(pass) after each pass.
+using RecordFrame = std::function<void(VkCommandBuffer, const ResidentInput& in, int index,
+                                       const std::function<void(const char*)>& mark)>;
+
+struct CaseSetup {
+    RecordFrame record;
+    double bytes = 0;
+    std::string description;
+    std::vector<std::shared_ptr<void>> keepAlive;  // buffers and pass objects the recording uses
+};
+
+ssao::GtaoSettings gtaoSettings(const GpuBenchSettings& s) {
+    ssao::GtaoSettings g;
+    ssao::applyQuality(g, s.quality);
+    return g;
+}
+
+std::string slicesText(const ssao::GtaoSettings& g) {
+    return std::to_string(g.sliceCount) + " slice" + (g.sliceCount > 1 ? "s" : "") + " x " +
+           std::to_string(g.stepsPerSide) + " steps per side";
+}
+
+// The constants hold the projection only, which the rotated inputs share (their cameras differ in position).
+CaseSetup alchemyCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s, const Camera& camera) {
+    ssao::AlchemySettings settings;
+    settings.samples = s.alchemySamples;
+    const ssao::AlchemyConstants k = ssao::alchemyConstants(settings, camera);
+    const std::vector<float> offsets = alchemySpiralOffsets(k);
+    const SeparableBilateral blur = separableBilateral(ssao::BilateralSettings{}, w, h);
+    const std::size_t px = std::size_t(w) * std::size_t(h);
+    auto spiral = std::make_shared<Buffer>(upload(c, offsets.data(), offsets.size() * sizeof(float)));
+    auto logSpatial = std::make_shared<Buffer>(upload(c, blur.logSpatial.data(), blur.logSpatial.size() * sizeof(float)));
+    auto raw = std::make_shared<Buffer>(c, px * sizeof(float), MemoryUse::Device);
+    auto scratch = std::make_shared<Buffer>(c, px * sizeof(float), MemoryUse::Device);
+    auto out = std::make_shared<Buffer>(c, px * sizeof(float), MemoryUse::Device);
+    CaseSetup setup;
+    setup.description = "Alchemy AO, " + std::to_string(s.alchemySamples) +
+                        " samples/px (paper defaults, r 0.5 m) + separable bilateral, 13 taps per axis, depth only";
+    // Estimator: depth + normal in, AO out; each blur axis: depth + AO in, AO out (normals unused).
+    setup.bytes = double(px) * (4 + 12 + 4) + 2 * double(px) * (4 + 4 + 4);
+    setup.keepAlive = {spiral, logSpatial, raw, scratch, out};
+    setup.record = [&c, k, blur, spiral, logSpatial, raw, scratch, out](
+                       VkCommandBuffer cmd, const ResidentInput& in, int, const std::function<void(const char*)>& mark) {
+        recordAlchemy(c, cmd, {in.depth, in.normal, *spiral, *raw}, k);
+        mark("alchemy");
+        computeBarrier(cmd);  // the blur reads the estimator's output
+        recordSeparableBilateral(c, cmd, {in.depth, in.normal, *logSpatial, *raw, *scratch, *out}, blur);
+        mark("blur");
+    };
+    return setup;
+}
+
+CaseSetup gtaoCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s, const Camera& camera) {
+    const ssao::GtaoSettings settings = gtaoSettings(s);
+    const ssao::GtaoConstants k = ssao::gtaoConstants(settings, camera);
+    const SeparableBilateral blur = separableBilateral(ssao::BilateralSettings{}, w, h);
+    const std::size_t px = std::size_t(w) * std::size_t(h);
+    auto logSpatial = std::make_shared<Buffer>(upload(c, blur.logSpatial.data(), blur.logSpatial.size() * sizeof(float)));
+    auto visibility = std::make_shared<Buffer>(c, px * sizeof(float), MemoryUse::Device);
+    auto bent = std::make_shared<Buffer>(c, 3 * px * sizeof(float), MemoryUse::Device);
+    auto scratch = std::make_shared<Buffer>(c, px * sizeof(float), MemoryUse::Device);
+    auto out = std::make_shared<Buffer>(c, px * sizeof(float), MemoryUse::Device);
+    CaseSetup setup;
+    setup.description = "GTAO " + std::string(ssao::qualityName(s.quality)) + " (" + slicesText(settings) +
+                        ", r 1 m), visibility + bent normal, + separable bilateral, 13 taps per axis";
+    // GTAO: depth + normal in, visibility + bent normal out; blur axes as in the alchemy case.
+    setup.bytes = double(px) * (4 + 12 + 4 + 12) + 2 * double(px) * (4 + 4 + 4);
+    setup.keepAlive = {logSpatial, visibility, bent, scratch, out};
+    setup.record = [&c, k, blur, logSpatial, visibility, bent, scratch, out](
+                       VkCommandBuffer cmd, const ResidentInput& in, int, const std::function<void(const char*)>& mark) {
+        recordGtao(c, cmd, {in.depth, in.normal, *visibility, *bent}, k);
+        mark("gtao");
+        computeBarrier(cmd);  // the blur reads the visibility
+        recordSeparableBilateral(c, cmd, {in.depth, in.normal, *logSpatial, *visibility, *scratch, *out}, blur);
+        mark("blur");
+    };
+    return setup;
+}
+
+CaseSetup temporalCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s, bool temporal, bool half) {
+    ssao::GtaoSettings settings = gtaoSettings(s);
+    if (temporal) settings.sliceCount = s.temporalSlices;
+    ssao::GtaoTemporalSettings t;
+    t.temporal = temporal;
+    t.halfResolution = half;
+    auto passes = std::make_shared<GtaoTemporalPasses>(c, settings, t, w, h);
+    CaseSetup setup;
+    setup.description = std::string(temporal ? "spatio-temporal" : "spatial") + " GTAO" +
+                        (half ? " at half resolution" : "") + " (" + slicesText(settings) +
+                        ", 4x4 interleave, r 1 m) + 5x5 reconstruction" + (half ? " + depth-aware upsample" : "") +
+                        (temporal ? " + reprojected history" : "");
+    setup.bytes = double(passes->bytesPerFrame());
+    setup.keepAlive = {passes};
+    setup.record = [passes](VkCommandBuffer cmd, const ResidentInput& in, int index,
+                            const std::function<void(const char*)>& mark) {
+        passes->record(cmd, {in.depth, in.normal, in.camera, index}, mark);
+    };
+    return setup;
+}
+
+} // namespace
+
+void GpuBenchSettings::validate() const {
+    auto check = [](bool ok, const char* field, const char* range) {
+        if (!ok) fail(std::string("gpu-bench-") + field, std::string("must be in ") + range);
+    };
+    check(frames >= 1 && frames <= 100000, "frames", "[1, 100000]");
+    check(warmup >= 0 && warmup <= 10000, "warmup", "[0, 10000]");
+    check(alchemySamples >= 1 && alchemySamples <= 1024, "alchemy-samples", "[1, 1024]");
+    check(temporalSlices >= 1 && temporalSlices <= 64, "temporal-slices", "[1, 64]");
+}
+
+std::vector<GpuBenchCaseInfo> gpuBenchCases() {
+    return {{"alchemy", "Alchemy AO + separable bilateral blur"},
+            {"gtao", "GTAO (every slice each frame) + separable bilateral blur"},
+            {"gtao-spatial", "GTAO with the 4x4 interleave + its depth- and normal-aware reconstruction"},
+            {"gtao-temporal", "interleaved GTAO + reconstruction + reprojected exponential history"},
+            {"gtao-temporal-half", "gtao-temporal at half resolution + depth-aware upsample"}};
+}
+
+GpuBenchCase benchGpuCase(Context& context, const std::string& name, const std::vector<GBuffer>& inputs,
+                          const GpuBenchSettings& settings) {
+    settings.validate();
+    std::string known;
+    bool found = false;
+    for (const GpuBenchCaseInfo& info : gpuBenchCases()) {
+        known += (known.empty() ? "" : ", ") + info.name;
+        found = found || info.name == name;
+    }
+    if (!found) fail("gpu bench", "unknown case '" + name + "' (known: " + known + ")");
+    if (inputs.empty()) fail("gpu bench", "no input G-buffers");
+    const int w = inputs[0].width(), h = inputs[0].height();
+    for (const GBuffer& g : inputs)
+        if (g.width() != w || g.height() != h || g.depth.width != w || g.depth.height != h || g.normal.width != w ||
+            g.normal.height != h || g.normal.channels != 3 || w < 1 || h < 1)
+            fail("gpu bench", "input G-buffers must all be " + std::to_string(w) + "x" + std::to_string(h) +
+                                  " with 1-channel depth and 3-channel normals");
+    Context::Impl& c = context.impl();
+    if (c.timestamps == VK_NULL_HANDLE) fail(c.info.name, "the compute queue has no timestamp queries to time passes with");
+
+    std::vector<ResidentInput> resident;
+    for (const GBuffer& g : inputs) {
+        const std::size_t px = g.depth.pixelCount();
+        resident.push_back({upload(c, g.depth.pixels.data(), px * sizeof(float)),
+                            upload(c, g.normal.pixels.data(), 3 * px * sizeof(float)), g.camera});
+    }
+    const CaseSetup setup = name == "alchemy" ? alchemyCase(c, w, h, settings, inputs[0].camera)
+                            : name == "gtao"  ? gtaoCase(c, w, h, settings, inputs[0].camera)
+                                              : temporalCase(c, w, h, settings, name != "gtao-spatial",
+                                                             name == "gtao-temporal-half");
+
+    GpuBenchCase result;
+    result.name = name;
+    result.description = setup.description;
+    result.width = w;
+    result.height = h;
+    result.frames = settings.frames;
+    result.bytes = setup.bytes;
+    std::vector<double> frameMs;
+    std::map<std::string, std::vector<double>> passMs;
+    std::vector<std::string> order;
+    for (int i = 0; i < settings.warmup + settings.frames; ++i) {
+        const ResidentInput& in = resident[std::size_t(i) % resident.size()];
+        c.submit([&](VkCommandBuffer cmd) { setup.record(cmd, in, i, [&](const char* pass) { c.mark(cmd, pass); }); },
+                 true);
+        if (i < settings.warmup) continue;
+        frameMs.push_back(c.lastPassMs);
+        for (const auto& [pass, ms] : c.lastMarks) {
+            if (!passMs.count(pass)) order.push_back(pass);
+            passMs[pass].push_back(ms);
+        }
+    }
+    for (const std::string& pass : order) result.passes.push_back({pass, median(passMs[pass])});
+    result.medianMs = median(frameMs);
+    result.minMs = *std::min_element(frameMs.begin(), frameMs.end());
+    return result;
+}
+
+} // namespace obscura::gpu

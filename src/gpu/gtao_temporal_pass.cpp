@@ -1,0 +1,273 @@
+// Spatio-temporal GTAO as compute passes: Jimenez, Wu, Pesce and Jarabo 2016, "Practical Realtime Strategies
+// for Accurate Indirect Occlusion", §4.1. The host side of ssao::GtaoTemporal (src/ssao/gtao_temporal.cpp):
+// the same checks and messages, the same GTAO constants (ssao::gtaoConstants, interleaved), and the CPU
+// frame's four steps as dispatches on resident buffers. Contract in include/obscura/gpu_temporal.h.
+#include "gpu/gtao_temporal_pass.h"
+#include "gpu/compute_pipeline.h"
+#include "gpu/gtao_pass.h"
+#include "gpu/image_planes.h"
+#include "gpu/spirv.h"
+
+#include "obscura/error.h"
+#include "obscura/gpu_temporal.h"
+
+#include <cassert>
+#include <string>
+#include <vector>
+
+namespace obscura::gpu {
+
+namespace {
+
+std::vector<BindingKind> storageBuffers(int count) {
+    return std::vector<BindingKind>(std::size_t(count), BindingKind::StorageBuffer);
+}
+
+Buffer deviceFloats(Context::Impl& c, std::size_t count) { return Buffer(c, count * sizeof(float), MemoryUse::Device); }
+
+// Rows 0..2 of m into 12 floats, as the shader's transformPoint reads them.
+void rows(const Mat4& m, float* out) {
+    for (int r = 0; r < 3; ++r)
+        for (int col = 0; col < 4; ++col) out[4 * r + col] = m.m[r][col];
+}
+
+} // namespace
+
+ReconstructConstants reconstructConstants(int width, int height, int guideWidth, int guideStep, float depthSigma) {
+    return {width, height, guideWidth, guideStep, depthSigma, 0, 0, 0};
+}
+
+UpsampleConstants upsampleConstants(int width, int height, int lowWidth, int lowHeight, int guideWidth, int guideStep,
+                                    float depthSigma) {
+    return {width, height, lowWidth, lowHeight, guideWidth, guideStep, depthSigma, 0};
+}
+
+GtaoTemporalConstants gtaoTemporalConstants(const ssao::GtaoTemporalSettings& t, const Camera& current,
+                                            const Camera& previous, bool useHistory) {
+    assert(!useHistory || (previous.width == current.width && previous.height == current.height));
+    GtaoTemporalConstants k{};
+    k.width = current.width;
+    k.height = current.height;
+    k.maxHistory = useHistory ? float(t.maxHistory) : 0.0f;
+    k.tanHalfFovY = current.tanHalfFovY();
+    k.aspect = current.aspect();
+    k.previousTanHalfFovY = previous.tanHalfFovY();
+    k.rejectDepth = t.rejectDepth;
+    k.rejectNormalCos = t.rejectNormalCos;
+    rows(current.worldFromView(), k.worldFromView);
+    rows(previous.viewFromWorld(), k.previousViewFromWorld);
+    return k;
+}
+
+void recordReconstruct(Context::Impl& c, VkCommandBuffer cmd, const ReconstructBuffers& b,
+                       const ReconstructConstants& k, int channels) {
+    assert(channels == 1 || channels == 3);
+    ComputePipeline& pipeline =
+        c.pipeline("reconstruct_interleaved", shaders::reconstruct_interleaved,
+                   storageBuffers(kReconstructBindingCount), kReconstructPushConstantBytes, kTemporalWorkgroupX,
+                   kTemporalWorkgroupY, {channels});  // kReconstructSpecChannels
+    // In binding order: kReconstructBindingValues, Depth, Normal, Output.
+    pipeline.dispatchGrid(cmd, {&b.values, &b.depth, &b.normal, &b.output}, &k, sizeof k, k.width, k.height);
+}
+
+void recordUpsample(Context::Impl& c, VkCommandBuffer cmd, const UpsampleBuffers& b, const UpsampleConstants& k,
+                    int channels) {
+    assert(channels == 1 || channels == 3);
+    ComputePipeline& pipeline =
+        c.pipeline("upsample_depth_aware", shaders::upsample_depth_aware, storageBuffers(kUpsampleBindingCount),
+                   kUpsamplePushConstantBytes, kTemporalWorkgroupX, kTemporalWorkgroupY, {channels});
+    // In binding order: kUpsampleBindingLow, LowDepth, Depth, Output.
+    pipeline.dispatchGrid(cmd, {&b.low, &b.lowDepth, &b.depth, &b.output}, &k, sizeof k, k.width, k.height);
+}
+
+GtaoTemporalPasses::GtaoTemporalPasses(Context::Impl& c, const ssao::GtaoSettings& settings,
+                                       const ssao::GtaoTemporalSettings& temporal, int width, int height)
+    : context_(c), settings_(settings), temporal_(temporal), width_(width), height_(height),
+      step_(temporal.halfResolution ? 2 : 1), gridWidth_((width + step_ - 1) / step_),
+      gridHeight_((height + step_ - 1) / step_) {
+    assert(width >= 1 && height >= 1);
+    const std::size_t pixels = std::size_t(width) * std::size_t(height);
+    const std::size_t grid = std::size_t(gridWidth_) * std::size_t(gridHeight_);
+    rawVisibility_ = deviceFloats(c, grid);
+    rawBent_ = deviceFloats(c, 3 * grid);
+    visibility_ = deviceFloats(c, grid);
+    bent_ = deviceFloats(c, 3 * grid);
+    if (step_ == 2) {
+        fullVisibility_ = deviceFloats(c, pixels);
+        fullBent_ = deviceFloats(c, 3 * pixels);
+    }
+    bentView_ = deviceFloats(c, 3 * pixels);
+    for (History& h : history_) {
+        h.depth = deviceFloats(c, pixels);
+        h.normalWorld = deviceFloats(c, 3 * pixels);
+        h.visibility = deviceFloats(c, pixels);
+        h.bentWorld = deviceFloats(c, 3 * pixels);
+        h.length = deviceFloats(c, pixels);
+    }
+}
+
+void GtaoTemporalPasses::record(VkCommandBuffer cmd, const GtaoTemporalFrameInputs& in,
+                                const std::function<void(const char*)>& mark) {
+    assert(in.camera.width == width_ && in.camera.height == height_);
+    Context::Impl& c = context_;
+    const auto stage = [&](const char* name) {
+        if (mark) mark(name);
+    };
+    // 1. One interleaved evaluation per grid pixel.
+    const ssao::GtaoConstants k = ssao::gtaoConstants(settings_, in.camera, in.frameIndex, true);
+    recordGtao(c, cmd, {in.depth, in.normal, rawVisibility_, rawBent_}, k, step_);
+    stage("gtao");
+    computeBarrier(cmd);  // the reconstruction reads the raw values
+
+    // 2. Spatial gather of the 16 pattern directions; the grid's depth and normals are the G-buffer's at
+    // every step-th pixel.
+    const ReconstructConstants rk = reconstructConstants(gridWidth_, gridHeight_, width_, step_, temporal_.depthSigma);
+    recordReconstruct(c, cmd, {rawVisibility_, in.depth, in.normal, visibility_}, rk, 1);
+    recordReconstruct(c, cmd, {rawBent_, in.depth, in.normal, bent_}, rk, 3);
+    stage("denoise");
+    computeBarrier(cmd);  // the next stage reads the reconstructed values
+
+    // 3. Back to full resolution.
+    const Buffer* visibility = &visibility_;
+    const Buffer* bent = &bent_;
+    if (step_ == 2) {
+        const UpsampleConstants uk =
+            upsampleConstants(width_, height_, gridWidth_, gridHeight_, width_, step_, temporal_.depthSigma);
+        recordUpsample(c, cmd, {visibility_, in.depth, in.depth, fullVisibility_}, uk, 1);
+        recordUpsample(c, cmd, {bent_, in.depth, in.depth, fullBent_}, uk, 3);
+        stage("upsample");
+        computeBarrier(cmd);  // the accumulation reads the upsampled values
+        visibility = &fullVisibility_;
+        bent = &fullBent_;
+    }
+
+    // 4. Reprojection and exponential accumulation into the other history set. Without temporal filtering the
+    // same pass runs with no history: it writes the view bent normals and the planes a later frame would read.
+    const bool useHistory = temporal_.temporal && recorded_ > 0;
+    const GtaoTemporalConstants tk = gtaoTemporalConstants(temporal_, in.camera, previousCamera_, useHistory);
+    const History& previous = history_[current_];
+    const History& next = history_[1 - current_];
+    ComputePipeline& pipeline = c.pipeline("gtao_temporal", shaders::gtao_temporal,
+                                           storageBuffers(kTemporalBindingCount), kTemporalPushConstantBytes,
+                                           kTemporalWorkgroupX, kTemporalWorkgroupY);
+    // In binding order: kTemporalBindingDepth ... kTemporalBindingBentViewOut.
+    pipeline.dispatchGrid(cmd,
+                          {&in.depth, &in.normal, visibility, bent, &previous.depth, &previous.normalWorld,
+                           &previous.visibility, &previous.bentWorld, &previous.length, &next.depth,
+                           &next.normalWorld, &next.visibility, &next.bentWorld, &next.length, &bentView_},
+                          &tk, sizeof tk, width_, height_);
+    stage(temporal_.temporal ? "temporal" : "resolve");
+
+    current_ = 1 - current_;
+    previousCamera_ = in.camera;
+    ++recorded_;
+}
+
+std::size_t GtaoTemporalPasses::bytesPerFrame() const {
+    const std::size_t f = sizeof(float);
+    const std::size_t pixels = std::size_t(width_) * std::size_t(height_);
+    const std::size_t grid = std::size_t(gridWidth_) * std::size_t(gridHeight_);
+    // GTAO: the search reads the whole depth plane, the normals of the grid pixels; writes 1 + 3 per grid pixel.
+    std::size_t bytes = f * (pixels + 3 * grid + 4 * grid);
+    // Reconstruction, 1 and 3 channels: values, guide depth and normals in, values out.
+    bytes += f * grid * ((1 + 1 + 3 + 1) + (3 + 1 + 3 + 3));
+    // Upsampling, 1 and 3 channels: low values and depth, full depth in, values out.
+    if (step_ == 2) bytes += f * ((grid * (1 + 1) + pixels * (1 + 1)) + (grid * (3 + 1) + pixels * (1 + 3)));
+    // Accumulation: depth, normals, visibility, bent normals and the five history planes in; the five next
+    // history planes and the view bent normals out.
+    bytes += f * pixels * ((1 + 3 + 1 + 3) + (1 + 3 + 1 + 3 + 1) + (1 + 3 + 1 + 3 + 1 + 3));
+    return bytes;
+}
+
+// ---- the public API: uploads, one submission, downloads ----
+
+Image reconstructInterleaved(Context& context, const Image& values, const Image& depth, const Image& normal,
+                             float depthSigma) {
+    const int w = values.width, h = values.height;
+    if (values.channels != 1 && values.channels != 3)
+        fail("reconstruct interleaved", "values must have 1 or 3 channels, not " + std::to_string(values.channels));
+    if (depth.width != w || depth.height != h || normal.width != w || normal.height != h || normal.channels < 3)
+        fail("reconstruct interleaved", "depth (1 channel) and normal (3 channels) must match the " +
+                                            std::to_string(w) + "x" + std::to_string(h) + " values");
+    if (values.empty()) return values;
+    Context::Impl& c = context.impl();
+    const Buffer in = uploadChannels(c, values, values.channels);
+    const Buffer d = uploadChannels(c, depth, 1);
+    const Buffer n = uploadChannels(c, normal, 3);
+    const Buffer out = deviceFloats(c, values.pixels.size());
+    const ReconstructConstants k = reconstructConstants(w, h, w, 1, depthSigma);
+    c.submit([&](VkCommandBuffer cmd) { recordReconstruct(c, cmd, {in, d, n, out}, k, values.channels); }, true);
+    Image result(w, h, values.channels);
+    download(c, out, result.pixels.data(), result.pixels.size() * sizeof(float));
+    return result;
+}
+
+Image upsampleDepthAware(Context& context, const Image& low, const Image& lowDepth, const GBuffer& full,
+                         float depthSigma) {
+    const int w = full.width(), h = full.height();
+    if (low.channels != 1 && low.channels != 3)
+        fail("upsample depth-aware", "values must have 1 or 3 channels, not " + std::to_string(low.channels));
+    if (low.empty() || lowDepth.width != low.width || lowDepth.height != low.height)
+        fail("upsample depth-aware", "low-resolution depth (1 channel) must match the " + std::to_string(low.width) +
+                                         "x" + std::to_string(low.height) + " values, which must not be empty");
+    if (full.depth.width != w || full.depth.height != h)
+        fail("upsample depth-aware", "G-buffer depth must match its camera's size");
+    Context::Impl& c = context.impl();
+    const Buffer in = uploadChannels(c, low, low.channels);
+    const Buffer ld = uploadChannels(c, lowDepth, 1);
+    const Buffer d = uploadChannels(c, full.depth, 1);
+    Image result(w, h, low.channels);
+    const Buffer out = deviceFloats(c, result.pixels.size());
+    const UpsampleConstants k = upsampleConstants(w, h, low.width, low.height, low.width, 1, depthSigma);
+    c.submit([&](VkCommandBuffer cmd) { recordUpsample(c, cmd, {in, ld, d, out}, k, low.channels); }, true);
+    download(c, out, result.pixels.data(), result.pixels.size() * sizeof(float));
+    return result;
+}
+
+GtaoTemporal::GtaoTemporal(Context& context, const ssao::GtaoSettings& settings,
+                           const ssao::GtaoTemporalSettings& temporal)
+    : context_(&context), settings_(settings), temporal_(temporal) {
+    settings_.validate();
+    temporal_.validate();
+}
+
+GtaoTemporal::~GtaoTemporal() = default;
+GtaoTemporal::GtaoTemporal(GtaoTemporal&&) noexcept = default;
+GtaoTemporal& GtaoTemporal::operator=(GtaoTemporal&&) noexcept = default;
+
+const ssao::GtaoResult& GtaoTemporal::frame(const GBuffer& g) {
+    const int w = g.width(), h = g.height();
+    // ssao::GtaoTemporal::frame's checks and messages.
+    if (g.depth.width != w || g.depth.height != h || g.normal.width != w || g.normal.height != h ||
+        g.normal.channels != 3)
+        fail("gtao temporal", "G-buffer images do not match its camera's size");
+    if (frame_ > 0 && (w != passes_->width() || h != passes_->height()))
+        fail("gtao temporal", "frame size changed from " + std::to_string(passes_->width()) + "x" +
+                                  std::to_string(passes_->height()) + " to " + std::to_string(w) + "x" +
+                                  std::to_string(h));
+    if (w < 1 || h < 1) fail("gtao temporal", "G-buffer is empty");  // nothing to upload
+
+    Context::Impl& c = context_->impl();
+    if (!passes_) passes_ = std::make_unique<GtaoTemporalPasses>(c, settings_, temporal_, w, h);
+    const std::size_t pixels = std::size_t(w) * std::size_t(h);
+    const Buffer depth = uploadChannels(c, g.depth, 1);
+    const Buffer normal = uploadChannels(c, g.normal, 3);
+    c.submit([&](VkCommandBuffer cmd) { passes_->record(cmd, {depth, normal, g.camera, frame_}); }, true);
+    result_.visibility = Image(w, h, 1);
+    result_.bentNormal = Image(w, h, 3);
+    download(c, passes_->visibility(), result_.visibility.pixels.data(), pixels * sizeof(float));
+    download(c, passes_->bentNormal(), result_.bentNormal.pixels.data(), 3 * pixels * sizeof(float));
+    ++frame_;
+    return result_;
+}
+
+Image GtaoTemporal::historyLength() const {
+    if (!passes_) return Image();
+    Image length(passes_->width(), passes_->height(), 1);
+    download(context_->impl(), passes_->historyLength(), length.pixels.data(), length.pixels.size() * sizeof(float));
+    return length;
+}
+
+int GtaoTemporal::framesRendered() const { return frame_; }
+
+} // namespace obscura::gpu

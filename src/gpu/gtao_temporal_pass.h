@@ -1,0 +1,108 @@
+// Spatio-temporal GTAO (Jimenez et al. 2016, §4.1) on GPU-resident buffers, for callers that record frames
+// themselves (a benchmark, or gpu::GtaoTemporal, which uploads, records one frame and downloads).
+#pragma once
+
+#include "gpu/buffer.h"
+#include "gpu/context.h"
+#include "shaders/temporal_layouts.h"
+
+#include "obscura/camera.h"
+#include "obscura/gtao.h"
+#include "obscura/gtao_temporal.h"
+
+#include <cstddef>
+#include <functional>
+
+namespace obscura::gpu {
+
+// The push constants of the two filters (fields in shaders/temporal_layouts.h); gtaoTemporalConstants, the
+// accumulation's, is public (obscura/gpu_temporal.h).
+ReconstructConstants reconstructConstants(int width, int height, int guideWidth, int guideStep, float depthSigma);
+UpsampleConstants upsampleConstants(int width, int height, int lowWidth, int lowHeight, int guideWidth, int guideStep,
+                                    float depthSigma);
+
+// Storage buffers of reconstruct_interleaved.comp (shaders/temporal_layouts.h states their contents).
+struct ReconstructBuffers {
+    const Buffer& values;
+    const Buffer& depth;   // guide
+    const Buffer& normal;  // guide
+    const Buffer& output;
+};
+// Records one dispatch for `channels` 1 or 3; the inputs must be visible to compute shaders.
+void recordReconstruct(Context::Impl& context, VkCommandBuffer cmd, const ReconstructBuffers& buffers,
+                       const ReconstructConstants& k, int channels);
+
+// Storage buffers of upsample_depth_aware.comp.
+struct UpsampleBuffers {
+    const Buffer& low;
+    const Buffer& lowDepth;  // guide
+    const Buffer& depth;
+    const Buffer& output;
+};
+void recordUpsample(Context::Impl& context, VkCommandBuffer cmd, const UpsampleBuffers& buffers,
+                    const UpsampleConstants& k, int channels);
+
+// One frame's inputs, resident on the device and visible to compute shaders (the caller's barrier).
+struct GtaoTemporalFrameInputs {
+    const Buffer& depth;   // width * height linear depths, +inf for sky
+    const Buffer& normal;  // width * height * 3 view normals
+    Camera camera;         // of the passes' size
+    int frameIndex;        // selects the rotation (ssao::gtaoConstants' frameIndex)
+};
+
+// The resident buffers of ssao::GtaoTemporal for one size: the frame's intermediates and two sets of history
+// (depth, world normals, visibility, world bent normals, history length), written in turn: a frame reads the
+// set the previous one wrote and writes the other. Made once; no allocation per frame.
+class GtaoTemporalPasses {
+public:
+    // Assumes validated settings and width, height >= 1.
+    GtaoTemporalPasses(Context::Impl& context, const ssao::GtaoSettings& settings,
+                       const ssao::GtaoTemporalSettings& temporal, int width, int height);
+
+    // Records the whole frame into cmd, with a barrier between dependent dispatches. Frames recorded back to
+    // back in one command buffer need none between them: a frame's first stage touches nothing its
+    // predecessor's last stage does, and its later barriers order the rest (the history it reads, the
+    // intermediates it overwrites). A caller that reads the result records its own barrier. After each stage
+    // it calls mark(stage) if set, so that a caller can write a timestamp: "gtao", "denoise" (both
+    // reconstructions), "upsample" (half resolution only), "temporal" (with temporal.temporal; else "resolve",
+    // the same pass without history). The history is used from the second
+    // recorded frame on (with temporal.temporal), reprojected from the previous record's camera. At most
+    // ComputePipeline::kSetsPerSubmit frames per submission (each pipeline is dispatched once per frame).
+    void record(VkCommandBuffer cmd, const GtaoTemporalFrameInputs& inputs,
+                const std::function<void(const char*)>& mark = {});
+
+    // The last recorded frame's result, valid once its submission completes: width * height visibility and
+    // width * height * 3 view-space bent normals; and its history length (width * height frames).
+    const Buffer& visibility() const { return history_[current_].visibility; }
+    const Buffer& bentNormal() const { return bentView_; }
+    const Buffer& historyLength() const { return history_[current_].length; }
+    int framesRecorded() const { return recorded_; }
+    int width() const { return width_; }
+    int height() const { return height_; }
+
+    // Bytes a frame's dispatches read and write: each dispatch reads each element of its input planes once
+    // and writes each element of its outputs once (neighbourhood taps, the GTAO search and the bilinear
+    // footprint are taken to hit in cache), with the history read as in every frame after the first. The
+    // compulsory traffic, a lower bound on what reaches memory; divided by a frame's time, a bandwidth.
+    std::size_t bytesPerFrame() const;
+
+private:
+    struct History {
+        Buffer depth, normalWorld, visibility, bentWorld, length;
+    };
+
+    Context::Impl& context_;
+    ssao::GtaoSettings settings_;
+    ssao::GtaoTemporalSettings temporal_;
+    int width_, height_, step_, gridWidth_, gridHeight_;
+    Buffer rawVisibility_, rawBent_;  // grid: the GTAO pass's output
+    Buffer visibility_, bent_;        // grid: reconstructed
+    Buffer fullVisibility_, fullBent_;  // full resolution: upsampled (half resolution only)
+    Buffer bentView_;
+    History history_[2];
+    int current_ = 0;  // the set the last recorded frame wrote
+    int recorded_ = 0;
+    Camera previousCamera_;
+};
+
+} // namespace obscura::gpu

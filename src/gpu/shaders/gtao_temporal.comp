@@ -1,0 +1,164 @@
+// The temporal accumulation of spatio-temporal GTAO: Jimenez, Wu, Pesce and Jarabo 2016, "Practical Realtime
+// Strategies for Accurate Indirect Occlusion", §4.1 (reprojection into an exponential accumulation buffer
+// that gathers the 6 per-frame rotations). One invocation per pixel.
+//
+// temporalPixel below is the body of step 4 of ssao::GtaoTemporal::frame (src/ssao/gtao_temporal.cpp) line
+// for line, with `return` for its `continue`; main adds the last loop (back to view space) and the copies
+// the CPU makes of depth and world normals for the next frame. Read them side by side. The differences are
+// GLSL's: dot and normalize are written out as the C++ ones compute them; the cameras are the push
+// constants (temporal_layouts.h says which expression each field is), so viewPosition and pixelFromView are
+// Camera::viewFromPixel and Camera::pixelFromView with the same operations in the same order;
+// transformPoint omits the CPU's division by w, which is 1 exactly for these affine matrices and finite
+// points; the history planes are the buffers `previous*`. Nothing transcendental is evaluated, so only
+// contraction of a multiply-add by the GPU's compiler can round differently.
+#version 460
+#extension GL_GOOGLE_include_directive : require
+
+#include "temporal_layouts.h"
+
+layout(local_size_x = kTemporalWorkgroupX, local_size_y = kTemporalWorkgroupY, local_size_z = 1) in;
+
+layout(push_constant, std430) uniform Constants { GtaoTemporalConstants k; };
+layout(std430, binding = kTemporalBindingDepth) readonly buffer DepthPlane { float depthPlane[]; };
+layout(std430, binding = kTemporalBindingNormal) readonly buffer NormalPlane { float normalPlane[]; };
+layout(std430, binding = kTemporalBindingVisibility) readonly buffer Visibility { float visibilityPlane[]; };
+layout(std430, binding = kTemporalBindingBent) readonly buffer Bent { float bentPlane[]; };
+layout(std430, binding = kTemporalBindingPreviousDepth) readonly buffer PreviousDepth { float previousDepth[]; };
+layout(std430, binding = kTemporalBindingPreviousNormalWorld) readonly buffer PreviousNormalWorld {
+    float previousNormalWorld[];
+};
+layout(std430, binding = kTemporalBindingPreviousVisibility) readonly buffer PreviousVisibility {
+    float previousVisibility[];
+};
+layout(std430, binding = kTemporalBindingPreviousBentWorld) readonly buffer PreviousBentWorld {
+    float previousBentWorld[];
+};
+layout(std430, binding = kTemporalBindingPreviousLength) readonly buffer PreviousLength { float previousLength[]; };
+layout(std430, binding = kTemporalBindingDepthOut) writeonly buffer DepthOut { float depthOut[]; };
+layout(std430, binding = kTemporalBindingNormalWorldOut) writeonly buffer NormalWorldOut { float normalWorldOut[]; };
+layout(std430, binding = kTemporalBindingVisibilityOut) writeonly buffer VisibilityOut { float visibilityOut[]; };
+layout(std430, binding = kTemporalBindingBentWorldOut) writeonly buffer BentWorldOut { float bentWorldOut[]; };
+layout(std430, binding = kTemporalBindingLengthOut) writeonly buffer LengthOut { float lengthOut[]; };
+layout(std430, binding = kTemporalBindingBentViewOut) writeonly buffer BentViewOut { float bentViewOut[]; };
+
+// ---- obscura/math.h ----
+float dot3(vec3 a, vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+vec3 normalize3(vec3 a) {
+    const float l = sqrt(dot3(a, a));
+    return l > 0.0 ? a / l : vec3(0.0);
+}
+// transformVector(m, v) for a matrix given as 3 rows of 4 floats.
+vec3 transformVector(float m[12], vec3 v) {
+    return vec3(m[0] * v.x + m[1] * v.y + m[2] * v.z, m[4] * v.x + m[5] * v.y + m[6] * v.z,
+                m[8] * v.x + m[9] * v.y + m[10] * v.z);
+}
+vec3 transformPoint(float m[12], vec3 p) {
+    return vec3(m[0] * p.x + m[1] * p.y + m[2] * p.z + m[3], m[4] * p.x + m[5] * p.y + m[6] * p.z + m[7],
+                m[8] * p.x + m[9] * p.y + m[10] * p.z + m[11]);
+}
+// transformVector(viewFromWorld, v): viewFromWorld's rotation is worldFromView's transposed.
+vec3 viewFromWorldVector(vec3 v) {
+    return vec3(k.worldFromView[0] * v.x + k.worldFromView[4] * v.y + k.worldFromView[8] * v.z,
+                k.worldFromView[1] * v.x + k.worldFromView[5] * v.y + k.worldFromView[9] * v.z,
+                k.worldFromView[2] * v.x + k.worldFromView[6] * v.y + k.worldFromView[10] * v.z);
+}
+
+// ---- obscura/camera.h ----
+// g.viewPosition(x, y): Camera::viewFromPixel at the pixel's centre.
+vec3 viewPosition(int x, int y, float depth) {
+    const float px = float(x) + 0.5, py = float(y) + 0.5;
+    const float t = k.tanHalfFovY;
+    const float ndcX = 2.0 * px / float(k.width) - 1.0;
+    const float ndcY = 1.0 - 2.0 * py / float(k.height);
+    return vec3(ndcX * t * k.aspect * depth, ndcY * t * depth, -depth);
+}
+// previousCamera_.pixelFromView(p, &depth).
+vec2 previousPixelFromView(vec3 p, out float depth) {
+    const float d = -p.z;
+    depth = d;
+    const float t = k.previousTanHalfFovY;
+    const float ndcX = p.x / (d * t * k.aspect);
+    const float ndcY = p.y / (d * t);
+    return vec2((ndcX + 1.0) * 0.5 * float(k.width), (1.0 - ndcY) * 0.5 * float(k.height));
+}
+
+// ---- src/ssao/gtao_temporal.cpp ----
+bool finiteDepth(float d) { return d < 1e30; }
+
+vec3 vec3At(uint i) { return vec3(bentPlane[3 * i], bentPlane[3 * i + 1], bentPlane[3 * i + 2]); }
+vec3 previousNormalWorldAt(uint i) {
+    return vec3(previousNormalWorld[3 * i], previousNormalWorld[3 * i + 1], previousNormalWorld[3 * i + 2]);
+}
+vec3 previousBentWorldAt(uint i) {
+    return vec3(previousBentWorld[3 * i], previousBentWorld[3 * i + 1], previousBentWorld[3 * i + 2]);
+}
+
+// Pixel (x, y) of the loop: `visibility` comes in as the spatial result and leaves accumulated; the other
+// three come in as the CPU's initial values (0, 1, 0).
+void temporalPixel(int x, int y, inout float visibility, inout vec3 newBentWorld, inout float newLength,
+                   inout vec3 normalWorld) {
+    const int w = k.width, h = k.height;
+    const uint i = uint(y) * uint(w) + uint(x);
+    const float depth = depthPlane[i];
+    if (!finiteDepth(depth)) return;  // g.isSky(x, y)
+    const vec3 viewNormal = vec3(normalPlane[3 * i], normalPlane[3 * i + 1], normalPlane[3 * i + 2]);
+    const vec3 nWorld = normalize3(transformVector(k.worldFromView, viewNormal));
+    normalWorld = nWorld;
+    vec3 currentBent = normalize3(transformVector(k.worldFromView, vec3At(i)));
+    newBentWorld = currentBent;
+    if (k.maxHistory == 0.0) return;  // !useHistory
+    const vec3 world = transformPoint(k.worldFromView, viewPosition(x, y, depth));
+    float expectedDepth = 0.0;
+    const vec2 prev = previousPixelFromView(transformPoint(k.previousViewFromWorld, world), expectedDepth);
+    if (!(expectedDepth > 0.0)) return;
+    const float gx = prev.x - 0.5, gy = prev.y - 0.5;
+    const int x0 = int(floor(gx)), y0 = int(floor(gy));
+    const float fx = gx - float(x0), fy = gy - float(y0);
+    float weightSum = 0.0, historyVisibility = 0.0, historyLength = 0.0;
+    vec3 historyBent = vec3(0.0);
+    for (int t = 0; t < 4; ++t) {
+        const int tx = x0 + (t & 1), ty = y0 + (t >> 1);
+        const float bw = ((t & 1) != 0 ? fx : 1.0 - fx) * ((t >> 1) != 0 ? fy : 1.0 - fy);
+        if (bw <= 0.0 || tx < 0 || ty < 0 || tx >= w || ty >= h) continue;
+        const uint ti = uint(ty) * uint(w) + uint(tx);
+        const float pd = previousDepth[ti];
+        // Disocclusion: the previous frame saw another surface there, or one facing elsewhere.
+        if (!finiteDepth(pd) || abs(pd - expectedDepth) > k.rejectDepth * expectedDepth) continue;
+        if (dot3(previousNormalWorldAt(ti), nWorld) < k.rejectNormalCos) continue;
+        weightSum += bw;
+        historyVisibility += bw * previousVisibility[ti];
+        historyBent += previousBentWorldAt(ti) * bw;
+        historyLength += bw * previousLength[ti];
+    }
+    // Less than a quarter of the footprint confirmed: too little to trust.
+    if (weightSum < 0.25) return;
+    historyVisibility /= weightSum;
+    historyLength /= weightSum;
+    historyBent = historyBent / weightSum;
+    const float alpha = 1.0 / min(historyLength + 1.0, k.maxHistory);
+    visibility = historyVisibility + (visibility - historyVisibility) * alpha;
+    vec3 blended = normalize3(historyBent + (currentBent - historyBent) * alpha);
+    if (dot3(blended, blended) > 0.0) newBentWorld = blended;
+    newLength = min(historyLength + 1.0, k.maxHistory);
+}
+
+void main() {
+    const ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (p.x >= k.width || p.y >= k.height) return;
+    const uint i = uint(p.y) * uint(k.width) + uint(p.x);
+    float visibility = visibilityPlane[i];
+    vec3 newBentWorld = vec3(0.0), normalWorld = vec3(0.0);
+    float newLength = 1.0;
+    temporalPixel(p.x, p.y, visibility, newBentWorld, newLength, normalWorld);
+    const float depth = depthPlane[i];
+    // result_.bentNormal: sky pixels 0, the others back in view space.
+    const vec3 bentView = finiteDepth(depth) ? normalize3(viewFromWorldVector(newBentWorld)) : vec3(0.0);
+    visibilityOut[i] = visibility;
+    lengthOut[i] = newLength;
+    depthOut[i] = depth;  // previousDepth_ = g.depth
+    for (uint c = 0; c < 3; ++c) {
+        normalWorldOut[3 * i + c] = normalWorld[c];
+        bentWorldOut[3 * i + c] = newBentWorld[c];
+        bentViewOut[3 * i + c] = bentView[c];
+    }
+}

@@ -1,0 +1,131 @@
+// The constants and resources of the spatio-temporal GTAO shaders (Jimenez et al. 2016, "Practical Realtime
+// Strategies for Accurate Indirect Occlusion", §4.1): reconstruct_interleaved.comp, upsample_depth_aware.comp
+// and gtao_temporal.comp, with gtao.comp's grid-step variant. Shared by each shader and its host side in
+// src/gpu (gtao_temporal_pass.cpp), compiled as both C++ and GLSL like layouts.h. Plain 32-bit ints and
+// floats only, so std430 and C++ lay the push constants out alike; the static_asserts below hold C++ to it.
+//
+// A "guide" plane is a depth or normal plane read at a stride: grid pixel (x, y) is element
+// (y guideStep) guideWidth + x guideStep. Step 1 reads a plane of the grid's own size; step 2 reads the
+// full-resolution G-buffer at (2x, 2y), which is what the half-resolution frame's grid depth and normals
+// are (src/ssao/gtao_temporal.cpp), so the frame needs no subsampled copies of them.
+#ifndef OBSCURA_GPU_TEMPORAL_LAYOUTS_H
+#define OBSCURA_GPU_TEMPORAL_LAYOUTS_H
+
+#ifdef __cplusplus
+#include <cstddef>
+namespace obscura::gpu {
+#define OBSCURA_CONST inline constexpr
+#else
+#define OBSCURA_CONST const
+#endif
+
+OBSCURA_CONST int kTemporalWorkgroupX = 8;
+OBSCURA_CONST int kTemporalWorkgroupY = 8;
+
+// ---- gtao.comp's variant (layouts.h has its bindings) ----
+// constant_id of the grid step: invocation (x, y) evaluates full-resolution pixel (step x, step y) with the
+// interleave index of (x, y) and writes element y ceil(width / step) + x. 1 (the default, what an engine
+// that sets no specialization gets) is the plain full-resolution pass; 2 is the half-resolution frame.
+OBSCURA_CONST int kGtaoSpecGridStep = 0;
+
+// ---- reconstruct_interleaved.comp: ssao::reconstructInterleaved ----
+// constant_id of the channel count of values and output: 1 (visibility) or 3 (bent normals, renormalised).
+OBSCURA_CONST int kReconstructSpecChannels = 0;
+struct ReconstructConstants {
+    int width;         // grid size, px
+    int height;
+    int guideWidth;    // elements per row of the guide planes
+    int guideStep;     // 1, or 2 for the half-resolution grid read from the full G-buffer
+
+    float depthSigma;  // GtaoTemporalSettings::depthSigma, (0, 1]
+    int pad0;
+    int pad1;
+    int pad2;
+};
+OBSCURA_CONST int kReconstructBindingValues = 0;  // width * height * channels, the raw interleaved values
+OBSCURA_CONST int kReconstructBindingDepth = 1;   // guide linear depths, +inf for sky
+OBSCURA_CONST int kReconstructBindingNormal = 2;  // guide view normals, 3 floats per element
+OBSCURA_CONST int kReconstructBindingOutput = 3;  // width * height * channels
+OBSCURA_CONST int kReconstructBindingCount = 4;
+OBSCURA_CONST int kReconstructPushConstantBytes = 32;
+
+// ---- upsample_depth_aware.comp: ssao::upsampleDepthAware ----
+// constant_id of the channel count (1 or 3), as above.
+OBSCURA_CONST int kUpsampleSpecChannels = 0;
+struct UpsampleConstants {
+    int width;         // full-resolution size, px
+    int height;
+    int lowWidth;      // low-resolution size, px
+    int lowHeight;
+
+    int guideWidth;    // elements per row of the low-resolution depth guide
+    int guideStep;     // 1, or 2 when it is the full-resolution depth read at (2x, 2y)
+    float depthSigma;  // GtaoTemporalSettings::depthSigma, (0, 1]
+    int pad0;
+};
+OBSCURA_CONST int kUpsampleBindingLow = 0;       // lowWidth * lowHeight * channels
+OBSCURA_CONST int kUpsampleBindingLowDepth = 1;  // guide linear depths of the low-resolution pixels
+OBSCURA_CONST int kUpsampleBindingDepth = 2;     // width * height linear depths, +inf for sky
+OBSCURA_CONST int kUpsampleBindingOutput = 3;    // width * height * channels; sky 1 (1 channel) or 0
+OBSCURA_CONST int kUpsampleBindingCount = 4;
+OBSCURA_CONST int kUpsamplePushConstantBytes = 32;
+
+// ---- gtao_temporal.comp: step 4 of ssao::GtaoTemporal::frame ----
+// Reprojection and exponential accumulation. Filled by gpu::gtaoTemporalConstants
+// (obscura/gpu_temporal.h); each field names the expression of src/ssao/gtao_temporal.cpp it stands for.
+// The previous camera's size, and so its aspect, are the current one's: the frame rejects a size change.
+// 128 bytes, Vulkan's guaranteed push-constant size (lavapipe's too).
+struct GtaoTemporalConstants {
+    int width;                    // g.width(), px
+    int height;                   // g.height()
+    float maxHistory;             // float(temporal_.maxHistory) where the history is used (temporal_.temporal
+                                  // && frame_ > 0), else 0: that frame takes none
+    float tanHalfFovY;            // g.camera.tanHalfFovY(), for g.viewPosition(x, y)
+
+    float aspect;                 // g.camera.aspect(), = previousCamera_.aspect()
+    float previousTanHalfFovY;    // previousCamera_.tanHalfFovY(), for previousCamera_.pixelFromView
+    float rejectDepth;            // temporal_.rejectDepth, (0, 1]
+    float rejectNormalCos;        // temporal_.rejectNormalCos, [-1, 1]
+
+    // Rows 0..2 of g.camera.worldFromView(), 4 floats each. viewFromWorld's rotation, the only part of it
+    // the frame uses, is its transpose bit for bit (Camera builds both from the same axes).
+    float worldFromView[12];
+    float previousViewFromWorld[12];  // rows 0..2 of previousCamera_.viewFromWorld()
+};
+// Storage buffers (float arrays, std430). Inputs of the current frame:
+OBSCURA_CONST int kTemporalBindingDepth = 0;       // width * height linear depths, +inf for sky
+OBSCURA_CONST int kTemporalBindingNormal = 1;      // width * height * 3 view normals
+OBSCURA_CONST int kTemporalBindingVisibility = 2;  // width * height visibility, reconstructed (and upsampled)
+OBSCURA_CONST int kTemporalBindingBent = 3;        // width * height * 3 view bent normals, likewise
+// The history the previous frame wrote (read only when maxHistory > 0; bound either way):
+OBSCURA_CONST int kTemporalBindingPreviousDepth = 4;        // width * height linear depths
+OBSCURA_CONST int kTemporalBindingPreviousNormalWorld = 5;  // width * height * 3 world normals, sky 0
+OBSCURA_CONST int kTemporalBindingPreviousVisibility = 6;   // width * height accumulated visibility
+OBSCURA_CONST int kTemporalBindingPreviousBentWorld = 7;    // width * height * 3 accumulated world bent normals
+OBSCURA_CONST int kTemporalBindingPreviousLength = 8;       // width * height frames accumulated
+// Outputs: the next frame's history (the same five planes) and the view-space bent normals.
+OBSCURA_CONST int kTemporalBindingDepthOut = 9;            // a copy of the depth input
+OBSCURA_CONST int kTemporalBindingNormalWorldOut = 10;
+OBSCURA_CONST int kTemporalBindingVisibilityOut = 11;     // the frame's visibility, sky 1
+OBSCURA_CONST int kTemporalBindingBentWorldOut = 12;
+OBSCURA_CONST int kTemporalBindingLengthOut = 13;         // 1 where history was rejected or absent
+OBSCURA_CONST int kTemporalBindingBentViewOut = 14;       // the frame's view-space bent normals, sky 0
+OBSCURA_CONST int kTemporalBindingCount = 15;
+OBSCURA_CONST int kTemporalPushConstantBytes = 128;
+
+#ifdef __cplusplus
+static_assert(sizeof(ReconstructConstants) == kReconstructPushConstantBytes &&
+                  offsetof(ReconstructConstants, depthSigma) == 16,
+              "ReconstructConstants is std430");
+static_assert(sizeof(UpsampleConstants) == kUpsamplePushConstantBytes && offsetof(UpsampleConstants, guideWidth) == 16,
+              "UpsampleConstants is std430");
+static_assert(sizeof(GtaoTemporalConstants) == kTemporalPushConstantBytes &&
+                  offsetof(GtaoTemporalConstants, aspect) == 16 &&
+                  offsetof(GtaoTemporalConstants, worldFromView) == 32 &&
+                  offsetof(GtaoTemporalConstants, previousViewFromWorld) == 80,
+              "GtaoTemporalConstants is std430");
+} // namespace obscura::gpu
+#endif
+#undef OBSCURA_CONST
+
+#endif
