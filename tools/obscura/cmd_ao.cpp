@@ -3,6 +3,7 @@
 #include "ao_options.h"
 #include "cli_common.h"
 #include "commands.h"
+#include "gpu_flags.h"
 
 #include "obscura/alchemy.h"
 #include "obscura/ao_methods.h"
@@ -27,8 +28,7 @@ struct AoOptions {
     std::string depth, normal, camera, output;
     std::string method = "alchemy";
     int threads = 0;
-    bool gpu = false;
-    int gpuDevice = -1;
+    GpuFlags gpu;
     AlchemyFlags alchemy;
     BlurFlags blur;
 };
@@ -74,11 +74,7 @@ void run(const AoOptions& o) {
     if (o.method == "alchemy-chapter") alchemy.formulation = ssao::AlchemyFormulation::Chapter;
     if (!o.method.starts_with("alchemy") && o.normal.empty())
         fail("--normal", "method " + o.method + " needs a normal buffer");
-    if (o.gpu && !o.method.starts_with("alchemy"))
-        fail("--gpu", "method " + o.method + " has no GPU path in this command yet (alchemy, alchemy-chapter)");
-    if (o.gpu && blur.mode == ssao::BlurMode::TwoD)
-        fail("--gpu", "the 2-D blur has no GPU pass yet (use --blur separable or none)");
-    if (o.gpuDevice < -1) fail("--gpu-device", "must be a device index >= 0 (or -1: the default device)");
+    o.gpu.validate();
     ThreadLimit limit(o.threads);
 
     GBuffer g;
@@ -104,27 +100,22 @@ void run(const AoOptions& o) {
     }
 
     Image ao;
-    std::string device = "CPU";
+    const std::unique_ptr<gpu::Context> context = o.gpu.open();
+    const std::string device = context ? context->device().name : "CPU";
     if (o.method.starts_with("alchemy")) {
         const int band = alchemy.guardBand;
         const GBuffer cropped = ssao::cropGuardBand(g, ssao::guardBandCamera(g.camera, -band), band);
-        if (o.gpu) {
-            gpu::ContextSettings cs;  // it names a missing driver or device, and a bad index by the flag
-            cs.deviceIndex = o.gpuDevice;
-            cs.deviceIndexName = "--gpu-device";
-            gpu::Context context(cs);
-            device = context.device().name;
-            ao = gpu::bilateralFilter(context, gpu::alchemyAO(context, g, alchemy), cropped, blur);
-            for (const std::string& m : context.validationMessages())
-                std::fprintf(stderr, "obscura: warning: Vulkan validation: %s\n", m.c_str());
-        } else {
+        if (context)
+            ao = gpu::bilateralFilter(*context, gpu::alchemyAO(*context, g, alchemy), cropped, blur);
+        else
             ao = ssao::bilateralFilter(ssao::alchemyAO(g, alchemy), cropped, blur);
-        }
     } else {
         eval::MethodOptions mo;
         mo.blur = blur;
+        mo.gpu = context.get();
         ao = method.compute(g, mo);
     }
+    reportValidation(context.get());
     ao.channelNames = {"Y"};
     writeExr(o.output, ao);
     std::printf("wrote %s: %dx%d %s AO on %s, %.2f s\n", o.output.c_str(), ao.width, ao.height, o.method.c_str(),
@@ -144,14 +135,9 @@ void addAoCommand(CLI::App& app) {
                     "View-space unit normal EXR: 3 channels, or N.X N.Y N.Z; default: rebuilt from depth");
     cmd->add_option("--camera", o->camera, "Camera JSON of the buffers (as `obscura gbuffer` writes it)")->required();
     cmd->add_option("-o,--output", o->output, "Output AO EXR (1 channel Y, 1 = unoccluded)")->required();
-    cmd->add_option("--method", o->method, "AO method: alchemy or alchemy-chapter")->capture_default_str();
+    cmd->add_option("--method", o->method, "AO method: alchemy, alchemy-chapter, gtao or gtao-ultra (see `obscura compare --help`)")->capture_default_str();
     cmd->add_option("--threads", o->threads, "Worker threads (0 = all cores)")->capture_default_str();
-    cmd->add_flag("--gpu", o->gpu,
-                  "Run the Alchemy estimator and the blur (none or separable) as Vulkan compute passes; "
-                  "OBSCURA_VALIDATION=1 turns on the validation layers");
-    cmd->add_option("--gpu-device", o->gpuDevice,
-                    "Vulkan device index with --gpu (-1: OBSCURA_GPU_DEVICE, else the first discrete GPU)")
-        ->capture_default_str();
+    o->gpu.add(*cmd, "the estimator and the blur");
     o->alchemy.add(*cmd, true);
     o->blur.add(*cmd);
     cmd->callback([o] { run(*o); });

@@ -110,8 +110,9 @@ void runTrace(const BenchOptions& o) {
 } // namespace
 
 void addBenchCommand(CLI::App& app) {
-    CLI::App* bench = app.add_subcommand("bench", "Benchmarks that print tables (and JSON with --json)");
-    bench->require_subcommand(1);
+    CLI::App* bench = app.add_subcommand(
+        "bench", "Benchmarks that print tables (and JSON with --json): a subcommand, or --gpu for the Vulkan passes");
+    bench->require_subcommand(0, 1);
     auto o = std::make_shared<BenchOptions>();
     CLI::App* trace = bench->add_subcommand(
         "trace", "Ray-tracing throughput (Mrays/s) of the AO estimator and of bare Embree calls on the same rays");
@@ -124,6 +125,7 @@ void addBenchCommand(CLI::App& app) {
     trace->callback([o] { runTrace(*o); });
     addAlchemyBench(*bench);
     addGtaoBench(*bench);
+    addGpuBench(*bench);
     addBakeBenchCommands(*bench);
 }
 

@@ -3,6 +3,7 @@
 #include "ao_options.h"
 #include "cli_common.h"
 #include "commands.h"
+#include "gpu_flags.h"
 
 #include "obscura/ao_methods.h"
 #include "obscura/error.h"
@@ -40,6 +41,7 @@ struct CompareOptions {
     bool json = false;
     bool quiet = false;
     CameraOptions camera;
+    GpuFlags gpu;
 };
 
 // 3 x 5 glyphs of the legend's labels, one row of 3 bits per line, top first.
@@ -95,6 +97,9 @@ void run(const CompareOptions& o) {
     mo.seed = o.seed;
     mo.blur.mode = o.blur == "none" ? ssao::BlurMode::None : o.blur == "2d" ? ssao::BlurMode::TwoD : ssao::BlurMode::Separable;
     mo.blur.normalWeight = normalWeightFromFlag(o.blurNormalWeight);
+    o.gpu.validate();
+    const std::unique_ptr<gpu::Context> context = o.gpu.open();
+    mo.gpu = context.get();
 
     ThreadLimit limit(o.threads);
     LoadedScene loaded = loadSceneArgument(o.scene);
@@ -137,8 +142,10 @@ void run(const CompareOptions& o) {
         rows.push_back(std::move(r));
     }
 
+    reportValidation(context.get());
     nlohmann::json report;
     report["scene"] = loaded.name;
+    report["device"] = context ? context->device().name : "CPU";
     report["width"] = camera.width;
     report["height"] = camera.height;
     report["rays"] = o.rays;
@@ -187,9 +194,10 @@ void run(const CompareOptions& o) {
         std::printf("%s\n", report.dump(2).c_str());
         return;
     }
-    std::printf("obscura compare: scene %s, %dx%d, %zu surface pixels, reference %d rays/px; error = method - "
-                "ray traced\n\n",
-                loaded.name.c_str(), camera.width, camera.height, rows.front().stats.pixels, o.rays);
+    std::printf("obscura compare: scene %s, %dx%d, %zu surface pixels, reference %d rays/px, methods on %s; error = "
+                "method - ray traced\n\n",
+                loaded.name.c_str(), camera.width, camera.height, rows.front().stats.pixels, o.rays,
+                context ? context->device().name.c_str() : "the CPU");
     std::printf("%-18s %8s %8s %9s %8s %9s\n", "method", "MAE", "RMSE", "bias", "max", "ms");
     for (const Row& r : rows)
         std::printf("%-18s %8.4f %8.4f %+9.4f %8.4f %9.1f\n", r.method->name.c_str(), r.stats.mae, r.stats.rmse,
@@ -225,6 +233,7 @@ void addCompareCommand(CLI::App& app) {
     cmd->add_flag("--json", o->json, "Print JSON instead of a table");
     cmd->add_flag("-q,--quiet", o->quiet, "No progress bars");
     o->camera.add(*cmd);
+    o->gpu.add(*cmd, "the methods (estimators and blur; the reference stays ray traced on the CPU)");
     cmd->callback([o] { run(*o); });
 }
 

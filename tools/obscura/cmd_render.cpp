@@ -2,11 +2,13 @@
 #include "ao_options.h"
 #include "cli_common.h"
 #include "commands.h"
+#include "gpu_flags.h"
 #include "gtao_cli.h"
 
 #include "obscura/alchemy.h"
 #include "obscura/camera_io.h"
 #include "obscura/error.h"
+#include "obscura/gpu_lighting.h"
 #include "obscura/image_io.h"
 #include "obscura/parallel.h"
 #include "obscura/render.h"
@@ -45,6 +47,7 @@ struct RenderOptions {
     BlurFlags blur;
     CLI::Option* radiusOption = nullptr;
     GtaoOptions gtao;
+    GpuFlags gpu;
 };
 
 const std::map<std::string, trace::Falloff> kFalloffs = {
@@ -82,7 +85,10 @@ void run(const RenderOptions& o) {
         o.gtao.settings(aoSettings.radius);  // throws on a bad value before any work
     }
 
+    o.gpu.validate();
+
     ThreadLimit limit(o.threads);
+    const std::unique_ptr<gpu::Context> context = o.gpu.open();
     LoadedScene loaded = loadSceneArgument(o.scene);
     Camera camera = o.camera.apply(loaded.camera);
 
@@ -116,21 +122,24 @@ void run(const RenderOptions& o) {
         Progress p("ambient occlusion", showProgress);
         ao = trace::ambientObscurance(*tracer, gbuffer, aoSettings, [&](double f) { p(f); });
     } else if (o.ao == "alchemy") {
-        Image raw = ssao::alchemyAO(gbuffer, alchemy);
+        Image raw = context ? gpu::alchemyAO(*context, gbuffer, alchemy) : ssao::alchemyAO(gbuffer, alchemy);
         gbuffer = ssao::cropGuardBand(gbuffer, camera, alchemy.guardBand);
-        ao = ssao::bilateralFilter(raw, gbuffer, blur);
+        ao = context ? gpu::bilateralFilter(*context, raw, gbuffer, blur) : ssao::bilateralFilter(raw, gbuffer, blur);
     }
     GtaoFrame gtao;
     if (o.ao == "gtao") {
         trace::GBufferSettings gs;
         gs.supersample = o.supersample;
-        gtao = renderGtaoFrames(o.gtao, aoSettings.radius, *tracer, camera, gs, o.aovDir, showProgress);
+        gtao = renderGtaoFrames(o.gtao, aoSettings.radius, *tracer, camera, gs, o.aovDir, showProgress, context.get());
         gbuffer = gtao.gbuffer;
         camera = gbuffer.camera;
         ao = gtao.visibility;
     }
 
-    render::Frame frame = o.ao == "gtao" ? shadeGtao(gtao, sh, environment) : render::shade(gbuffer, sh, ao, environment);
+    render::Frame frame = o.ao == "gtao" ? shadeGtao(gtao, sh, environment, context.get())
+                          : context      ? gpu::shade(*context, gbuffer, sh, ao, environment)
+                                         : render::shade(gbuffer, sh, ao, environment);
+    reportValidation(context.get());
     render::ShadeSettings shading;
     shading.exposure = o.exposure;
     shading.tonemap = kTonemaps.at(o.tonemap);
@@ -158,6 +167,7 @@ void run(const RenderOptions& o) {
                     alchemy.formulation == ssao::AlchemyFormulation::Paper ? "paper" : "chapter", double(alchemy.radius),
                     double(alchemy.intensity), double(alchemy.contrast), alchemy.samples, o.blur.mode.c_str());
     if (o.ao == "gtao") std::printf(" (%s, r = %s m, %d frame(s))", o.gtao.quality.c_str(), o.radius.c_str(), o.gtao.frames);
+    if (context) std::printf(", on %s", context->device().name.c_str());
     std::printf(", %.2f s\n", secondsSince(start));
 }
 
@@ -202,6 +212,7 @@ void addRenderCommand(CLI::App& app) {
     o->alchemy.add(*cmd, false);
     o->blur.add(*cmd);
     o->gtao.add(*cmd);
+    o->gpu.add(*cmd, "the screen-space AO (alchemy, gtao: every pass) and the composite; ray-traced AO stays on the CPU");
     cmd->callback([o] { run(*o); });
 }
 

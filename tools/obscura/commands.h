@@ -15,6 +15,7 @@ void addAoCommand(CLI::App& app);
 void addCompareCommand(CLI::App& app);
 void addAlchemyBench(CLI::App& bench);
 void addGtaoBench(CLI::App& bench);  // `bench gtao`, registered by addBenchCommand
+void addGpuBench(CLI::App& bench);   // `bench --gpu` and its options, on the bench command itself
 void addBakeCommand(CLI::App& app);
 void addBakeBenchCommands(CLI::App& bench);  // `bench bake-quality`, added by addBenchCommand
 

@@ -4,6 +4,8 @@
 #include "cli_common.h"
 
 #include "obscura/error.h"
+#include "obscura/gpu_lighting.h"
+#include "obscura/gpu_temporal.h"
 #include "obscura/image_io.h"
 #include "obscura/multibounce.h"
 #include "obscura/specular_occlusion.h"
@@ -12,6 +14,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 
 namespace obscura::cli {
 
@@ -22,16 +25,6 @@ const std::map<std::string, ssao::SpecularOcclusionMode> kSpecularModes = {
     {"lut3", ssao::SpecularOcclusionMode::Lut3},
     {"cone", ssao::SpecularOcclusionMode::Cone}};
 
-// Frame k of the built-in path: the camera turned k * 0.5 degrees about the vertical through its target,
-// slow enough for the history to follow and fast enough to disocclude something over a few frames.
-Camera pathCamera(const Camera& base, int k) {
-    Camera c = base;
-    const float angle = 0.5f * kPi / 180.0f * float(k);
-    const Mat4 turn = Mat4::rotation({0.0f, 1.0f, 0.0f}, angle);
-    c.position = base.target + transformVector(turn, base.position - base.target);
-    return c;
-}
-
 std::string numbered(const std::string& dir, const char* name, int frame) {
     char buffer[32];
     std::snprintf(buffer, sizeof buffer, "_%04d.exr", frame);
@@ -39,6 +32,9 @@ std::string numbered(const std::string& dir, const char* name, int frame) {
 }
 
 } // namespace
+
+// Slow enough for the history to follow and fast enough to disocclude something over a few frames.
+Camera gtaoPathCamera(const Camera& base, int k) { return turnedAboutTarget(base, 0.5f * kPi / 180.0f * float(k)); }
 
 void GtaoOptions::add(CLI::App& app) {
     app.add_option("--ao-quality", quality, "GTAO preset (slices x steps per side): low 1x2, medium 2x2, high 3x3, ultra 9x3")
@@ -108,28 +104,37 @@ void GtaoOptions::validate(const std::string& aovDir) const {
 }
 
 GtaoFrame renderGtaoFrames(const GtaoOptions& o, float radius, const trace::Tracer& tracer, const Camera& camera,
-                           const trace::GBufferSettings& gbufferSettings, const std::string& aovDir, bool progress) {
+                           const trace::GBufferSettings& gbufferSettings, const std::string& aovDir, bool progress,
+                           gpu::Context* context) {
     const ssao::GtaoSettings settings = o.settings(radius);
     const std::string mode = o.mode == "auto" ? (o.frames > 1 ? "temporal" : "full") : o.mode;
     ssao::GtaoTemporalSettings temporalSettings;
     temporalSettings.temporal = mode == "temporal";
     temporalSettings.halfResolution = o.halfResolution;
-    ssao::GtaoTemporal temporal(settings, temporalSettings);
+    std::optional<ssao::GtaoTemporal> temporal;
+    std::optional<gpu::GtaoTemporal> gpuTemporal;
+    if (mode != "full" && context)
+        gpuTemporal.emplace(*context, settings, temporalSettings);
+    else if (mode != "full")
+        temporal.emplace(settings, temporalSettings);
     const bool bent = o.output != "visibility";
     const bool all = o.output == "all";
 
     GtaoFrame f;
     Progress p("GTAO frames", progress && o.frames > 1);
     for (int k = 0; k < o.frames; ++k) {
-        f.gbuffer = trace::renderGBuffer(tracer, pathCamera(camera, k), gbufferSettings);
+        f.gbuffer = trace::renderGBuffer(tracer, gtaoPathCamera(camera, k), gbufferSettings);
         ssao::GtaoResult r;
+        const ssao::GtaoConstants constants = ssao::gtaoConstants(settings, f.gbuffer.camera, k);
         if (mode == "full")
-            r = ssao::computeGtao(f.gbuffer, ssao::gtaoConstants(settings, f.gbuffer.camera, k));
+            r = context ? gpu::computeGtao(*context, f.gbuffer, constants) : ssao::computeGtao(f.gbuffer, constants);
         else
-            r = temporal.frame(f.gbuffer);
+            r = context ? gpuTemporal->frame(f.gbuffer) : temporal->frame(f.gbuffer);
         f.visibility = std::move(r.visibility);
         f.bentNormal = std::move(r.bentNormal);
-        if (o.multibounce) {
+        if (o.multibounce && context) {
+            f.multibounce = gpu::multiBounce(*context, f.gbuffer, f.visibility);
+        } else if (o.multibounce) {
             f.multibounce = Image(f.gbuffer.width(), f.gbuffer.height(), 3, 1.0f);
             for (int y = 0; y < f.gbuffer.height(); ++y)
                 for (int x = 0; x < f.gbuffer.width(); ++x) {
@@ -140,8 +145,10 @@ GtaoFrame renderGtaoFrames(const GtaoOptions& o, float radius, const trace::Trac
                 }
         }
         if (o.specular != "none")
-            f.specular = ssao::computeSpecularOcclusion(f.gbuffer, f.visibility, f.bentNormal,
-                                                        kSpecularModes.at(o.specular), o.roughness);
+            f.specular = context ? gpu::specularOcclusion(*context, f.gbuffer, f.visibility, f.bentNormal,
+                                                          kSpecularModes.at(o.specular), o.roughness)
+                                 : ssao::computeSpecularOcclusion(f.gbuffer, f.visibility, f.bentNormal,
+                                                                  kSpecularModes.at(o.specular), o.roughness);
         if (!aovDir.empty()) {
             const bool last = k + 1 == o.frames;
             auto write = [&](const char* name, const Image& image) {
@@ -163,7 +170,9 @@ GtaoFrame renderGtaoFrames(const GtaoOptions& o, float radius, const trace::Trac
     return f;
 }
 
-render::Frame shadeGtao(const GtaoFrame& f, const render::SH9& sh, const Image& environment) {
+render::Frame shadeGtao(const GtaoFrame& f, const render::SH9& sh, const Image& environment, gpu::Context* context) {
+    if (context && f.multibounce.empty()) return gpu::shade(*context, f.gbuffer, sh, f.visibility, environment);
+    if (context) return gpu::shadeMultiBounce(*context, f.gbuffer, sh, f.multibounce, environment);
     if (f.multibounce.empty()) return render::shade(f.gbuffer, sh, f.visibility, environment);
     render::Frame frame = render::shade(f.gbuffer, sh, Image(), environment);
     for (int y = 0; y < f.gbuffer.height(); ++y)

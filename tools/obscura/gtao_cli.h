@@ -3,6 +3,7 @@
 #pragma once
 
 #include "obscura/gbuffer.h"
+#include "obscura/gpu.h"
 #include "obscura/gtao.h"
 #include "obscura/gtao_temporal.h"
 #include "obscura/image.h"
@@ -38,6 +39,9 @@ struct GtaoOptions {
     void validate(const std::string& aovDir) const;
 };
 
+// Frame k of the built-in camera path: `base` turned k * 0.5 degrees about the vertical through its target.
+Camera gtaoPathCamera(const Camera& base, int k);
+
 struct GtaoFrame {
     GBuffer gbuffer;        // the last frame's
     Image visibility;       // 1 channel
@@ -48,12 +52,16 @@ struct GtaoFrame {
 
 // Renders the frames along the built-in camera path (frame k: the camera turned k * 0.5 degrees about the
 // vertical through its target) and returns the last. With an AOV directory and several frames, each
-// frame's AOVs are written as NAME_0000.exr ...; the last frame's also without the number.
+// frame's AOVs are written as NAME_0000.exr ...; the last frame's also without the number. With a context,
+// every GTAO pass (main, reconstruction, upsample, history, multi-bounce, specular occlusion) runs on it;
+// the G-buffers are ray traced on the CPU either way.
 GtaoFrame renderGtaoFrames(const GtaoOptions& options, float radius, const trace::Tracer& tracer, const Camera& camera,
-                           const trace::GBufferSettings& gbufferSettings, const std::string& aovDir, bool progress);
+                           const trace::GBufferSettings& gbufferSettings, const std::string& aovDir, bool progress,
+                           gpu::Context* context = nullptr);
 
 // Shaded frame with the GTAO result: albedo x lighting x AO, or x G(A, albedo) per channel with
-// multi-bounce.
-render::Frame shadeGtao(const GtaoFrame& frame, const render::SH9& sh, const Image& environment);
+// multi-bounce; on the context's device when there is one.
+render::Frame shadeGtao(const GtaoFrame& frame, const render::SH9& sh, const Image& environment,
+                        gpu::Context* context = nullptr);
 
 } // namespace obscura::cli

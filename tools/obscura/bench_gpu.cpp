@@ -1,0 +1,223 @@
+// `obscura bench --gpu`: per-pass GPU milliseconds of the screen-space passes from timestamp queries
+// (gpu::benchGpuCase), at 1280x720, 1920x1080 and 3840x2160, with Mpixel/s, the compulsory memory traffic
+// per frame and its fraction of a bandwidth ceiling, as a table and as JSON.
+#include "cli_common.h"
+#include "commands.h"
+#include "gpu_flags.h"
+#include "gtao_cli.h"
+
+#include "obscura/error.h"
+#include "obscura/gpu.h"
+#include "obscura/gpu_bench.h"
+#include "obscura/trace.h"
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <ctime>
+#include <memory>
+#include <sstream>
+#include <vector>
+
+namespace obscura::cli {
+
+namespace {
+
+std::vector<std::string> splitList(const std::string& list) {
+    std::vector<std::string> out;
+    std::stringstream in(list);
+    std::string item;
+    while (std::getline(in, item, ',')) out.push_back(item);
+    return out;
+}
+
+// VK_MAKE_API_VERSION's fields (the CLI does not include Vulkan's headers).
+std::string apiText(std::uint32_t v) {
+    return std::to_string((v >> 22) & 0x7fu) + "." + std::to_string((v >> 12) & 0x3ffu) + "." + std::to_string(v & 0xfffu);
+}
+
+struct GpuBenchOptions {
+    bool gpu = false;
+    std::string sizes = "1280x720,1920x1080,3840x2160";
+    std::string cases = "alchemy,gtao,gtao-spatial,gtao-temporal,gtao-temporal-half";
+    int frames = 200;
+    int warmup = 20;
+    int inputs = 4;
+    std::string scene = "demo";
+    std::string quality = "high";
+    int temporalSlices = 1;
+    double peakGbps = 3000.0;
+    int device = -1;
+    bool json = false;
+
+    void add(CLI::App& bench);
+};
+
+void GpuBenchOptions::add(CLI::App& bench) {
+    bench.add_flag("--gpu", gpu,
+                   "Time the Vulkan compute passes: per-pass GPU ms from timestamp queries (median of --frames after "
+                   "--warmup), Mpixel/s, bytes per frame and their share of --peak-gbps");
+    bench.add_option("--sizes", sizes, "--gpu: comma-separated WxH sizes")->capture_default_str();
+    bench.add_option("--cases", cases,
+                     "--gpu: comma-separated cases: alchemy, gtao, gtao-spatial, gtao-temporal, gtao-temporal-half")
+        ->capture_default_str();
+    bench.add_option("--frames", frames, "--gpu: timed frames per case and size, [1, 100000]")->capture_default_str();
+    bench.add_option("--warmup", warmup, "--gpu: untimed frames before them, [0, 10000]")->capture_default_str();
+    bench.add_option("--inputs", inputs,
+                     "--gpu: G-buffers the frames rotate through (the camera path's first frames), so no frame reads "
+                     "its inputs from the caches the last one left, [1, 16]")
+        ->capture_default_str();
+    bench.add_option("--scene", scene, "--gpu: built-in scene or scene file")->capture_default_str();
+    bench.add_option("--ao-quality", quality, "--gpu: GTAO preset of the gtao cases: low, medium, high, ultra")
+        ->check(CLI::IsMember({"low", "medium", "high", "ultra"}))
+        ->capture_default_str();
+    bench.add_option("--temporal-slices", temporalSlices, "--gpu: slices per pixel of the temporal cases, [1, 64]")
+        ->capture_default_str();
+    bench.add_option("--peak-gbps", peakGbps,
+                     "--gpu: bandwidth ceiling the traffic is compared with, GB/s (default: a compute-shader copy on "
+                     "an H100, 3.0 TB/s)")
+        ->capture_default_str();
+    bench.add_option("--gpu-device", device, "--gpu: Vulkan device index (-1: OBSCURA_GPU_DEVICE, else the first discrete GPU)")
+        ->capture_default_str();
+    bench.add_flag("--json", json, "--gpu: print JSON instead of a table");
+}
+
+void runGpuBench(const GpuBenchOptions& o) {
+    gpu::GpuBenchSettings settings;
+    settings.frames = o.frames;
+    settings.warmup = o.warmup;
+    settings.quality = ssao::parseQuality(o.quality);
+    settings.temporalSlices = o.temporalSlices;
+    try {
+        settings.validate();
+    } catch (const Error& e) {
+        // "gpu-bench-frames: ..." -> "--frames: ..."
+        const std::string what = e.what();
+        throw Error("--" + what.substr(std::string("gpu-bench-").size()));
+    }
+    if (o.inputs < 1 || o.inputs > 16) fail("--inputs", "must be in [1, 16]");
+    if (!(o.peakGbps > 0.0 && o.peakGbps < 1e6)) fail("--peak-gbps", "must be in (0, 1e6) GB/s");
+    const GpuFlags device{true, o.device};
+    device.validate();
+    std::vector<std::pair<int, int>> sizes;
+    for (const std::string& s : splitList(o.sizes)) {
+        int w = 0, h = 0;
+        parseSize("--sizes", s, w, h);
+        sizes.push_back({w, h});
+    }
+    if (sizes.empty()) fail("--sizes", "no size given");
+    const std::vector<std::string> cases = splitList(o.cases);
+    if (cases.empty()) fail("--cases", "no case given");
+    for (const std::string& c : cases) {
+        bool known = false;
+        std::string names;
+        for (const gpu::GpuBenchCaseInfo& info : gpu::gpuBenchCases()) {
+            known = known || info.name == c;
+            names += (names.empty() ? "" : ", ") + info.name;
+        }
+        if (!known) fail("--cases", "unknown case '" + c + "' (known: " + names + ")");
+    }
+
+    const std::unique_ptr<gpu::Context> opened = device.open();
+    gpu::Context& context = *opened;
+    const gpu::DeviceInfo& info = context.device();
+    LoadedScene loaded = loadSceneArgument(o.scene);
+    trace::Tracer tracer(loaded.scene);
+
+    char date[32];
+    const std::time_t now = std::time(nullptr);
+    std::strftime(date, sizeof date, "%Y-%m-%d", std::gmtime(&now));
+    nlohmann::json report;
+    report["device"] = info.name;
+    report["driver"] = info.driver;
+    report["vulkan"] = apiText(info.apiVersion);
+    report["date"] = date;
+    report["scene"] = loaded.name;
+    report["frames"] = o.frames;
+    report["warmup"] = o.warmup;
+    report["inputs"] = o.inputs;
+    report["peak_gbps"] = o.peakGbps;
+    report["validation"] = context.validation();
+    if (!o.json) {
+        std::printf("obscura bench --gpu: %s (%s, Vulkan %s), %s\n", info.name.c_str(), info.driver.c_str(),
+                    apiText(info.apiVersion).c_str(), date);
+        std::printf("scene %s; GPU ms from timestamps, median of %d frames after %d warm-up, rotating %d inputs;\n"
+                    "MB = compulsory traffic per frame (each buffer a dispatch reads or writes, once); %% = its rate "
+                    "over %.0f GB/s%s\n",
+                    loaded.name.c_str(), o.frames, o.warmup, o.inputs, o.peakGbps,
+                    context.validation() ? "; VALIDATION ON (timings are not representative)" : "");
+    }
+    bool headerPrinted = false;
+    for (auto [w, h] : sizes) {
+        std::vector<GBuffer> inputs;
+        for (int k = 0; k < o.inputs; ++k) {
+            Camera camera = gtaoPathCamera(loaded.camera, k);
+            camera.width = w;
+            camera.height = h;
+            inputs.push_back(trace::renderGBuffer(tracer, camera));
+        }
+        for (const std::string& name : cases) {
+            const gpu::GpuBenchCase r = gpu::benchGpuCase(context, name, inputs, settings);
+            const double fraction = r.gigabytesPerSecond() / o.peakGbps;
+            nlohmann::json passes = nlohmann::json::array();
+            std::string passText;
+            for (const gpu::GpuPassTime& p : r.passes) {
+                passes.push_back({{"name", p.name}, {"median_ms", p.medianMs}});
+                char b[64];
+                std::snprintf(b, sizeof b, "%s%s %.4f", passText.empty() ? "" : ", ", p.name.c_str(), p.medianMs);
+                passText += b;
+            }
+            report["cases"].push_back({{"case", r.name},
+                                       {"description", r.description},
+                                       {"width", r.width},
+                                       {"height", r.height},
+                                       {"median_ms", r.medianMs},
+                                       {"min_ms", r.minMs},
+                                       {"mpixels_per_s", r.mpixelsPerSecond()},
+                                       {"bytes_per_frame", r.bytes},
+                                       {"gbytes_per_s", r.gigabytesPerSecond()},
+                                       {"fraction_of_peak", fraction},
+                                       {"passes", passes}});
+            if (o.json) continue;
+            if (!headerPrinted) {
+                std::printf("\n%-19s %-10s %9s %9s %10s %8s %6s  %s\n", "case", "size", "ms", "min ms", "Mpixel/s", "MB",
+                            "%peak", "passes (median ms)");
+                headerPrinted = true;
+            }
+            char size[24];
+            std::snprintf(size, sizeof size, "%dx%d", w, h);
+            std::printf("%-19s %-10s %9.4f %9.4f %10.0f %8.1f %5.1f%%  %s\n", r.name.c_str(), size, r.medianMs, r.minMs,
+                        r.mpixelsPerSecond(), r.bytes * 1e-6, 100.0 * fraction, passText.c_str());
+        }
+    }
+    if (!o.json) {
+        std::printf("\ncases:\n");
+        for (const std::string& name : cases)
+            for (const auto& c : report["cases"])
+                if (c["case"] == name) {
+                    std::printf("  %-19s %s\n", name.c_str(), c["description"].get<std::string>().c_str());
+                    break;
+                }
+    }
+    reportValidation(&context);
+    if (o.json) std::printf("%s\n", report.dump(2).c_str());
+}
+
+} // namespace
+
+void addGpuBench(CLI::App& bench) {
+    auto o = std::make_shared<GpuBenchOptions>();
+    o->add(bench);
+    // `bench --gpu` runs after option parsing; `bench SUBCOMMAND` runs the subcommand's callback instead.
+    bench.callback([o, &bench] {
+        if (!bench.get_subcommands().empty()) {
+            if (o->gpu) fail("--gpu", "times the GPU passes by itself; give it without a subcommand");
+            return;
+        }
+        if (!o->gpu) fail("bench", "needs a subcommand (trace, alchemy, gtao, bake-quality) or --gpu");
+        runGpuBench(*o);
+    });
+}
+
+} // namespace obscura::cli

@@ -1,0 +1,30 @@
+// `--gpu` and `--gpu-device`, shared by the commands that run screen-space passes as Vulkan compute.
+#pragma once
+
+#include "obscura/gpu.h"
+
+#include <memory>
+#include <string>
+
+namespace CLI {
+class App;
+}
+
+namespace obscura::cli {
+
+struct GpuFlags {
+    bool gpu = false;
+    int device = -1;
+
+    // `what` completes the --gpu help: "Run <what> as Vulkan compute passes".
+    void add(CLI::App& app, const std::string& what);
+    // Throws obscura::Error naming --gpu-device for a bad index (before any work).
+    void validate() const;
+    // The context, or null without --gpu. Errors (no loader, driver or device) name the device or the flag.
+    std::unique_ptr<gpu::Context> open() const;
+};
+
+// Prints every validation message of the context as a warning on stderr (none unless OBSCURA_VALIDATION=1).
+void reportValidation(const gpu::Context* context);
+
+} // namespace obscura::cli
