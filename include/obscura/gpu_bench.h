@@ -30,7 +30,8 @@ struct GpuBenchSettings {
 };
 
 struct GpuPassTime {
-    std::string name;       // "alchemy", "blur", "gtao", "denoise", "upsample", "temporal", "resolve"
+    std::string name;       // "alchemy", "blur", "gtao", "denoise", "temporal", "resolve" (the stages of
+                            // gpu::GtaoTemporalPasses::record say which dispatches each one times)
     double medianMs = 0;    // median over the timed frames of this pass's GPU time
 };
 

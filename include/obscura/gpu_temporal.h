@@ -2,10 +2,13 @@
 // Occlusion", §4.1) as Vulkan compute passes on a gpu::Context: the mirror of obscura/gtao_temporal.h. Each
 // function and GtaoTemporal take their CPU reference's inputs and settings, run its checks with the same
 // messages, and return the same images to within GPU rounding (tests/gpu/gtao_temporal_gpu_test.cpp states
-// and measures the bounds). A frame is four stages, each a dispatch or two: the interleaved GTAO pass
-// (gtao.comp, every other pixel at half resolution), the 4x4 reconstruction (reconstruct_interleaved.comp),
-// the depth-aware upsampling at half resolution (upsample_depth_aware.comp), and the reprojected
-// accumulation (gtao_temporal.comp). The history stays on the GPU between frames.
+// and measures the bounds). The CPU's frame is four steps: the interleaved GTAO pass, the 4x4 reconstruction,
+// the depth-aware upsampling at half resolution, and the reprojected accumulation. On the GPU it is two
+// passes at full resolution: gtao.comp, then gtao_temporal.comp, which reconstructs its own pixel before
+// accumulating; and three at half: gtao.comp on every other pixel, reconstruct_interleaved.comp on that
+// grid, then gtao_temporal.comp, which upsamples its own pixel. The filtered planes never reach memory. The
+// history stays on the GPU between frames. reconstructInterleaved and upsampleDepthAware below run a filter
+// as a pass of its own (reconstruct_interleaved.comp, upsample_depth_aware.comp).
 //
 // Errors: as in obscura/gpu.h; the CPU's errors for bad settings and buffers. reconstructInterleaved and
 // upsampleDepthAware check nothing on the CPU; here they throw obscura::Error for buffers the GPU cannot read

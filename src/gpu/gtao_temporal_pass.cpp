@@ -11,7 +11,9 @@
 #include "obscura/error.h"
 #include "obscura/gpu_temporal.h"
 
+#include <bit>
 #include <cassert>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -88,13 +90,13 @@ GtaoTemporalPasses::GtaoTemporalPasses(Context::Impl& c, const ssao::GtaoSetting
     assert(width >= 1 && height >= 1);
     const std::size_t pixels = std::size_t(width) * std::size_t(height);
     const std::size_t grid = std::size_t(gridWidth_) * std::size_t(gridHeight_);
-    rawVisibility_ = deviceFloats(c, grid);
-    rawBent_ = deviceFloats(c, 3 * grid);
-    visibility_ = deviceFloats(c, grid);
-    bent_ = deviceFloats(c, 3 * grid);
+    for (int set = 0; set < 2; ++set) {
+        rawVisibility_[set] = deviceFloats(c, grid);
+        rawBent_[set] = deviceFloats(c, 3 * grid);
+    }
     if (step_ == 2) {
-        fullVisibility_ = deviceFloats(c, pixels);
-        fullBent_ = deviceFloats(c, 3 * pixels);
+        visibility_ = deviceFloats(c, grid);
+        bent_ = deviceFloats(c, 3 * grid);
     }
     bentView_ = deviceFloats(c, 3 * pixels);
     for (History& h : history_) {
@@ -113,32 +115,27 @@ void GtaoTemporalPasses::record(VkCommandBuffer cmd, const GtaoTemporalFrameInpu
     const auto stage = [&](const char* name) {
         if (mark) mark(name);
     };
-    // 1. One interleaved evaluation per grid pixel.
+    // 1. One interleaved evaluation per grid pixel, into the raw set the previous frame did not read.
+    const Buffer& rawVisibility = rawVisibility_[1 - current_];
+    const Buffer& rawBent = rawBent_[1 - current_];
     const ssao::GtaoConstants k = ssao::gtaoConstants(settings_, in.camera, in.frameIndex, true);
-    recordGtao(c, cmd, {in.depth, in.normal, rawVisibility_, rawBent_}, k, step_);
+    recordGtao(c, cmd, {in.depth, in.normal, rawVisibility, rawBent}, k, step_);
     stage("gtao");
-    computeBarrier(cmd);  // the reconstruction reads the raw values
+    computeBarrier(cmd);  // the next stage reads the raw values
 
-    // 2. Spatial gather of the 16 pattern directions; the grid's depth and normals are the G-buffer's at
-    // every step-th pixel.
-    const ReconstructConstants rk = reconstructConstants(gridWidth_, gridHeight_, width_, step_, temporal_.depthSigma);
-    recordReconstruct(c, cmd, {rawVisibility_, in.depth, in.normal, visibility_}, rk, 1);
-    recordReconstruct(c, cmd, {rawBent_, in.depth, in.normal, bent_}, rk, 3);
-    stage("denoise");
-    computeBarrier(cmd);  // the next stage reads the reconstructed values
-
-    // 3. Back to full resolution.
-    const Buffer* visibility = &visibility_;
-    const Buffer* bent = &bent_;
+    // 2. At half resolution, the spatial gather of the 16 pattern directions on the grid, whose depth and
+    // normals are the G-buffer's at every other pixel. At full resolution the accumulation gathers them for
+    // its own pixel instead, and the upsampling (3.) is the accumulation's too.
+    const Buffer* grid[2] = {&rawVisibility, &rawBent};
     if (step_ == 2) {
-        const UpsampleConstants uk =
-            upsampleConstants(width_, height_, gridWidth_, gridHeight_, width_, step_, temporal_.depthSigma);
-        recordUpsample(c, cmd, {visibility_, in.depth, in.depth, fullVisibility_}, uk, 1);
-        recordUpsample(c, cmd, {bent_, in.depth, in.depth, fullBent_}, uk, 3);
-        stage("upsample");
-        computeBarrier(cmd);  // the accumulation reads the upsampled values
-        visibility = &fullVisibility_;
-        bent = &fullBent_;
+        const ReconstructConstants rk =
+            reconstructConstants(gridWidth_, gridHeight_, width_, step_, temporal_.depthSigma);
+        recordReconstruct(c, cmd, {rawVisibility, in.depth, in.normal, visibility_}, rk, 1);
+        recordReconstruct(c, cmd, {rawBent, in.depth, in.normal, bent_}, rk, 3);
+        stage("denoise");
+        computeBarrier(cmd);  // the accumulation reads the reconstructed values
+        grid[0] = &visibility_;
+        grid[1] = &bent_;
     }
 
     // 4. Reprojection and exponential accumulation into the other history set. Without temporal filtering the
@@ -147,12 +144,13 @@ void GtaoTemporalPasses::record(VkCommandBuffer cmd, const GtaoTemporalFrameInpu
     const GtaoTemporalConstants tk = gtaoTemporalConstants(temporal_, in.camera, previousCamera_, useHistory);
     const History& previous = history_[current_];
     const History& next = history_[1 - current_];
-    ComputePipeline& pipeline = c.pipeline("gtao_temporal", shaders::gtao_temporal,
-                                           storageBuffers(kTemporalBindingCount), kTemporalPushConstantBytes,
-                                           kTemporalWorkgroupX, kTemporalWorkgroupY);
+    ComputePipeline& pipeline =
+        c.pipeline("gtao_temporal", shaders::gtao_temporal, storageBuffers(kTemporalBindingCount),
+                   kTemporalPushConstantBytes, kTemporalWorkgroupX, kTemporalWorkgroupY,
+                   {step_, std::bit_cast<std::int32_t>(temporal_.depthSigma)});  // kTemporalSpecGridStep, DepthSigma
     // In binding order: kTemporalBindingDepth ... kTemporalBindingBentViewOut.
     pipeline.dispatchGrid(cmd,
-                          {&in.depth, &in.normal, visibility, bent, &previous.depth, &previous.normalWorld,
+                          {&in.depth, &in.normal, grid[0], grid[1], &previous.depth, &previous.normalWorld,
                            &previous.visibility, &previous.bentWorld, &previous.length, &next.depth,
                            &next.normalWorld, &next.visibility, &next.bentWorld, &next.length, &bentView_},
                           &tk, sizeof tk, width_, height_);
@@ -169,13 +167,13 @@ std::size_t GtaoTemporalPasses::bytesPerFrame() const {
     const std::size_t grid = std::size_t(gridWidth_) * std::size_t(gridHeight_);
     // GTAO: the search reads the whole depth plane, the normals of the grid pixels; writes 1 + 3 per grid pixel.
     std::size_t bytes = f * (pixels + 3 * grid + 4 * grid);
-    // Reconstruction, 1 and 3 channels: values, guide depth and normals in, values out.
-    bytes += f * grid * ((1 + 1 + 3 + 1) + (3 + 1 + 3 + 3));
-    // Upsampling, 1 and 3 channels: low values and depth, full depth in, values out.
-    if (step_ == 2) bytes += f * ((grid * (1 + 1) + pixels * (1 + 1)) + (grid * (3 + 1) + pixels * (1 + 3)));
-    // Accumulation: depth, normals, visibility, bent normals and the five history planes in; the five next
-    // history planes and the view bent normals out.
-    bytes += f * pixels * ((1 + 3 + 1 + 3) + (1 + 3 + 1 + 3 + 1) + (1 + 3 + 1 + 3 + 1 + 3));
+    // Half resolution: the reconstruction, 1 and 3 channels: values, guide depth and normals in, values out.
+    if (step_ == 2) bytes += f * grid * ((1 + 1 + 3 + 1) + (3 + 1 + 3 + 3));
+    // Accumulation: the grid's 1 + 3 values (its depth and normals are those of the full planes at full
+    // resolution, and at half resolution the upsampling reads only the depth: 1 more per grid pixel), depth,
+    // normals and the five history planes in; the five next history planes and the view bent normals out.
+    bytes += f * (grid * (4 + (step_ == 2 ? 1 : 0)) +
+                  pixels * ((1 + 3) + (1 + 3 + 1 + 3 + 1) + (1 + 3 + 1 + 3 + 1 + 3)));
     return bytes;
 }
 

@@ -64,8 +64,9 @@ public:
     // predecessor's last stage does, and its later barriers order the rest (the history it reads, the
     // intermediates it overwrites). A caller that reads the result records its own barrier. After each stage
     // it calls mark(stage) if set, so that a caller can write a timestamp: "gtao", "denoise" (both
-    // reconstructions), "upsample" (half resolution only), "temporal" (with temporal.temporal; else "resolve",
-    // the same pass without history). The history is used from the second
+    // reconstructions, half resolution only: at full resolution the accumulation reconstructs its own pixel),
+    // "temporal" (the upsampling at half resolution, the reconstruction at full, and the accumulation with
+    // temporal.temporal; else "resolve", the same pass without history). The history is used from the second
     // recorded frame on (with temporal.temporal), reprojected from the previous record's camera. At most
     // ComputePipeline::kSetsPerSubmit frames per submission (each pipeline is dispatched once per frame).
     void record(VkCommandBuffer cmd, const GtaoTemporalFrameInputs& inputs,
@@ -95,9 +96,10 @@ private:
     ssao::GtaoSettings settings_;
     ssao::GtaoTemporalSettings temporal_;
     int width_, height_, step_, gridWidth_, gridHeight_;
-    Buffer rawVisibility_, rawBent_;  // grid: the GTAO pass's output
-    Buffer visibility_, bent_;        // grid: reconstructed
-    Buffer fullVisibility_, fullBent_;  // full resolution: upsampled (half resolution only)
+    // Grid: the GTAO pass's output, two sets written in turn like the history, because at full resolution the
+    // last stage reads them: a frame recorded right after another must not overwrite what that one reads.
+    Buffer rawVisibility_[2], rawBent_[2];
+    Buffer visibility_, bent_;        // grid: reconstructed (half resolution only)
     Buffer bentView_;
     History history_[2];
     int current_ = 0;  // the set the last recorded frame wrote

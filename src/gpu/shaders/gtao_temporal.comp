@@ -2,6 +2,12 @@
 // Strategies for Accurate Indirect Occlusion", §4.1 (reprojection into an exponential accumulation buffer
 // that gathers the 6 per-frame rotations). One invocation per pixel.
 //
+// The pass starts with the spatial filter of its own pixel (temporal_filters.glsl): at full resolution the
+// 4x4 reconstruction of the GTAO pass's raw interleaved values, at half resolution the depth-aware upsampling
+// of the reconstructed grid. The CPU writes the filtered planes and reads them back here; fused, they stay in
+// registers, which removes the planes' round trip through memory and a pass with its barrier, and gives the
+// same values (each pixel's filter reads only the grid, which no invocation here writes).
+//
 // temporalPixel below is the body of step 4 of ssao::GtaoTemporal::frame (src/ssao/gtao_temporal.cpp) line
 // for line, with `return` for its `continue`; main adds the last loop (back to view space) and the copies
 // the CPU makes of depth and world normals for the next frame. Read them side by side. The differences are
@@ -9,8 +15,8 @@
 // constants (temporal_layouts.h says which expression each field is), so viewPosition and pixelFromView are
 // Camera::viewFromPixel and Camera::pixelFromView with the same operations in the same order;
 // transformPoint omits the CPU's division by w, which is 1 exactly for these affine matrices and finite
-// points; the history planes are the buffers `previous*`. Nothing transcendental is evaluated, so only
-// contraction of a multiply-add by the GPU's compiler can round differently.
+// points; the history planes are the buffers `previous*`. Nothing transcendental is evaluated after the
+// filter, so only contraction of a multiply-add by the GPU's compiler can round differently there.
 #version 460
 #extension GL_GOOGLE_include_directive : require
 
@@ -18,11 +24,14 @@
 
 layout(local_size_x = kTemporalWorkgroupX, local_size_y = kTemporalWorkgroupY, local_size_z = 1) in;
 
+layout(constant_id = kTemporalSpecGridStep) const int kGridStep = 1;
+layout(constant_id = kTemporalSpecDepthSigma) const float kDepthSigma = 0.05;
+
 layout(push_constant, std430) uniform Constants { GtaoTemporalConstants k; };
 layout(std430, binding = kTemporalBindingDepth) readonly buffer DepthPlane { float depthPlane[]; };
 layout(std430, binding = kTemporalBindingNormal) readonly buffer NormalPlane { float normalPlane[]; };
-layout(std430, binding = kTemporalBindingVisibility) readonly buffer Visibility { float visibilityPlane[]; };
-layout(std430, binding = kTemporalBindingBent) readonly buffer Bent { float bentPlane[]; };
+layout(std430, binding = kTemporalBindingGridVisibility) readonly buffer GridVisibility { float gridVisibility[]; };
+layout(std430, binding = kTemporalBindingGridBent) readonly buffer GridBent { float gridBent[]; };
 layout(std430, binding = kTemporalBindingPreviousDepth) readonly buffer PreviousDepth { float previousDepth[]; };
 layout(std430, binding = kTemporalBindingPreviousNormalWorld) readonly buffer PreviousNormalWorld {
     float previousNormalWorld[];
@@ -41,12 +50,25 @@ layout(std430, binding = kTemporalBindingBentWorldOut) writeonly buffer BentWorl
 layout(std430, binding = kTemporalBindingLengthOut) writeonly buffer LengthOut { float lengthOut[]; };
 layout(std430, binding = kTemporalBindingBentViewOut) writeonly buffer BentViewOut { float bentViewOut[]; };
 
-// ---- obscura/math.h ----
-float dot3(vec3 a, vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-vec3 normalize3(vec3 a) {
-    const float l = sqrt(dot3(a, a));
-    return l > 0.0 ? a / l : vec3(0.0);
+// ---- the grid the filter reads (temporal_filters.glsl): visibility, then the bent normal ----
+const int kGridChannels = 4;
+int gridWidth() { return (k.width + kGridStep - 1) / kGridStep; }
+int gridHeight() { return (k.height + kGridStep - 1) / kGridStep; }
+// The grid's depth and normals are the G-buffer's at every kGridStep-th pixel (temporal_layouts.h).
+uint guide(int x, int y) { return uint(y * kGridStep) * uint(k.width) + uint(x * kGridStep); }
+float gridDepth(int x, int y) { return depthPlane[guide(x, y)]; }
+vec3 gridNormal(int x, int y) {
+    const uint i = 3 * guide(x, y);
+    return vec3(normalPlane[i], normalPlane[i + 1], normalPlane[i + 2]);
 }
+float gridValue(int x, int y, int c) {
+    const uint i = uint(y) * uint(gridWidth()) + uint(x);
+    return c == 0 ? gridVisibility[i] : gridBent[3 * i + uint(c - 1)];
+}
+
+#include "temporal_filters.glsl"
+
+// ---- obscura/math.h ----
 // transformVector(m, v) for a matrix given as 3 rows of 4 floats.
 vec3 transformVector(float m[12], vec3 v) {
     return vec3(m[0] * v.x + m[1] * v.y + m[2] * v.z, m[4] * v.x + m[5] * v.y + m[6] * v.z,
@@ -83,9 +105,6 @@ vec2 previousPixelFromView(vec3 p, out float depth) {
 }
 
 // ---- src/ssao/gtao_temporal.cpp ----
-bool finiteDepth(float d) { return d < 1e30; }
-
-vec3 vec3At(uint i) { return vec3(bentPlane[3 * i], bentPlane[3 * i + 1], bentPlane[3 * i + 2]); }
 vec3 previousNormalWorldAt(uint i) {
     return vec3(previousNormalWorld[3 * i], previousNormalWorld[3 * i + 1], previousNormalWorld[3 * i + 2]);
 }
@@ -93,9 +112,9 @@ vec3 previousBentWorldAt(uint i) {
     return vec3(previousBentWorld[3 * i], previousBentWorld[3 * i + 1], previousBentWorld[3 * i + 2]);
 }
 
-// Pixel (x, y) of the loop: `visibility` comes in as the spatial result and leaves accumulated; the other
-// three come in as the CPU's initial values (0, 1, 0).
-void temporalPixel(int x, int y, inout float visibility, inout vec3 newBentWorld, inout float newLength,
+// Pixel (x, y) of the loop: `visibility` comes in as the spatial result and leaves accumulated, `bent` is
+// the spatial result's view bent normal; the other three come in as the CPU's initial values (0, 1, 0).
+void temporalPixel(int x, int y, vec3 bent, inout float visibility, inout vec3 newBentWorld, inout float newLength,
                    inout vec3 normalWorld) {
     const int w = k.width, h = k.height;
     const uint i = uint(y) * uint(w) + uint(x);
@@ -104,7 +123,7 @@ void temporalPixel(int x, int y, inout float visibility, inout vec3 newBentWorld
     const vec3 viewNormal = vec3(normalPlane[3 * i], normalPlane[3 * i + 1], normalPlane[3 * i + 2]);
     const vec3 nWorld = normalize3(transformVector(k.worldFromView, viewNormal));
     normalWorld = nWorld;
-    vec3 currentBent = normalize3(transformVector(k.worldFromView, vec3At(i)));
+    vec3 currentBent = normalize3(transformVector(k.worldFromView, bent));
     newBentWorld = currentBent;
     if (k.maxHistory == 0.0) return;  // !useHistory
     const vec3 world = transformPoint(k.worldFromView, viewPosition(x, y, depth));
@@ -146,11 +165,19 @@ void main() {
     const ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     if (p.x >= k.width || p.y >= k.height) return;
     const uint i = uint(p.y) * uint(k.width) + uint(p.x);
-    float visibility = visibilityPlane[i];
+    const float depth = depthPlane[i];
+    // Step 2 (full resolution) or 3 (half) of the CPU frame, for this pixel alone: its filtered visibility and
+    // view bent normal.
+    float spatial[4];
+    if (kGridStep == 1)
+        reconstructInterleaved(p.x, p.y, k.width, k.height, kDepthSigma, spatial);
+    else
+        upsampleDepthAware(p.x, p.y, depth, gridWidth(), gridHeight(), kDepthSigma, spatial);
+    float visibility = spatial[0];
     vec3 newBentWorld = vec3(0.0), normalWorld = vec3(0.0);
     float newLength = 1.0;
-    temporalPixel(p.x, p.y, visibility, newBentWorld, newLength, normalWorld);
-    const float depth = depthPlane[i];
+    temporalPixel(p.x, p.y, vec3(spatial[1], spatial[2], spatial[3]), visibility, newBentWorld, newLength,
+                  normalWorld);
     // result_.bentNormal: sky pixels 0, the others back in view space.
     const vec3 bentView = finiteDepth(depth) ? normalize3(viewFromWorldVector(newBentWorld)) : vec3(0.0);
     visibilityOut[i] = visibility;

@@ -70,9 +70,17 @@ OBSCURA_CONST int kUpsampleBindingOutput = 3;    // width * height * channels; s
 OBSCURA_CONST int kUpsampleBindingCount = 4;
 OBSCURA_CONST int kUpsamplePushConstantBytes = 32;
 
-// ---- gtao_temporal.comp: step 4 of ssao::GtaoTemporal::frame ----
-// Reprojection and exponential accumulation. Filled by gpu::gtaoTemporalConstants
-// (obscura/gpu_temporal.h); each field names the expression of src/ssao/gtao_temporal.cpp it stands for.
+// ---- gtao_temporal.comp: steps 2 or 3, and 4, of ssao::GtaoTemporal::frame ----
+// The spatial filter of each pixel, then reprojection and exponential accumulation. Filled by
+// gpu::gtaoTemporalConstants (obscura/gpu_temporal.h); each field names the expression of
+// src/ssao/gtao_temporal.cpp it stands for.
+// constant_id of the grid step, which picks the filter: 1, the grid is the full-resolution raw interleaved
+// GTAO output, reconstructed here (step 2); 2, it is the half-resolution grid reconstructed by
+// reconstruct_interleaved.comp, upsampled here (step 3). The grid's depth and normals are the G-buffer's
+// at every step-th pixel.
+OBSCURA_CONST int kTemporalSpecGridStep = 0;
+// constant_id of GtaoTemporalSettings::depthSigma, (0, 1], a float: the filters' depth tolerance.
+OBSCURA_CONST int kTemporalSpecDepthSigma = 1;
 // The previous camera's size, and so its aspect, are the current one's: the frame rejects a size change.
 // 128 bytes, Vulkan's guaranteed push-constant size (lavapipe's too).
 struct GtaoTemporalConstants {
@@ -95,8 +103,9 @@ struct GtaoTemporalConstants {
 // Storage buffers (float arrays, std430). Inputs of the current frame:
 OBSCURA_CONST int kTemporalBindingDepth = 0;       // width * height linear depths, +inf for sky
 OBSCURA_CONST int kTemporalBindingNormal = 1;      // width * height * 3 view normals
-OBSCURA_CONST int kTemporalBindingVisibility = 2;  // width * height visibility, reconstructed (and upsampled)
-OBSCURA_CONST int kTemporalBindingBent = 3;        // width * height * 3 view bent normals, likewise
+// The grid of ceil(width / step) x ceil(height / step) pixels the filter reads:
+OBSCURA_CONST int kTemporalBindingGridVisibility = 2;  // 1 float per grid pixel, visibility
+OBSCURA_CONST int kTemporalBindingGridBent = 3;        // 3 floats per grid pixel, view bent normals
 // The history the previous frame wrote (read only when maxHistory > 0; bound either way):
 OBSCURA_CONST int kTemporalBindingPreviousDepth = 4;        // width * height linear depths
 OBSCURA_CONST int kTemporalBindingPreviousNormalWorld = 5;  // width * height * 3 world normals, sky 0

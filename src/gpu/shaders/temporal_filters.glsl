@@ -1,0 +1,126 @@
+// The two spatial filters of spatio-temporal GTAO: Jimenez, Wu, Pesce and Jarabo 2016, "Practical Realtime
+// Strategies for Accurate Indirect Occlusion", §4.1 (the depth-aware gather over the 4x4 pattern, and
+// evaluation at half resolution). One source for reconstruct_interleaved.comp and upsample_depth_aware.comp,
+// which run a filter as a pass of its own, and gtao_temporal.comp, which runs it for its own pixel inside
+// the accumulation, so that the filtered planes never go through memory.
+//
+// reconstructInterleaved and upsampleDepthAware are the loop bodies of the functions of those names in
+// src/ssao/gtao_temporal.cpp line for line, and tapWeight is ssao::tapWeight (obscura/bilateral.h); read them
+// side by side. The differences are GLSL's: dot and normalize are written out as the C++ ones compute them,
+// std::fabs is abs, finiteDepth reads `< 1e30` as the CPU does, and one call filters several channels with
+// the same weights, where the CPU calls once per image (each channel's arithmetic is the same). What remains
+// is the GPU's exp.
+//
+// The including shader declares, before the #include, the grid the filters read:
+//   kGridChannels                  1 (visibility), 3 (a bent normal) or 4 (visibility, then the bent normal)
+//   float gridDepth(int x, int y)  linear depth of grid pixel (x, y), +inf for sky
+//   vec3 gridNormal(int x, int y)  its view normal (the reconstruction's guide; the upsampling reads none)
+//   float gridValue(int x, int y, int c)
+#ifndef OBSCURA_GPU_TEMPORAL_FILTERS_GLSL
+#define OBSCURA_GPU_TEMPORAL_FILTERS_GLSL
+
+// ---- obscura/math.h ----
+float dot3(vec3 a, vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+vec3 normalize3(vec3 a) {
+    const float l = sqrt(dot3(a, a));
+    return l > 0.0 ? a / l : vec3(0.0);
+}
+
+// ---- obscura/bilateral.h ----
+float tapWeight(float spatial, float d, vec3 n, float di, vec3 ni, float invTwoSigmaD2, bool useNormal) {
+    float dd = di - d;
+    float w = spatial * exp(-dd * dd * invTwoSigmaD2);
+    if (useNormal) w *= max(0.0, dot3(n, ni));
+    return w;
+}
+
+// ---- src/ssao/gtao_temporal.cpp ----
+bool finiteDepth(float d) { return d < 1e30; }
+
+// The channels are a scalar (visibility) unless kGridChannels is 3, and a unit vector from channel
+// kGridChannels - 3 on when kGridChannels is 3 or 4.
+const bool kGridScalar = kGridChannels != 3;
+const bool kGridVector = kGridChannels >= 3;
+const int kGridVectorFirst = kGridChannels - 3;
+
+// The reconstruction of grid pixel (x, y) of a w x h grid, channel by channel in result[0..kGridChannels).
+void reconstructInterleaved(int x, int y, int w, int h, float depthSigma, out float result[4]) {
+    for (int c = 0; c < 4; ++c) result[c] = c < kGridChannels ? gridValue(x, y, c) : 0.0;  // Image out = values
+    const float d = gridDepth(x, y);
+    if (!finiteDepth(d)) return;
+    const vec3 n = gridNormal(x, y);
+    const float sigma = depthSigma * d;
+    const float invTwoSigma2 = 1.0 / (2.0 * sigma * sigma);
+    float sum[4] = float[4](0.0, 0.0, 0.0, 0.0), weightSum = 0.0;
+    for (int dy = -2; dy <= 2; ++dy) {
+        const int yy = y + dy;
+        if (yy < 0 || yy >= h) continue;
+        for (int dx = -2; dx <= 2; ++dx) {
+            const int xx = x + dx;
+            if (xx < 0 || xx >= w) continue;
+            const float di = gridDepth(xx, yy);
+            if (!finiteDepth(di)) continue;
+            const float spatial = (dx == -2 || dx == 2 ? 0.5 : 1.0) * (dy == -2 || dy == 2 ? 0.5 : 1.0);
+            const float wt = tapWeight(spatial, d, n, di, gridNormal(xx, yy), invTwoSigma2, true);
+            for (int c = 0; c < kGridChannels; ++c) sum[c] += wt * gridValue(xx, yy, c);
+            weightSum += wt;
+        }
+    }
+    if (!(weightSum > 0.0)) return;
+    if (kGridScalar) result[0] = sum[0] / weightSum;
+    if (kGridVector) {
+        const int b = kGridVectorFirst;
+        const vec3 v = normalize3(vec3(sum[b], sum[b + 1], sum[b + 2]));
+        if (dot3(v, v) > 0.0) {
+            result[b] = v.x;
+            result[b + 1] = v.y;
+            result[b + 2] = v.z;
+        }
+    }
+}
+
+// The upsampling to full-resolution pixel (x, y) of depth d from the lowWidth x lowHeight grid, channel by
+// channel in result[0..kGridChannels).
+void upsampleDepthAware(int x, int y, float d, int lowWidth, int lowHeight, float depthSigma, out float result[4]) {
+    // Image out(w, h, channels, channels == 1 ? 1 : 0): an unoccluded sky, no bent normal.
+    for (int c = 0; c < 4; ++c) result[c] = kGridScalar && c == 0 ? 1.0 : 0.0;
+    if (!finiteDepth(d)) return;
+    const float gx = 0.5 * float(x), gy = 0.5 * float(y);
+    const int x0 = min(int(gx), lowWidth - 1), y0 = min(int(gy), lowHeight - 1);
+    const int x1 = min(x0 + 1, lowWidth - 1), y1 = min(y0 + 1, lowHeight - 1);
+    const float fx = gx - float(x0), fy = gy - float(y0);
+    const int tx[4] = int[4](x0, x1, x0, x1), ty[4] = int[4](y0, y0, y1, y1);
+    const float bilinear[4] = float[4]((1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy);
+    const float sigma = depthSigma * d;
+    const float invTwoSigma2 = 1.0 / (2.0 * sigma * sigma);
+    float sum[4] = float[4](0.0, 0.0, 0.0, 0.0), weightSum = 0.0, bestDiff = 1e30;
+    int best = -1;
+    for (int t = 0; t < 4; ++t) {
+        const float di = gridDepth(tx[t], ty[t]);
+        if (!finiteDepth(di)) continue;
+        if (abs(di - d) < bestDiff) {
+            bestDiff = abs(di - d);
+            best = t;
+        }
+        if (bilinear[t] <= 0.0) continue;
+        const float wt = tapWeight(bilinear[t], d, vec3(0.0), di, vec3(0.0), invTwoSigma2, false);
+        for (int c = 0; c < kGridChannels; ++c) sum[c] += wt * gridValue(tx[t], ty[t], c);
+        weightSum += wt;
+    }
+    if (best < 0) return;
+    // No tap on this surface (a thin feature between the samples): take the closest in depth.
+    if (!(weightSum > 1e-4)) {
+        for (int c = 0; c < kGridChannels; ++c) result[c] = gridValue(tx[best], ty[best], c);
+        return;
+    }
+    for (int c = 0; c < kGridChannels; ++c) result[c] = sum[c] / weightSum;
+    if (kGridVector) {
+        const int b = kGridVectorFirst;
+        const vec3 v = normalize3(vec3(result[b], result[b + 1], result[b + 2]));
+        result[b] = v.x;
+        result[b + 1] = v.y;
+        result[b + 2] = v.z;
+    }
+}
+
+#endif
