@@ -1,0 +1,25 @@
+#!/usr/bin/env bash
+# scripts/bundle on this build: the archive unpacks to a tool that runs and loads its libraries from the
+# bundle (LD_DEBUG names each library as it is initialised), and a bad build folder fails with one line
+# and no archive. Arguments: source dir, build dir, scratch dir.
+set -euo pipefail
+src=$1 build=$2 work=$3
+rm -rf "$work"
+mkdir -p "$work"
+fail() { echo "bundle_check: $*" >&2; exit 1; }
+
+"$src/scripts/bundle" "$build" "$work/bundle.tar.gz"
+tar -C "$work" -xzf "$work/bundle.tar.gz"
+tool=$work/obscura-bundle/obscura
+libs=$(LD_DEBUG=libs "$tool" render --size 32x18 --ao alchemy -q -o "$work/frame.png" 2>&1 >/dev/null)
+[ -s "$work/frame.png" ] || fail "the bundled tool wrote no frame"
+for lib in libembree3.so.3 libtbb.so.12 libOpenEXR-3_1.so.30; do
+  echo "$libs" | grep -q "calling init: $work/obscura-bundle/lib/$lib" || fail "$lib was not loaded from the bundle"
+done
+
+if "$src/scripts/bundle" "$work/no-such-build" "$work/none.tar.gz" 2>"$work/err"; then
+  fail "a missing build folder did not fail"
+fi
+[ "$(wc -l <"$work/err")" -eq 1 ] || fail "expected a one-line error, got: $(cat "$work/err")"
+[ ! -e "$work/none.tar.gz" ] || fail "a failed run left an archive"
+echo "bundle_check: ok ($(du -h "$work/bundle.tar.gz" | cut -f1))"
