@@ -33,6 +33,7 @@ struct GpuPassTime {
     std::string name;       // "alchemy", "blur", "gtao", "denoise", "temporal", "resolve" (the stages of
                             // gpu::GtaoTemporalPasses::record say which dispatches each one times)
     double medianMs = 0;    // median over the timed frames of this pass's GPU time
+    double minMs = 0;       // its fastest frame (the passes of one frame add up to at most its time)
 };
 
 struct GpuBenchCase {

@@ -210,7 +210,10 @@ GpuBenchCase benchGpuCase(Context& context, const std::string& name, const std::
             passMs[pass].push_back(ms);
         }
     }
-    for (const std::string& pass : order) result.passes.push_back({pass, median(passMs[pass])});
+    for (const std::string& pass : order) {
+        const std::vector<double>& ms = passMs[pass];
+        result.passes.push_back({pass, median(ms), *std::min_element(ms.begin(), ms.end())});
+    }
     result.medianMs = median(frameMs);
     result.minMs = *std::min_element(frameMs.begin(), frameMs.end());
     return result;

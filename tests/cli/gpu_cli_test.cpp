@@ -149,18 +149,21 @@ TEST_F(GpuCommands, BenchGpuReportsEveryCase) {
         const std::string name = c["case"];
         ASSERT_TRUE(passes.count(name)) << name;
         std::set<std::string> seen;
-        double sum = 0;
+        double sumOfMins = 0;
         for (const auto& p : c["passes"]) {
             seen.insert(p["name"].get<std::string>());
-            EXPECT_GE(p["median_ms"].get<double>(), 0.0);
-            sum += p["median_ms"].get<double>();
+            EXPECT_GE(p["min_ms"].get<double>(), 0.0);
+            EXPECT_LE(p["min_ms"].get<double>(), p["median_ms"].get<double>());
+            sumOfMins += p["min_ms"].get<double>();
         }
         EXPECT_EQ(seen, passes.at(name)) << name;
         const double ms = c["median_ms"].get<double>();
         EXPECT_GT(ms, 0.0) << name;
         EXPECT_LE(c["min_ms"].get<double>(), ms) << name;
-        // The frame spans its passes (medians of parts need not add up exactly, but cannot exceed it by much).
-        EXPECT_LE(sum, 1.5 * ms + 1e-3) << name;
+        // A frame's passes are consecutive spans of it, so they add up to at most its time, in the fastest
+        // frame too: the passes' minimums add up to at most the fastest frame's time, however noisy the
+        // device (the medians of parts, taken from different frames, have no such bound).
+        EXPECT_LE(sumOfMins, c["min_ms"].get<double>() * (1 + 1e-9)) << name;
         const double px = c["width"].get<double>() * c["height"].get<double>();
         EXPECT_NEAR(c["mpixels_per_s"].get<double>(), px / (ms * 1e3), 1e-6 * px / (ms * 1e3)) << name;
         // At least the depth and normals read and one float per pixel written.

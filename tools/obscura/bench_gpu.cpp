@@ -163,7 +163,7 @@ void runGpuBench(const GpuBenchOptions& o) {
             nlohmann::json passes = nlohmann::json::array();
             std::string passText;
             for (const gpu::GpuPassTime& p : r.passes) {
-                passes.push_back({{"name", p.name}, {"median_ms", p.medianMs}});
+                passes.push_back({{"name", p.name}, {"median_ms", p.medianMs}, {"min_ms", p.minMs}});
                 char b[64];
                 std::snprintf(b, sizeof b, "%s%s %.4f", passText.empty() ? "" : ", ", p.name.c_str(), p.medianMs);
                 passText += b;
