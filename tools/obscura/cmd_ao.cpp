@@ -137,7 +137,7 @@ void addAoCommand(CLI::App& app) {
     cmd->add_option("-o,--output", o->output, "Output AO EXR (1 channel Y, 1 = unoccluded)")->required();
     cmd->add_option("--method", o->method, "AO method: alchemy, alchemy-chapter, gtao or gtao-ultra (see `obscura compare --help`)")->capture_default_str();
     cmd->add_option("--threads", o->threads, "Worker threads (0 = all cores)")->capture_default_str();
-    o->gpu.add(*cmd, "the estimator and the blur");
+    o->gpu.add(*cmd, "the AO method and the blur");
     o->alchemy.add(*cmd, true);
     o->blur.add(*cmd);
     cmd->callback([o] { run(*o); });

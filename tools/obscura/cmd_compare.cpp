@@ -233,7 +233,7 @@ void addCompareCommand(CLI::App& app) {
     cmd->add_flag("--json", o->json, "Print JSON instead of a table");
     cmd->add_flag("-q,--quiet", o->quiet, "No progress bars");
     o->camera.add(*cmd);
-    o->gpu.add(*cmd, "the methods (estimators and blur; the reference stays ray traced on the CPU)");
+    o->gpu.add(*cmd, "the methods (estimators and blur)", "The reference stays ray traced on the CPU.");
     cmd->callback([o] { run(*o); });
 }
 

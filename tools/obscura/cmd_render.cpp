@@ -212,7 +212,7 @@ void addRenderCommand(CLI::App& app) {
     o->alchemy.add(*cmd, false);
     o->blur.add(*cmd);
     o->gtao.add(*cmd);
-    o->gpu.add(*cmd, "the screen-space AO (alchemy, gtao: every pass) and the composite; ray-traced AO stays on the CPU");
+    o->gpu.add(*cmd, "the screen-space AO (alchemy, gtao: every pass) and the composite", "Ray-traced AO stays on the CPU.");
     cmd->callback([o] { run(*o); });
 }
 

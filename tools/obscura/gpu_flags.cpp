@@ -9,10 +9,10 @@
 
 namespace obscura::cli {
 
-void GpuFlags::add(CLI::App& app, const std::string& what) {
+void GpuFlags::add(CLI::App& app, const std::string& what, const std::string& note) {
     app.add_flag("--gpu", gpu,
-                 "Run " + what + " as Vulkan compute passes (the first discrete GPU, else e.g. lavapipe); "
-                 "OBSCURA_VALIDATION=1 turns on the validation layers");
+                 "Run " + what + " as Vulkan compute passes (the first discrete GPU, else e.g. lavapipe). " +
+                     (note.empty() ? "" : note + " ") + "OBSCURA_VALIDATION=1 turns on the validation layers");
     app.add_option("--gpu-device", device,
                    "Vulkan device index with --gpu (-1: OBSCURA_GPU_DEVICE, else the first discrete GPU)")
         ->capture_default_str();

@@ -16,8 +16,8 @@ struct GpuFlags {
     bool gpu = false;
     int device = -1;
 
-    // `what` completes the --gpu help: "Run <what> as Vulkan compute passes".
-    void add(CLI::App& app, const std::string& what);
+    // `what` completes the --gpu help: "Run <what> as Vulkan compute passes ..."; `note`, if any, follows it.
+    void add(CLI::App& app, const std::string& what, const std::string& note = "");
     // Throws obscura::Error naming --gpu-device for a bad index (before any work).
     void validate() const;
     // The context, or null without --gpu. Errors (no loader, driver or device) name the device or the flag.
