@@ -14,6 +14,7 @@
 #include "obscura/gpu.h"
 #include "obscura/gtao.h"
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -64,7 +65,8 @@ std::vector<GpuBenchCaseInfo> gpuBenchCases();
 // are the frames' (the temporal cases reproject between them). Frame i uses inputs[i % inputs.size()].
 // Throws obscura::Error for an unknown case, no inputs, inputs of different sizes, bad settings, or a device
 // without timestamps.
+// progress, if set, is called after each frame with the fraction of the case's frames done.
 GpuBenchCase benchGpuCase(Context& context, const std::string& name, const std::vector<GBuffer>& inputs,
-                          const GpuBenchSettings& settings);
+                          const GpuBenchSettings& settings, const std::function<void(double)>& progress = {});
 
 } // namespace obscura::gpu

@@ -159,7 +159,7 @@ std::vector<GpuBenchCaseInfo> gpuBenchCases() {
 }
 
 GpuBenchCase benchGpuCase(Context& context, const std::string& name, const std::vector<GBuffer>& inputs,
-                          const GpuBenchSettings& settings) {
+                          const GpuBenchSettings& settings, const std::function<void(double)>& progress) {
     settings.validate();
     std::string known;
     bool found = false;
@@ -203,6 +203,7 @@ GpuBenchCase benchGpuCase(Context& context, const std::string& name, const std::
         const ResidentInput& in = resident[std::size_t(i) % resident.size()];
         c.submit([&](VkCommandBuffer cmd) { setup.record(cmd, in, i, [&](const char* pass) { c.mark(cmd, pass); }); },
                  true);
+        if (progress) progress(double(i + 1) / double(settings.warmup + settings.frames));
         if (i < settings.warmup) continue;
         frameMs.push_back(c.lastPassMs);
         for (const auto& [pass, ms] : c.lastMarks) {

@@ -157,8 +157,12 @@ void runGpuBench(const GpuBenchOptions& o) {
             camera.height = h;
             inputs.push_back(trace::renderGBuffer(tracer, camera));
         }
+        char size[24];
+        std::snprintf(size, sizeof size, "%dx%d", w, h);
         for (const std::string& name : cases) {
-            const gpu::GpuBenchCase r = gpu::benchGpuCase(context, name, inputs, settings);
+            Progress progress(name + " " + size, progressWanted(false));
+            const gpu::GpuBenchCase r =
+                gpu::benchGpuCase(context, name, inputs, settings, [&](double f) { progress(f); });
             const double fraction = r.gigabytesPerSecond() / o.peakGbps;
             nlohmann::json passes = nlohmann::json::array();
             std::string passText;
@@ -185,10 +189,9 @@ void runGpuBench(const GpuBenchOptions& o) {
                             "%peak", "passes (median ms)");
                 headerPrinted = true;
             }
-            char size[24];
-            std::snprintf(size, sizeof size, "%dx%d", w, h);
             std::printf("%-19s %-10s %9.4f %9.4f %10.0f %8.1f %5.1f%%  %s\n", r.name.c_str(), size, r.medianMs, r.minMs,
                         r.mpixelsPerSecond(), r.bytes * 1e-6, 100.0 * fraction, passText.c_str());
+            std::fflush(stdout);  // a row as soon as it is measured, also into a pipe or a file
         }
     }
     if (!o.json) {
