@@ -97,18 +97,20 @@ CaseSetup gtaoCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s, co
     const std::size_t px = std::size_t(w) * std::size_t(h);
     auto logSpatial = std::make_shared<Buffer>(upload(c, blur.logSpatial.data(), blur.logSpatial.size() * sizeof(float)));
     auto visibility = std::make_shared<Buffer>(c, px * sizeof(float), MemoryUse::Device);
-    auto bent = std::make_shared<Buffer>(c, 3 * px * sizeof(float), MemoryUse::Device);
+    // Visibility only: the pass leaves its bent-normal binding alone, so a 4-float buffer stands there.
+    auto bent = std::make_shared<Buffer>(c, (s.bentNormals ? 3 * px : 4) * sizeof(float), MemoryUse::Device);
     auto scratch = std::make_shared<Buffer>(c, px * sizeof(float), MemoryUse::Device);
     auto out = std::make_shared<Buffer>(c, px * sizeof(float), MemoryUse::Device);
     CaseSetup setup;
     setup.description = "GTAO " + std::string(ssao::qualityName(s.quality)) + " (" + slicesText(settings) +
-                        ", r 1 m), visibility + bent normal, + separable bilateral, 13 taps per axis";
-    // GTAO: depth + normal in, visibility + bent normal out; blur axes as in the alchemy case.
-    setup.bytes = double(px) * (4 + 12 + 4 + 12) + 2 * double(px) * (4 + 4 + 4);
+                        ", r 1 m), visibility" + (s.bentNormals ? " + bent normal" : " only") +
+                        ", + separable bilateral, 13 taps per axis";
+    // GTAO: depth + normal in, visibility (+ bent normal) out; blur axes as in the alchemy case.
+    setup.bytes = double(px) * (4 + 12 + 4 + (s.bentNormals ? 12 : 0)) + 2 * double(px) * (4 + 4 + 4);
     setup.keepAlive = {logSpatial, visibility, bent, scratch, out};
-    setup.record = [&c, k, blur, logSpatial, visibility, bent, scratch, out](
+    setup.record = [&c, k, blur, logSpatial, visibility, bent, scratch, out, bentNormals = s.bentNormals](
                        VkCommandBuffer cmd, const ResidentInput& in, int, const std::function<void(const char*)>& mark) {
-        recordGtao(c, cmd, {in.depth, in.normal, *visibility, *bent}, k);
+        recordGtao(c, cmd, {in.depth, in.normal, *visibility, *bent}, k, 1, bentNormals);
         mark("gtao");
         computeBarrier(cmd);  // the blur reads the visibility
         recordSeparableBilateral(c, cmd, {in.depth, in.normal, *logSpatial, *visibility, *scratch, *out}, blur);
@@ -123,12 +125,12 @@ CaseSetup temporalCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s
     ssao::GtaoTemporalSettings t;
     t.temporal = temporal;
     t.halfResolution = half;
-    auto passes = std::make_shared<GtaoTemporalPasses>(c, settings, t, w, h);
+    auto passes = std::make_shared<GtaoTemporalPasses>(c, settings, t, w, h, s.bentNormals);
     CaseSetup setup;
     setup.description = std::string(temporal ? "spatio-temporal" : "spatial") + " GTAO" +
                         (half ? " at half resolution" : "") + " (" + slicesText(settings) +
                         ", 4x4 interleave, r 1 m) + 5x5 reconstruction" + (half ? " + depth-aware upsample" : "") +
-                        (temporal ? " + reprojected history" : "");
+                        (temporal ? " + reprojected history" : "") + (s.bentNormals ? "" : ", visibility only");
     setup.bytes = double(passes->bytesPerFrame());
     setup.keepAlive = {passes};
     setup.record = [passes](VkCommandBuffer cmd, const ResidentInput& in, int index,

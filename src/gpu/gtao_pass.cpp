@@ -24,11 +24,12 @@ static_assert(sizeof(ssao::GtaoConstants) == kGtaoPushConstantBytes,
 static_assert(ssao::kGtaoRotations == kGtaoRotations, "gtao.comp rotates the interleave as the CPU kernel does");
 
 void recordGtao(Context::Impl& c, VkCommandBuffer cmd, const GtaoBuffers& b, const ssao::GtaoConstants& k,
-                int gridStep) {
+                int gridStep, bool bentNormal) {
     assert(gridStep == 1 || gridStep == 2);
     ComputePipeline& pipeline =
         c.pipeline("gtao", shaders::gtao, std::vector<BindingKind>(kGtaoBindingCount, BindingKind::StorageBuffer),
-                   kGtaoPushConstantBytes, kGtaoWorkgroupX, kGtaoWorkgroupY, {gridStep});  // kGtaoSpecGridStep
+                   kGtaoPushConstantBytes, kGtaoWorkgroupX, kGtaoWorkgroupY,
+                   {gridStep, bentNormal ? 1 : 0});  // kGtaoSpecGridStep, kGtaoSpecBentNormal
     // In binding order: kGtaoBindingDepth, Normal, Visibility, BentNormal.
     pipeline.dispatchGrid(cmd, {&b.depth, &b.normal, &b.visibility, &b.bentNormal}, &k, sizeof k,
                           (k.width + gridStep - 1) / gridStep, (k.height + gridStep - 1) / gridStep);

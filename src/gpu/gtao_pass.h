@@ -20,8 +20,9 @@ struct GtaoBuffers {
 // Records one dispatch over the grid of ceil(width / gridStep) x ceil(height / gridStep) pixels (gridStep 1:
 // the whole image; 2: the half-resolution grid of ssao::GtaoTemporal, see kGtaoSpecGridStep). The inputs
 // must be visible to compute shaders (the caller's barrier); the buffers were checked by
-// ssao::checkGtaoBuffers.
+// ssao::checkGtaoBuffers. Without bentNormal the pass writes visibility alone (kGtaoSpecBentNormal 0) and
+// does not touch buffers.bentNormal, which may be any buffer.
 void recordGtao(Context::Impl& context, VkCommandBuffer cmd, const GtaoBuffers& buffers, const ssao::GtaoConstants& k,
-                int gridStep = 1);
+                int gridStep = 1, bool bentNormal = true);
 
 } // namespace obscura::gpu

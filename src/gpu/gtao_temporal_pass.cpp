@@ -83,27 +83,28 @@ void recordUpsample(Context::Impl& c, VkCommandBuffer cmd, const UpsampleBuffers
 }
 
 GtaoTemporalPasses::GtaoTemporalPasses(Context::Impl& c, const ssao::GtaoSettings& settings,
-                                       const ssao::GtaoTemporalSettings& temporal, int width, int height)
+                                       const ssao::GtaoTemporalSettings& temporal, int width, int height,
+                                       bool bentNormals)
     : context_(c), settings_(settings), temporal_(temporal), width_(width), height_(height),
       step_(temporal.halfResolution ? 2 : 1), gridWidth_((width + step_ - 1) / step_),
-      gridHeight_((height + step_ - 1) / step_) {
+      gridHeight_((height + step_ - 1) / step_), bentNormals_(bentNormals), unused_(deviceFloats(c, 4)) {
     assert(width >= 1 && height >= 1);
     const std::size_t pixels = std::size_t(width) * std::size_t(height);
     const std::size_t grid = std::size_t(gridWidth_) * std::size_t(gridHeight_);
     for (int set = 0; set < 2; ++set) {
         rawVisibility_[set] = deviceFloats(c, grid);
-        rawBent_[set] = deviceFloats(c, 3 * grid);
+        if (bentNormals) rawBent_[set] = deviceFloats(c, 3 * grid);
     }
     if (step_ == 2) {
         visibility_ = deviceFloats(c, grid);
-        bent_ = deviceFloats(c, 3 * grid);
+        if (bentNormals) bent_ = deviceFloats(c, 3 * grid);
     }
-    bentView_ = deviceFloats(c, 3 * pixels);
+    if (bentNormals) bentView_ = deviceFloats(c, 3 * pixels);
     for (History& h : history_) {
         h.depth = deviceFloats(c, pixels);
         h.normalWorld = deviceFloats(c, 3 * pixels);
         h.visibility = deviceFloats(c, pixels);
-        h.bentWorld = deviceFloats(c, 3 * pixels);
+        if (bentNormals) h.bentWorld = deviceFloats(c, 3 * pixels);
         h.length = deviceFloats(c, pixels);
     }
 }
@@ -116,10 +117,12 @@ void GtaoTemporalPasses::record(VkCommandBuffer cmd, const GtaoTemporalFrameInpu
         if (mark) mark(name);
     };
     // 1. One interleaved evaluation per grid pixel, into the raw set the previous frame did not read.
+    // Without bent normals, unused_ stands for every bent-normal buffer (the shaders leave those bindings alone).
+    const auto bent = [&](const Buffer& b) -> const Buffer& { return bentNormals_ ? b : unused_; };
     const Buffer& rawVisibility = rawVisibility_[1 - current_];
-    const Buffer& rawBent = rawBent_[1 - current_];
+    const Buffer& rawBent = bent(rawBent_[1 - current_]);
     const ssao::GtaoConstants k = ssao::gtaoConstants(settings_, in.camera, in.frameIndex, true);
-    recordGtao(c, cmd, {in.depth, in.normal, rawVisibility, rawBent}, k, step_);
+    recordGtao(c, cmd, {in.depth, in.normal, rawVisibility, rawBent}, k, step_, bentNormals_);
     stage("gtao");
     computeBarrier(cmd);  // the next stage reads the raw values
 
@@ -131,11 +134,11 @@ void GtaoTemporalPasses::record(VkCommandBuffer cmd, const GtaoTemporalFrameInpu
         const ReconstructConstants rk =
             reconstructConstants(gridWidth_, gridHeight_, width_, step_, temporal_.depthSigma);
         recordReconstruct(c, cmd, {rawVisibility, in.depth, in.normal, visibility_}, rk, 1);
-        recordReconstruct(c, cmd, {rawBent, in.depth, in.normal, bent_}, rk, 3);
+        if (bentNormals_) recordReconstruct(c, cmd, {rawBent, in.depth, in.normal, bent_}, rk, 3);
         stage("denoise");
         computeBarrier(cmd);  // the accumulation reads the reconstructed values
         grid[0] = &visibility_;
-        grid[1] = &bent_;
+        grid[1] = &bent(bent_);
     }
 
     // 4. Reprojection and exponential accumulation into the other history set. Without temporal filtering the
@@ -147,12 +150,14 @@ void GtaoTemporalPasses::record(VkCommandBuffer cmd, const GtaoTemporalFrameInpu
     ComputePipeline& pipeline =
         c.pipeline("gtao_temporal", shaders::gtao_temporal, storageBuffers(kTemporalBindingCount),
                    kTemporalPushConstantBytes, kTemporalWorkgroupX, kTemporalWorkgroupY,
-                   {step_, std::bit_cast<std::int32_t>(temporal_.depthSigma)});  // kTemporalSpecGridStep, DepthSigma
+                   {step_, std::bit_cast<std::int32_t>(temporal_.depthSigma),
+                    bentNormals_ ? 1 : 0});  // kTemporalSpecGridStep, DepthSigma, BentNormal
     // In binding order: kTemporalBindingDepth ... kTemporalBindingBentViewOut.
     pipeline.dispatchGrid(cmd,
                           {&in.depth, &in.normal, grid[0], grid[1], &previous.depth, &previous.normalWorld,
-                           &previous.visibility, &previous.bentWorld, &previous.length, &next.depth,
-                           &next.normalWorld, &next.visibility, &next.bentWorld, &next.length, &bentView_},
+                           &previous.visibility, &bent(previous.bentWorld), &previous.length, &next.depth,
+                           &next.normalWorld, &next.visibility, &bent(next.bentWorld), &next.length,
+                           &bent(bentView_)},
                           &tk, sizeof tk, width_, height_);
     stage(temporal_.temporal ? "temporal" : "resolve");
 
@@ -165,15 +170,16 @@ std::size_t GtaoTemporalPasses::bytesPerFrame() const {
     const std::size_t f = sizeof(float);
     const std::size_t pixels = std::size_t(width_) * std::size_t(height_);
     const std::size_t grid = std::size_t(gridWidth_) * std::size_t(gridHeight_);
-    // GTAO: the search reads the whole depth plane, the normals of the grid pixels; writes 1 + 3 per grid pixel.
-    std::size_t bytes = f * (pixels + 3 * grid + 4 * grid);
-    // Half resolution: the reconstruction, 1 and 3 channels: values, guide depth and normals in, values out.
-    if (step_ == 2) bytes += f * grid * ((1 + 1 + 3 + 1) + (3 + 1 + 3 + 3));
-    // Accumulation: the grid's 1 + 3 values (its depth and normals are those of the full planes at full
+    const std::size_t b = bentNormals_ ? 3 : 0;  // floats of a bent normal
+    // GTAO: the search reads the whole depth plane, the normals of the grid pixels; writes 1 + b per grid pixel.
+    std::size_t bytes = f * (pixels + 3 * grid + (1 + b) * grid);
+    // Half resolution: the reconstruction, 1 and b channels: values, guide depth and normals in, values out.
+    if (step_ == 2) bytes += f * grid * ((1 + 1 + 3 + 1) + (b > 0 ? b + 1 + 3 + b : 0));
+    // Accumulation: the grid's 1 + b values (its depth and normals are those of the full planes at full
     // resolution, and at half resolution the upsampling reads only the depth: 1 more per grid pixel), depth,
-    // normals and the five history planes in; the five next history planes and the view bent normals out.
-    bytes += f * (grid * (4 + (step_ == 2 ? 1 : 0)) +
-                  pixels * ((1 + 3) + (1 + 3 + 1 + 3 + 1) + (1 + 3 + 1 + 3 + 1 + 3)));
+    // normals and the history planes in; the next history planes and the view bent normals out.
+    bytes += f * (grid * (1 + b + (step_ == 2 ? 1 : 0)) +
+                  pixels * ((1 + 3) + (1 + 3 + 1 + b + 1) + (1 + 3 + 1 + b + 1 + b)));
     return bytes;
 }
 

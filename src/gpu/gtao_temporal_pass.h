@@ -10,6 +10,7 @@
 #include "obscura/gtao.h"
 #include "obscura/gtao_temporal.h"
 
+#include <cassert>
 #include <cstddef>
 #include <functional>
 
@@ -55,9 +56,11 @@ struct GtaoTemporalFrameInputs {
 // set the previous one wrote and writes the other. Made once; no allocation per frame.
 class GtaoTemporalPasses {
 public:
-    // Assumes validated settings and width, height >= 1.
+    // Assumes validated settings and width, height >= 1. Without bentNormals the frame computes, filters and
+    // accumulates visibility alone (kGtaoSpecBentNormal and kTemporalSpecBentNormal 0), with the same
+    // visibility and history length, and holds no bent-normal buffer.
     GtaoTemporalPasses(Context::Impl& context, const ssao::GtaoSettings& settings,
-                       const ssao::GtaoTemporalSettings& temporal, int width, int height);
+                       const ssao::GtaoTemporalSettings& temporal, int width, int height, bool bentNormals = true);
 
     // Records the whole frame into cmd, with a barrier between dependent dispatches. Frames recorded back to
     // back in one command buffer need none between them: a frame's first stage touches nothing its
@@ -75,7 +78,10 @@ public:
     // The last recorded frame's result, valid once its submission completes: width * height visibility and
     // width * height * 3 view-space bent normals; and its history length (width * height frames).
     const Buffer& visibility() const { return history_[current_].visibility; }
-    const Buffer& bentNormal() const { return bentView_; }
+    const Buffer& bentNormal() const {
+        assert(bentNormals_);
+        return bentView_;
+    }
     const Buffer& historyLength() const { return history_[current_].length; }
     int framesRecorded() const { return recorded_; }
     int width() const { return width_; }
@@ -102,6 +108,8 @@ private:
     Buffer visibility_, bent_;        // grid: reconstructed (half resolution only)
     Buffer bentView_;
     History history_[2];
+    bool bentNormals_;
+    Buffer unused_;  // bound where a bent-normal buffer would be, without bentNormals; never accessed
     int current_ = 0;  // the set the last recorded frame wrote
     int recorded_ = 0;
     Camera previousCamera_;

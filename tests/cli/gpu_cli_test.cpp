@@ -174,6 +174,22 @@ TEST_F(GpuCommands, BenchGpuReportsEveryCase) {
     ASSERT_EQ(table.code, 0) << table.out;
     for (const char* needle : {"Mpixel/s", "%peak", "gtao", "32x20", "median of 2 frames"})
         EXPECT_NE(table.out.find(needle), std::string::npos) << needle << " in " << table.out;
+
+    // --visibility-only: the same passes without the bent normal's planes. Per pixel, the GTAO case writes 3
+    // floats less; the full-resolution temporal case 15 less (3 raw written and read, 3 history read and
+    // written, 3 view out).
+    const std::string small = "bench --gpu --sizes 40x24 --frames 2 --warmup 0 --inputs 1 --cases gtao,gtao-temporal --json";
+    const CliResult withBent = runCli(small), aoOnly = runCli(small + " --visibility-only");
+    ASSERT_EQ(withBent.code, 0) << withBent.out;
+    ASSERT_EQ(aoOnly.code, 0) << aoOnly.out;
+    const nlohmann::json b = nlohmann::json::parse(withBent.out), a = nlohmann::json::parse(aoOnly.out);
+    EXPECT_EQ(b["bent_normals"], true);
+    EXPECT_EQ(a["bent_normals"], false);
+    ASSERT_EQ(a["cases"].size(), 2u);
+    const double px = 40 * 24;
+    EXPECT_EQ(b["cases"][0]["bytes_per_frame"].get<double>() - a["cases"][0]["bytes_per_frame"].get<double>(), px * 12);
+    EXPECT_EQ(b["cases"][1]["bytes_per_frame"].get<double>() - a["cases"][1]["bytes_per_frame"].get<double>(), px * 60);
+    EXPECT_NE(a["cases"][1]["description"].get<std::string>().find("visibility only"), std::string::npos);
 }
 
 TEST_F(GpuCommands, BenchGpuRejectsBadArguments) {

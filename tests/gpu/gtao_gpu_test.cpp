@@ -3,6 +3,10 @@
 #include "gpu_test_util.h"
 #include "gtao_difference.h"
 
+#include "gpu/buffer.h"
+#include "gpu/context.h"
+#include "gpu/gtao_pass.h"
+
 #include "obscura/error.h"
 #include "obscura/gpu.h"
 #include "obscura/gtao.h"
@@ -13,6 +17,8 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <tuple>
+#include <vector>
 
 namespace obscura::gpu {
 namespace {
@@ -121,6 +127,40 @@ TEST(GpuGtao, MatchesTheCpuReferenceWithEveryOption) {
         const std::string name = "interleaved frame " + std::to_string(frame);
         expectMatch(context, g, ssao::gtaoConstants(preset(ssao::GtaoQuality::Low), g.camera, frame, true),
                     "stairs " + name);
+    }
+    EXPECT_EQ(testing::validationReport(context), "");
+}
+
+// Visibility alone (kGtaoSpecBentNormal 0, the AO-only variant an engine without bent-normal lighting
+// binds) gives the full pass's visibility bit for bit and leaves the bent-normal buffer as it was.
+TEST(GpuGtao, VisibilityOnlyGivesTheSameVisibility) {
+    OBSCURA_GPU_CONTEXT(context);
+    Context::Impl& c = context.impl();
+    ssao::GtaoSettings bitmask = preset(ssao::GtaoQuality::High);
+    bitmask.thickness = ssao::GtaoThickness::Bitmask;
+    for (const auto& [scene, w, h, settings] :
+         {std::tuple{"demo", 333, 197, preset(ssao::GtaoQuality::High)}, std::tuple{"stairs", 160, 96, bitmask}}) {
+        const GBuffer g = testing::render(scene, w, h);
+        const ssao::GtaoConstants k = ssao::gtaoConstants(settings, g.camera);
+        const std::size_t pixels = std::size_t(w) * std::size_t(h);
+        const std::vector<float> sentinel(3 * pixels, 42.0f);
+        const Buffer depth = upload(c, g.depth.pixels.data(), pixels * sizeof(float));
+        const Buffer normal = upload(c, g.normal.pixels.data(), 3 * pixels * sizeof(float));
+        const Buffer visibility(c, pixels * sizeof(float), MemoryUse::Device);
+        const Buffer visibilityOnly(c, pixels * sizeof(float), MemoryUse::Device);
+        const Buffer bent(c, 3 * pixels * sizeof(float), MemoryUse::Device);
+        const Buffer untouched = upload(c, sentinel.data(), sentinel.size() * sizeof(float));
+        c.submit([&](VkCommandBuffer cmd) {
+            recordGtao(c, cmd, {depth, normal, visibility, bent}, k);
+            recordGtao(c, cmd, {depth, normal, visibilityOnly, untouched}, k, 1, false);
+        });
+        std::vector<float> a(pixels), b(pixels), left(3 * pixels);
+        download(c, visibility, a.data(), pixels * sizeof(float));
+        download(c, visibilityOnly, b.data(), pixels * sizeof(float));
+        download(c, untouched, left.data(), left.size() * sizeof(float));
+        EXPECT_EQ(a, b) << scene;
+        EXPECT_EQ(left, sentinel) << scene;
+        EXPECT_GT(std::count_if(a.begin(), a.end(), [](float v) { return v < 0.99f; }), std::ptrdiff_t(pixels / 50));
     }
     EXPECT_EQ(testing::validationReport(context), "");
 }

@@ -47,6 +47,7 @@ struct GpuBenchOptions {
     std::string scene = "demo";
     std::string quality = "high";
     int temporalSlices = 1;
+    bool visibilityOnly = false;
     double peakGbps = 3000.0;
     int device = -1;
     bool json = false;
@@ -74,6 +75,9 @@ void GpuBenchOptions::add(CLI::App& bench) {
         ->capture_default_str();
     bench.add_option("--temporal-slices", temporalSlices, "--gpu: slices per pixel of the temporal cases, [1, 64]")
         ->capture_default_str();
+    bench.add_flag("--visibility-only", visibilityOnly,
+                   "--gpu: the GTAO cases compute and accumulate visibility alone, no bent normal (the AO-only variant "
+                   "an engine without bent-normal lighting runs, and what XeGTAO computes by default)");
     bench.add_option("--peak-gbps", peakGbps,
                      "--gpu: bandwidth ceiling the traffic is compared with, GB/s (default: a compute-shader copy on "
                      "an H100, 3.0 TB/s)")
@@ -89,6 +93,7 @@ void runGpuBench(const GpuBenchOptions& o) {
     settings.warmup = o.warmup;
     settings.quality = ssao::parseQuality(o.quality);
     settings.temporalSlices = o.temporalSlices;
+    settings.bentNormals = !o.visibilityOnly;
     try {
         settings.validate();
     } catch (const Error& e) {
@@ -138,14 +143,16 @@ void runGpuBench(const GpuBenchOptions& o) {
     report["warmup"] = o.warmup;
     report["inputs"] = o.inputs;
     report["peak_gbps"] = o.peakGbps;
+    report["bent_normals"] = settings.bentNormals;
     report["validation"] = context.validation();
     if (!o.json) {
         std::printf("obscura bench --gpu: %s (%s, Vulkan %s), %s\n", info.name.c_str(), info.driver.c_str(),
                     apiText(info.apiVersion).c_str(), date);
-        std::printf("scene %s; GPU ms from timestamps, median of %d frames after %d warm-up, rotating %d inputs;\n"
+        std::printf("scene %s%s; GPU ms from timestamps, median of %d frames after %d warm-up, rotating %d inputs;\n"
                     "MB = compulsory traffic per frame (each buffer a dispatch reads or writes, once); %% = its rate "
                     "over %.0f GB/s%s\n",
-                    loaded.name.c_str(), o.frames, o.warmup, o.inputs, o.peakGbps,
+                    loaded.name.c_str(), o.visibilityOnly ? ", GTAO visibility only" : "", o.frames, o.warmup,
+                    o.inputs, o.peakGbps,
                     context.validation() ? "; VALIDATION ON (timings are not representative)" : "");
     }
     bool headerPrinted = false;

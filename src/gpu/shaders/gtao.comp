@@ -14,6 +14,7 @@
 // What remains is the GPU's sin, cos, acos, atan and pow, which round differently from libm: tests/gpu
 // measure the difference.
 //
+// With the specialization constant kGtaoSpecBentNormal 0 (layouts.h) the pass writes visibility alone.
 // The grid step (a specialization constant, temporal_layouts.h) is the loop of step 1 of
 // ssao::GtaoTemporal::frame (src/ssao/gtao_temporal.cpp): with step 2 each invocation evaluates every other
 // pixel in x and y, with the interleave index of its place in the half-resolution grid.
@@ -27,6 +28,7 @@
 layout(local_size_x = kGtaoWorkgroupX, local_size_y = kGtaoWorkgroupY, local_size_z = 1) in;
 
 layout(constant_id = kGtaoSpecGridStep) const int kGridStep = 1;
+layout(constant_id = kGtaoSpecBentNormal) const int kBentNormal = 1;
 
 layout(push_constant, std430) uniform Constants { GtaoConstants k; };
 layout(std430, binding = kGtaoBindingDepth) readonly buffer DepthPlane { float depthPlane[]; };
@@ -279,6 +281,7 @@ void main() {
     const GtaoPixel px = gtaoPixel(p.x * kGridStep, p.y * kGridStep, interleaveIndex(p.x, p.y));
     const uint i = uint(p.y) * uint(gridWidth) + uint(p.x);
     visibilityOut[i] = px.visibility;
+    if (kBentNormal == 0) return;  // AO only: the compiler drops the bent normal's arithmetic with its output
     bentNormalOut[3 * i] = px.bentNormal.x;
     bentNormalOut[3 * i + 1] = px.bentNormal.y;
     bentNormalOut[3 * i + 2] = px.bentNormal.z;

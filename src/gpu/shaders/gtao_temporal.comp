@@ -26,6 +26,7 @@ layout(local_size_x = kTemporalWorkgroupX, local_size_y = kTemporalWorkgroupY, l
 
 layout(constant_id = kTemporalSpecGridStep) const int kGridStep = 1;
 layout(constant_id = kTemporalSpecDepthSigma) const float kDepthSigma = 0.05;
+layout(constant_id = kTemporalSpecBentNormal) const int kBentNormal = 1;
 
 layout(push_constant, std430) uniform Constants { GtaoTemporalConstants k; };
 layout(std430, binding = kTemporalBindingDepth) readonly buffer DepthPlane { float depthPlane[]; };
@@ -50,8 +51,8 @@ layout(std430, binding = kTemporalBindingBentWorldOut) writeonly buffer BentWorl
 layout(std430, binding = kTemporalBindingLengthOut) writeonly buffer LengthOut { float lengthOut[]; };
 layout(std430, binding = kTemporalBindingBentViewOut) writeonly buffer BentViewOut { float bentViewOut[]; };
 
-// ---- the grid the filter reads (temporal_filters.glsl): visibility, then the bent normal ----
-const int kGridChannels = 4;
+// ---- the grid the filter reads (temporal_filters.glsl): visibility, then the bent normal if any ----
+const int kGridChannels = kBentNormal != 0 ? 4 : 1;
 int gridWidth() { return (k.width + kGridStep - 1) / kGridStep; }
 int gridHeight() { return (k.height + kGridStep - 1) / kGridStep; }
 // The grid's depth and normals are the G-buffer's at every kGridStep-th pixel (temporal_layouts.h).
@@ -114,6 +115,7 @@ vec3 previousBentWorldAt(uint i) {
 
 // Pixel (x, y) of the loop: `visibility` comes in as the spatial result and leaves accumulated, `bent` is
 // the spatial result's view bent normal; the other three come in as the CPU's initial values (0, 1, 0).
+// Without bent normals (kBentNormal 0) their lines are skipped; nothing else reads them.
 void temporalPixel(int x, int y, vec3 bent, inout float visibility, inout vec3 newBentWorld, inout float newLength,
                    inout vec3 normalWorld) {
     const int w = k.width, h = k.height;
@@ -146,7 +148,7 @@ void temporalPixel(int x, int y, vec3 bent, inout float visibility, inout vec3 n
         if (dot3(previousNormalWorldAt(ti), nWorld) < k.rejectNormalCos) continue;
         weightSum += bw;
         historyVisibility += bw * previousVisibility[ti];
-        historyBent += previousBentWorldAt(ti) * bw;
+        if (kBentNormal != 0) historyBent += previousBentWorldAt(ti) * bw;
         historyLength += bw * previousLength[ti];
     }
     // Less than a quarter of the footprint confirmed: too little to trust.
@@ -156,8 +158,10 @@ void temporalPixel(int x, int y, vec3 bent, inout float visibility, inout vec3 n
     historyBent = historyBent / weightSum;
     const float alpha = 1.0 / min(historyLength + 1.0, k.maxHistory);
     visibility = historyVisibility + (visibility - historyVisibility) * alpha;
-    vec3 blended = normalize3(historyBent + (currentBent - historyBent) * alpha);
-    if (dot3(blended, blended) > 0.0) newBentWorld = blended;
+    if (kBentNormal != 0) {
+        vec3 blended = normalize3(historyBent + (currentBent - historyBent) * alpha);
+        if (dot3(blended, blended) > 0.0) newBentWorld = blended;
+    }
     newLength = min(historyLength + 1.0, k.maxHistory);
 }
 
@@ -183,8 +187,9 @@ void main() {
     visibilityOut[i] = visibility;
     lengthOut[i] = newLength;
     depthOut[i] = depth;  // previousDepth_ = g.depth
+    for (uint c = 0; c < 3; ++c) normalWorldOut[3 * i + c] = normalWorld[c];
+    if (kBentNormal == 0) return;
     for (uint c = 0; c < 3; ++c) {
-        normalWorldOut[3 * i + c] = normalWorld[c];
         bentWorldOut[3 * i + c] = newBentWorld[c];
         bentViewOut[3 * i + c] = bentView[c];
     }

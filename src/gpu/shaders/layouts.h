@@ -57,6 +57,10 @@ OBSCURA_CONST int kGtaoBindingNormal = 1;      // width * height * 3 view normal
 OBSCURA_CONST int kGtaoBindingVisibility = 2;  // width * height visibility, the pass's output
 OBSCURA_CONST int kGtaoBindingBentNormal = 3;  // width * height * 3 bent normals, the pass's output
 OBSCURA_CONST int kGtaoBindingCount = 4;
+// constant_id of the bent-normal output (the grid step's is kGtaoSpecGridStep, temporal_layouts.h): 1 (the
+// default) writes the bent normals; 0 computes visibility alone, for callers that want AO only (as XeGTAO
+// does by default), and leaves kGtaoBindingBentNormal untouched: bind any storage buffer there.
+OBSCURA_CONST int kGtaoSpecBentNormal = 1;
 // The push constants are one GtaoConstants (obscura/gtao_constants.h).
 OBSCURA_CONST int kGtaoPushConstantBytes = 96;
 OBSCURA_CONST int kGtaoWorkgroupX = 8;

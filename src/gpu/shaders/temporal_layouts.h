@@ -81,6 +81,11 @@ OBSCURA_CONST int kUpsamplePushConstantBytes = 32;
 OBSCURA_CONST int kTemporalSpecGridStep = 0;
 // constant_id of GtaoTemporalSettings::depthSigma, (0, 1], a float: the filters' depth tolerance.
 OBSCURA_CONST int kTemporalSpecDepthSigma = 1;
+// constant_id of the bent normals: 1 (the default) filters and accumulates them; 0 visibility alone (with
+// gtao.comp's kGtaoSpecBentNormal 0): kTemporalBindingGridBent, PreviousBentWorld, BentWorldOut and
+// BentViewOut are left untouched, so any storage buffer may stand there. Visibility and history length come
+// out the same either way.
+OBSCURA_CONST int kTemporalSpecBentNormal = 2;
 // The previous camera's size, and so its aspect, are the current one's: the frame rejects a size change.
 // 128 bytes, Vulkan's guaranteed push-constant size (lavapipe's too).
 struct GtaoTemporalConstants {
