@@ -58,6 +58,8 @@ public:
     int framesRendered() const;
 
 private:
+    Image historyPlane(bool length) const;  // the last frame's visibility or history length, decoded if packed
+
     Context* context_;
     ssao::GtaoSettings settings_;
     ssao::GtaoTemporalSettings temporal_;

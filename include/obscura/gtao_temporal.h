@@ -26,6 +26,10 @@ struct GtaoTemporalSettings {
     float rejectNormalCos = 0.9f; // ... or where the normals' cosine is below this, [-1, 1]
     int maxHistory = 24;          // blend weight of the new frame is 1 / min(frames + 1, maxHistory),
                                   // [1, 1024]: 24 = 4 cycles of the 6 rotations
+    bool packedHistory = false;   // keep the history as the GPU's packed words (obscura/history_packing.h):
+                                  // visibility to 1/65535 and length to 1/32 frame in one word, world
+                                  // normal and bent normal octahedral in one word each (3 planes, not 9);
+                                  // the returned visibility is the stored one
 
     void validate() const;        // throws obscura::Error("gtao-<field>: ...")
 };

@@ -125,12 +125,14 @@ CaseSetup temporalCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s
     ssao::GtaoTemporalSettings t;
     t.temporal = temporal;
     t.halfResolution = half;
+    t.packedHistory = s.packedHistory;
     auto passes = std::make_shared<GtaoTemporalPasses>(c, settings, t, w, h, s.bentNormals);
     CaseSetup setup;
     setup.description = std::string(temporal ? "spatio-temporal" : "spatial") + " GTAO" +
                         (half ? " at half resolution" : "") + " (" + slicesText(settings) +
                         ", 4x4 interleave, r 1 m) + 5x5 reconstruction" + (half ? " + depth-aware upsample" : "") +
-                        (temporal ? " + reprojected history" : "") + (s.bentNormals ? "" : ", visibility only");
+                        (temporal ? (s.packedHistory ? " + reprojected packed history" : " + reprojected history") : "") +
+                        (s.bentNormals ? "" : ", visibility only");
     setup.bytes = double(passes->bytesPerFrame());
     setup.keepAlive = {passes};
     setup.record = [passes](VkCommandBuffer cmd, const ResidentInput& in, int index,

@@ -10,6 +10,7 @@
 
 #include "obscura/error.h"
 #include "obscura/gpu_temporal.h"
+#include "obscura/history_packing.h"
 
 #include <bit>
 #include <cassert>
@@ -100,12 +101,14 @@ GtaoTemporalPasses::GtaoTemporalPasses(Context::Impl& c, const ssao::GtaoSetting
         if (bentNormals) bent_ = deviceFloats(c, 3 * grid);
     }
     if (bentNormals) bentView_ = deviceFloats(c, 3 * pixels);
+    // Packed: one word per normal, and the length in the visibility's word (obscura/history_packing.h).
+    const std::size_t vector = temporal.packedHistory ? 1 : 3;
     for (History& h : history_) {
         h.depth = deviceFloats(c, pixels);
-        h.normalWorld = deviceFloats(c, 3 * pixels);
+        h.normalWorld = deviceFloats(c, vector * pixels);
         h.visibility = deviceFloats(c, pixels);
-        if (bentNormals) h.bentWorld = deviceFloats(c, 3 * pixels);
-        h.length = deviceFloats(c, pixels);
+        if (bentNormals) h.bentWorld = deviceFloats(c, vector * pixels);
+        if (!temporal.packedHistory) h.length = deviceFloats(c, pixels);
     }
 }
 
@@ -150,13 +153,15 @@ void GtaoTemporalPasses::record(VkCommandBuffer cmd, const GtaoTemporalFrameInpu
     ComputePipeline& pipeline =
         c.pipeline("gtao_temporal", shaders::gtao_temporal, storageBuffers(kTemporalBindingCount),
                    kTemporalPushConstantBytes, kTemporalWorkgroupX, kTemporalWorkgroupY,
-                   {step_, std::bit_cast<std::int32_t>(temporal_.depthSigma),
-                    bentNormals_ ? 1 : 0});  // kTemporalSpecGridStep, DepthSigma, BentNormal
+                   {step_, std::bit_cast<std::int32_t>(temporal_.depthSigma), bentNormals_ ? 1 : 0,
+                    temporal_.packedHistory ? 1 : 0});  // kTemporalSpecGridStep, DepthSigma, BentNormal, PackedHistory
+    // Packed, the length travels in the visibility's word: unused_ stands for the length planes.
+    const auto length = [&](const Buffer& b) -> const Buffer& { return temporal_.packedHistory ? unused_ : b; };
     // In binding order: kTemporalBindingDepth ... kTemporalBindingBentViewOut.
     pipeline.dispatchGrid(cmd,
                           {&in.depth, &in.normal, grid[0], grid[1], &previous.depth, &previous.normalWorld,
-                           &previous.visibility, &bent(previous.bentWorld), &previous.length, &next.depth,
-                           &next.normalWorld, &next.visibility, &bent(next.bentWorld), &next.length,
+                           &previous.visibility, &bent(previous.bentWorld), &length(previous.length), &next.depth,
+                           &next.normalWorld, &next.visibility, &bent(next.bentWorld), &length(next.length),
                            &bent(bentView_)},
                           &tk, sizeof tk, width_, height_);
     stage(temporal_.temporal ? "temporal" : "resolve");
@@ -177,9 +182,11 @@ std::size_t GtaoTemporalPasses::bytesPerFrame() const {
     if (step_ == 2) bytes += f * grid * ((1 + 1 + 3 + 1) + (b > 0 ? b + 1 + 3 + b : 0));
     // Accumulation: the grid's 1 + b values (its depth and normals are those of the full planes at full
     // resolution, and at half resolution the upsampling reads only the depth: 1 more per grid pixel), depth,
-    // normals and the history planes in; the next history planes and the view bent normals out.
-    bytes += f * (grid * (1 + b + (step_ == 2 ? 1 : 0)) +
-                  pixels * ((1 + 3) + (1 + 3 + 1 + b + 1) + (1 + 3 + 1 + b + 1 + b)));
+    // normals and the history planes in; the next history planes and the view bent normals out. The
+    // history: depth, world normal, visibility, world bent normal and length; packed, one word for the
+    // normal, one for the bent normal if any, and the length inside the visibility's word.
+    const std::size_t history = temporal_.packedHistory ? 1 + 1 + 1 + (b > 0 ? 1 : 0) : 1 + 3 + 1 + b + 1;
+    bytes += f * (grid * (1 + b + (step_ == 2 ? 1 : 0)) + pixels * ((1 + 3) + history + history + b));
     return bytes;
 }
 
@@ -257,9 +264,8 @@ const ssao::GtaoResult& GtaoTemporal::frame(const GBuffer& g) {
     const Buffer depth = uploadChannels(c, g.depth, 1);
     const Buffer normal = uploadChannels(c, g.normal, 3);
     c.submit([&](VkCommandBuffer cmd) { passes_->record(cmd, {depth, normal, g.camera, frame_}); }, true);
-    result_.visibility = Image(w, h, 1);
+    result_.visibility = historyPlane(false);
     result_.bentNormal = Image(w, h, 3);
-    download(c, passes_->visibility(), result_.visibility.pixels.data(), pixels * sizeof(float));
     download(c, passes_->bentNormal(), result_.bentNormal.pixels.data(), 3 * pixels * sizeof(float));
     ++frame_;
     return result_;
@@ -267,9 +273,22 @@ const ssao::GtaoResult& GtaoTemporal::frame(const GBuffer& g) {
 
 Image GtaoTemporal::historyLength() const {
     if (!passes_) return Image();
-    Image length(passes_->width(), passes_->height(), 1);
-    download(context_->impl(), passes_->historyLength(), length.pixels.data(), length.pixels.size() * sizeof(float));
-    return length;
+    return historyPlane(true);
+}
+
+Image GtaoTemporal::historyPlane(bool length) const {
+    Context::Impl& c = context_->impl();
+    Image image(passes_->width(), passes_->height(), 1);
+    if (!passes_->packedHistory()) {
+        download(c, length ? passes_->historyLength() : passes_->visibility(), image.pixels.data(),
+                 image.pixels.size() * sizeof(float));
+        return image;
+    }
+    std::vector<std::uint32_t> words(image.pixels.size());
+    download(c, passes_->visibility(), words.data(), words.size() * sizeof(std::uint32_t));
+    for (std::size_t i = 0; i < words.size(); ++i)
+        image.pixels[i] = length ? ssao::unpackLength(words[i]) : ssao::unpackVisibility(words[i]);
+    return image;
 }
 
 int GtaoTemporal::framesRendered() const { return frame_; }

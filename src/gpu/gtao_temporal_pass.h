@@ -76,13 +76,19 @@ public:
                 const std::function<void(const char*)>& mark = {});
 
     // The last recorded frame's result, valid once its submission completes: width * height visibility and
-    // width * height * 3 view-space bent normals; and its history length (width * height frames).
+    // width * height * 3 view-space bent normals; and its history length (width * height frames). With
+    // temporal.packedHistory, visibility() holds packed words of visibility and length
+    // (ssao::unpackVisibility, ssao::unpackLength) and historyLength() is not to be read.
     const Buffer& visibility() const { return history_[current_].visibility; }
     const Buffer& bentNormal() const {
         assert(bentNormals_);
         return bentView_;
     }
-    const Buffer& historyLength() const { return history_[current_].length; }
+    const Buffer& historyLength() const {
+        assert(!temporal_.packedHistory);
+        return history_[current_].length;
+    }
+    bool packedHistory() const { return temporal_.packedHistory; }
     int framesRecorded() const { return recorded_; }
     int width() const { return width_; }
     int height() const { return height_; }

@@ -4,6 +4,7 @@
 
 #include "obscura/bilateral.h"
 #include "obscura/error.h"
+#include "obscura/history_packing.h"
 #include "obscura/parallel.h"
 
 #include <algorithm>
@@ -216,6 +217,18 @@ const GtaoResult& GtaoTemporal::frame(const GBuffer& g) {
             if (!g.isSky(x, y))
                 setVec3(result_.bentNormal, x, y, normalize(transformVector(viewFromWorld, vec3At(newBentWorld, x, y))));
     });
+    if (temporal_.packedHistory) {
+        // What the GPU's packed planes hold: the next frame reads these values, and the caller the visibility.
+        forRows(h, [&](int y) {
+            for (int x = 0; x < w; ++x) {
+                const std::uint32_t word = packVisibilityLength(result_.visibility.at(x, y), newLength.at(x, y));
+                result_.visibility.at(x, y) = unpackVisibility(word);
+                newLength.at(x, y) = unpackLength(word);
+                setVec3(normalWorld, x, y, unpackOctahedral(packOctahedral(vec3At(normalWorld, x, y))));
+                setVec3(newBentWorld, x, y, unpackOctahedral(packOctahedral(vec3At(newBentWorld, x, y))));
+            }
+        });
+    }
     bentWorld_ = std::move(newBentWorld);
     historyLength_ = std::move(newLength);
     previousCamera_ = g.camera;

@@ -73,13 +73,15 @@ protected:
 // The bound: `render --gpu --ao gtao` and the CPU path give frames whose mean absolute difference is
 // at most 1e-3 (linear radiance, which is about 0.1-1 on these views). Measured on lavapipe (Mesa 22.3.6,
 // LLVM 15.0.6), 2026-11-25, in the order below, frame mean / AO max: 2.3e-6 / 8.7e-5, 7.8e-7 / 9.3e-5,
-// 1.6e-7 / 5.5e-5, 1.5e-6 / 7.1e-5 (the "[ measured ]" lines of a run).
+// 1.6e-7 / 5.5e-5, 1.5e-6 / 7.1e-5, and with the packed history 4.4e-6 / 6.1e-5 (the "[ measured ]" lines of
+// a run).
 TEST_F(GpuCommands, RenderGtaoMatchesTheCpu) {
     const char* cases[] = {
         "demo --size 96x54 --ao gtao",
         "stairs --size 97x55 --ao gtao --ao-quality ultra --multibounce --specular-occlusion lut4",
         "well --size 64x48 --ao gtao --frames 3",                                 // temporal
         "demo --size 75x41 --ao gtao --frames 2 --gtao-mode spatial --gtao-half-res",
+        "corner --size 70x40 --ao gtao --frames 3 --gtao-half-res --gtao-packed-history",
     };
     for (const char* c : cases) {
         const Pair d = renderBoth(c);
@@ -190,6 +192,16 @@ TEST_F(GpuCommands, BenchGpuReportsEveryCase) {
     EXPECT_EQ(b["cases"][0]["bytes_per_frame"].get<double>() - a["cases"][0]["bytes_per_frame"].get<double>(), px * 12);
     EXPECT_EQ(b["cases"][1]["bytes_per_frame"].get<double>() - a["cases"][1]["bytes_per_frame"].get<double>(), px * 60);
     EXPECT_NE(a["cases"][1]["description"].get<std::string>().find("visibility only"), std::string::npos);
+
+    // --packed-history: the temporal case's history is 3 words per pixel, read and written, instead of 9
+    // (depth, world normal, visibility + length, world bent normal: 1 + 1 + 1 + 1 against 1 + 3 + 1 + 3 + 1).
+    const CliResult packed = runCli(small + " --packed-history");
+    ASSERT_EQ(packed.code, 0) << packed.out;
+    const nlohmann::json p = nlohmann::json::parse(packed.out);
+    EXPECT_EQ(p["packed_history"], true);
+    EXPECT_EQ(b["cases"][0]["bytes_per_frame"], p["cases"][0]["bytes_per_frame"]);  // no history in `gtao`
+    EXPECT_EQ(b["cases"][1]["bytes_per_frame"].get<double>() - p["cases"][1]["bytes_per_frame"].get<double>(),
+              px * 4 * 2 * (9 - 4));
 }
 
 TEST_F(GpuCommands, BenchGpuRejectsBadArguments) {

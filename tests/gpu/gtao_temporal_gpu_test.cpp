@@ -12,11 +12,14 @@
 #include "obscura/error.h"
 #include "obscura/gpu_temporal.h"
 #include "obscura/gtao_temporal.h"
+#include "obscura/history_packing.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <string>
 #include <tuple>
@@ -211,6 +214,21 @@ TEST(GpuGtaoTemporal, TemporalMatchesTheCpuReference) {
     EXPECT_EQ(testing::validationReport(context), "");
 }
 
+// The packed history (GtaoTemporalSettings::packedHistory): both sides decode the same words, so the bounds
+// and counts are those of the float history. Also at half resolution, and without bent normals.
+TEST(GpuGtaoTemporal, PackedHistoryMatchesTheCpuReference) {
+    OBSCURA_GPU_CONTEXT(context);
+    for (bool half : {false, true}) {
+        ssao::GtaoTemporalSettings t = mode(true, half);
+        t.packedHistory = true;
+        const std::string m = half ? "temporal, packed history, half resolution" : "temporal, packed history";
+        expectMatch(context, {"demo", 333, 197, ssao::GtaoQuality::Medium}, t, 5, 0, m);
+        expectMatch(context, {"stairs", 96, 64, ssao::GtaoQuality::High}, t, 5, 0, m);
+        expectMatch(context, {"corner", 96, 64, ssao::GtaoQuality::Low}, t, 5, 0, m);
+    }
+    EXPECT_EQ(testing::validationReport(context), "");
+}
+
 // The benchmark's path: frames recorded back to back on resident buffers in one submission (the barrier at
 // the start of each frame orders them), with a mark after each stage, give the bits of GtaoTemporal's
 // frame-per-submission path.
@@ -259,14 +277,16 @@ TEST(GpuGtaoTemporal, VisibilityOnlyGivesTheSameVisibility) {
     const int w = 97, h = 61;
     const std::vector<GBuffer> gbuffers = path("demo", w, h, 4);
     const ssao::GtaoSettings settings = preset(ssao::GtaoQuality::Medium);
-    const auto read = [&](const Buffer& b) {
-        Image image(w, h, 1);
-        download(c, b, image.pixels.data(), image.pixels.size() * sizeof(float));
-        return image;
+    const auto words = [&](const Buffer& b) {
+        std::vector<std::uint32_t> v(std::size_t(w) * std::size_t(h));
+        download(c, b, v.data(), v.size() * sizeof(std::uint32_t));
+        return v;
     };
-    for (bool half : {false, true}) {
-        GtaoTemporalPasses full(c, settings, mode(true, half), w, h);
-        GtaoTemporalPasses aoOnly(c, settings, mode(true, half), w, h, false);
+    for (const auto& [half, packed] : {std::pair{false, false}, std::pair{true, false}, std::pair{false, true}}) {
+        ssao::GtaoTemporalSettings t = mode(true, half);
+        t.packedHistory = packed;  // then the visibility plane holds visibility and length in one word
+        GtaoTemporalPasses full(c, settings, t, w, h);
+        GtaoTemporalPasses aoOnly(c, settings, t, w, h, false);
         int differing = 0, occluded = 0;
         for (std::size_t f = 0; f < gbuffers.size(); ++f) {
             const Buffer depth = uploadChannels(c, gbuffers[f].depth, 1);
@@ -275,22 +295,27 @@ TEST(GpuGtaoTemporal, VisibilityOnlyGivesTheSameVisibility) {
                 full.record(cmd, {depth, normal, gbuffers[f].camera, int(f)});
                 aoOnly.record(cmd, {depth, normal, gbuffers[f].camera, int(f)});
             });
-            const Image a = read(full.visibility()), b = read(aoOnly.visibility());
-            const Image la = read(full.historyLength()), lb = read(aoOnly.historyLength());
-            for (std::size_t i = 0; i < a.pixels.size(); ++i) {
-                differing += a.pixels[i] != b.pixels[i] || la.pixels[i] != lb.pixels[i];
-                occluded += f + 1 == gbuffers.size() && a.pixels[i] < 0.99f;
+            const std::vector<std::uint32_t> a = words(full.visibility()), b = words(aoOnly.visibility());
+            const std::vector<std::uint32_t> la = packed ? a : words(full.historyLength());
+            const std::vector<std::uint32_t> lb = packed ? b : words(aoOnly.historyLength());
+            for (std::size_t i = 0; i < a.size(); ++i) {
+                differing += a[i] != b[i] || la[i] != lb[i];
+                const float v = packed ? ssao::unpackVisibility(a[i]) : std::bit_cast<float>(a[i]);
+                occluded += f + 1 == gbuffers.size() && v < 0.99f;
             }
         }
-        EXPECT_EQ(differing, 0) << (half ? "half resolution" : "full resolution");
+        const std::string name = std::string(half ? "half resolution" : "full resolution") + (packed ? ", packed" : "");
+        EXPECT_EQ(differing, 0) << name;
         EXPECT_GT(occluded, w * h / 50);  // not vacuous: there is occlusion to agree on
-        // The bent normal's planes are gone from the traffic: per pixel 3 history floats in, 3 out and 3 view
-        // floats out; per grid pixel 3 raw floats written and read, and at half resolution the bent
-        // reconstruction's 10 (a grid pixel is a quarter of a pixel, a bit more at odd sizes).
+        // The bent normal's planes are gone from the traffic: per pixel 3 history floats in, 3 out (packed, a
+        // word each) and 3 view floats out; per grid pixel 3 raw floats written and read, and at half
+        // resolution the bent reconstruction's 10 (a grid pixel is a quarter of a pixel, a bit more at odd
+        // sizes).
         const double saved = double(full.bytesPerFrame() - aoOnly.bytesPerFrame()) / (double(w) * h * sizeof(float));
         std::printf("[ measured ] visibility only, %s: %zu -> %zu bytes per frame (%.2f floats per pixel less)\n",
-                    half ? "half resolution" : "full resolution", full.bytesPerFrame(), aoOnly.bytesPerFrame(), saved);
-        EXPECT_NEAR(saved, half ? 9.0 + (3 + 3 + 10) / 4.0 : 9.0 + 3 + 3, 0.2) << half;
+                    name.c_str(), full.bytesPerFrame(), aoOnly.bytesPerFrame(), saved);
+        const double history = packed ? 1 + 1 + 3 : 3 + 3 + 3;  // packed: one word in, one out
+        EXPECT_NEAR(saved, history + (half ? (3 + 3 + 10) / 4.0 : 3 + 3), 0.2) << name;
     }
     EXPECT_EQ(testing::validationReport(context), "");
 }

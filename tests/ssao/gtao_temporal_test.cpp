@@ -138,3 +138,42 @@ TEST(GtaoTemporal, AccumulatedMatchesRayTraced) {
             }
     }
 }
+
+// The packed history (GtaoTemporalSettings::packedHistory) against the float one over 6 frames of a static
+// camera: each frame stores visibility to 1/65535, so over n frames of running mean the two drift apart by
+// at most about n / 2 steps (6 frames: 4.6e-5); the octahedral normals move the
+// rejection tests by at most 6.4e-5 rad, which may flip a pixel on the edge of one. The error against ray
+// tracing must not move at the digits the quality tables show.
+TEST(GtaoTemporal, PackedHistoryKeepsTheAccuracy) {
+    for (const char* name : {"well", "stairs", "corner"}) {
+        test::TopDownView view = test::topDownView(name, 64, 64);
+        trace::Tracer tracer(view.scene);
+        const GBuffer g = trace::renderGBuffer(tracer, view.camera);
+        trace::ObscuranceSettings rt;
+        rt.radius = view.radius;
+        rt.rays = 512;
+        const Image reference = trace::ambientObscurance(tracer, g, rt);
+        GtaoTemporalSettings packed;
+        packed.packedHistory = true;
+        GtaoTemporal a(oneSlice(view.radius, 3), GtaoTemporalSettings{}), b(oneSlice(view.radius, 3), packed);
+        double worst = 0, maeFloat = 0, maePacked = 0;
+        int lengths = 0;
+        for (int f = 0; f < 6; ++f) {
+            const Image& va = a.frame(g).visibility;
+            const Image& vb = b.frame(g).visibility;
+            for (std::size_t i = 0; i < va.pixels.size(); ++i) {
+                worst = std::max(worst, double(std::fabs(va.pixels[i] - vb.pixels[i])));
+                lengths += a.historyLength().pixels[i] != b.historyLength().pixels[i];
+            }
+            maeFloat = test::meanAbsoluteError(g, va, reference);
+            maePacked = test::meanAbsoluteError(g, vb, reference);
+        }
+        std::printf("[ measured ] %s, static, 6 frames: packed - float visibility max %.3g, MAE %.5f -> %.5f, %d "
+                    "history lengths differ\n",
+                    name, worst, maeFloat, maePacked, lengths);
+        EXPECT_LE(worst, 6 * 0.5 / 65535 + 1e-6) << name;
+        EXPECT_GT(worst, 0.0) << name;  // really quantized
+        EXPECT_EQ(lengths, 0) << name;  // whole frames are exact
+        EXPECT_NEAR(maePacked, maeFloat, 1e-4) << name;
+    }
+}

@@ -48,6 +48,7 @@ struct GpuBenchOptions {
     std::string quality = "high";
     int temporalSlices = 1;
     bool visibilityOnly = false;
+    bool packedHistory = false;
     double peakGbps = 3000.0;
     int device = -1;
     bool json = false;
@@ -78,6 +79,9 @@ void GpuBenchOptions::add(CLI::App& bench) {
     bench.add_flag("--visibility-only", visibilityOnly,
                    "--gpu: the GTAO cases compute and accumulate visibility alone, no bent normal (the AO-only variant "
                    "an engine without bent-normal lighting runs, and what XeGTAO computes by default)");
+    bench.add_flag("--packed-history", packedHistory,
+                   "--gpu: the temporal cases keep their history in packed words (visibility + length, octahedral "
+                   "normals: 3 or 4 planes instead of 9 or 12)");
     bench.add_option("--peak-gbps", peakGbps,
                      "--gpu: bandwidth ceiling the traffic is compared with, GB/s (default: a compute-shader copy on "
                      "an H100, 3.0 TB/s)")
@@ -94,6 +98,7 @@ void runGpuBench(const GpuBenchOptions& o) {
     settings.quality = ssao::parseQuality(o.quality);
     settings.temporalSlices = o.temporalSlices;
     settings.bentNormals = !o.visibilityOnly;
+    settings.packedHistory = o.packedHistory;
     try {
         settings.validate();
     } catch (const Error& e) {
@@ -144,6 +149,7 @@ void runGpuBench(const GpuBenchOptions& o) {
     report["inputs"] = o.inputs;
     report["peak_gbps"] = o.peakGbps;
     report["bent_normals"] = settings.bentNormals;
+    report["packed_history"] = settings.packedHistory;
     report["validation"] = context.validation();
     if (!o.json) {
         std::printf("obscura bench --gpu: %s (%s, Vulkan %s), %s\n", info.name.c_str(), info.driver.c_str(),
@@ -151,7 +157,12 @@ void runGpuBench(const GpuBenchOptions& o) {
         std::printf("scene %s%s; GPU ms from timestamps, median of %d frames after %d warm-up, rotating %d inputs;\n"
                     "MB = compulsory traffic per frame (each buffer a dispatch reads or writes, once); %% = its rate "
                     "over %.0f GB/s%s\n",
-                    loaded.name.c_str(), o.visibilityOnly ? ", GTAO visibility only" : "", o.frames, o.warmup,
+                    loaded.name.c_str(),
+                    o.visibilityOnly && o.packedHistory ? ", GTAO visibility only, packed history"
+                    : o.visibilityOnly                  ? ", GTAO visibility only"
+                    : o.packedHistory                   ? ", packed history"
+                                                        : "",
+                    o.frames, o.warmup,
                     o.inputs, o.peakGbps,
                     context.validation() ? "; VALIDATION ON (timings are not representative)" : "");
     }

@@ -61,6 +61,9 @@ void GtaoOptions::add(CLI::App& app) {
         ->check(CLI::IsMember({"auto", "full", "spatial", "temporal"}))
         ->capture_default_str();
     app.add_flag("--gtao-half-res", halfResolution, "GTAO spatial/temporal: evaluate at half resolution, upsample by depth");
+    app.add_flag("--gtao-packed-history", packedHistory,
+                 "GTAO temporal: keep the history in packed words (visibility to 1/65535, octahedral normals), "
+                 "3 planes instead of 9, as a GPU would");
     app.add_option("--gtao-thickness", thickness, "GTAO thin occluders: none, heuristic (eq. 9), bitmask")
         ->check(CLI::IsMember({"none", "heuristic", "bitmask"}))
         ->capture_default_str();
@@ -101,6 +104,9 @@ void GtaoOptions::validate(const std::string& aovDir) const {
     if (!(falloffStart >= 0.0f && falloffStart <= 1.0f)) fail("--gtao-falloff-start", "must be in [0, 1]");
     if (output != "visibility" && aovDir.empty()) fail("--ao-output", "'" + output + "' needs --aov-dir");
     if (halfResolution && mode == "full") fail("--gtao-half-res", "needs --gtao-mode spatial or temporal");
+    const bool temporal = mode == "temporal" || (mode == "auto" && frames > 1);
+    if (packedHistory && !temporal)
+        fail("--gtao-packed-history", "needs a history: --gtao-mode temporal, or auto with --frames > 1");
 }
 
 GtaoFrame renderGtaoFrames(const GtaoOptions& o, float radius, const trace::Tracer& tracer, const Camera& camera,
@@ -111,6 +117,7 @@ GtaoFrame renderGtaoFrames(const GtaoOptions& o, float radius, const trace::Trac
     ssao::GtaoTemporalSettings temporalSettings;
     temporalSettings.temporal = mode == "temporal";
     temporalSettings.halfResolution = o.halfResolution;
+    temporalSettings.packedHistory = o.packedHistory;
     std::optional<ssao::GtaoTemporal> temporal;
     std::optional<gpu::GtaoTemporal> gpuTemporal;
     if (mode != "full" && context)

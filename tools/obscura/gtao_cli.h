@@ -27,6 +27,7 @@ struct GtaoOptions {
     int frames = 1;
     std::string mode = "auto";          // auto, full, spatial, temporal
     bool halfResolution = false;
+    bool packedHistory = false;
     std::string thickness = "none";
     float falloffStart = 1.0f;
     std::string beyondRadius = "column";

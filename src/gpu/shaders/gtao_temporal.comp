@@ -27,28 +27,31 @@ layout(local_size_x = kTemporalWorkgroupX, local_size_y = kTemporalWorkgroupY, l
 layout(constant_id = kTemporalSpecGridStep) const int kGridStep = 1;
 layout(constant_id = kTemporalSpecDepthSigma) const float kDepthSigma = 0.05;
 layout(constant_id = kTemporalSpecBentNormal) const int kBentNormal = 1;
+layout(constant_id = kTemporalSpecPackedHistory) const int kPackedHistory = 0;
 
 layout(push_constant, std430) uniform Constants { GtaoTemporalConstants k; };
 layout(std430, binding = kTemporalBindingDepth) readonly buffer DepthPlane { float depthPlane[]; };
 layout(std430, binding = kTemporalBindingNormal) readonly buffer NormalPlane { float normalPlane[]; };
 layout(std430, binding = kTemporalBindingGridVisibility) readonly buffer GridVisibility { float gridVisibility[]; };
 layout(std430, binding = kTemporalBindingGridBent) readonly buffer GridBent { float gridBent[]; };
-layout(std430, binding = kTemporalBindingPreviousDepth) readonly buffer PreviousDepth { float previousDepth[]; };
+// The history planes hold 32-bit words: floats' bits, or with kPackedHistory the packed words of
+// obscura/history_packing.h (visibility + length in the visibility plane, one word per normal).
+layout(std430, binding = kTemporalBindingPreviousDepth) readonly buffer PreviousDepth { uint previousDepth[]; };
 layout(std430, binding = kTemporalBindingPreviousNormalWorld) readonly buffer PreviousNormalWorld {
-    float previousNormalWorld[];
+    uint previousNormalWorld[];
 };
 layout(std430, binding = kTemporalBindingPreviousVisibility) readonly buffer PreviousVisibility {
-    float previousVisibility[];
+    uint previousVisibility[];
 };
 layout(std430, binding = kTemporalBindingPreviousBentWorld) readonly buffer PreviousBentWorld {
-    float previousBentWorld[];
+    uint previousBentWorld[];
 };
-layout(std430, binding = kTemporalBindingPreviousLength) readonly buffer PreviousLength { float previousLength[]; };
-layout(std430, binding = kTemporalBindingDepthOut) writeonly buffer DepthOut { float depthOut[]; };
-layout(std430, binding = kTemporalBindingNormalWorldOut) writeonly buffer NormalWorldOut { float normalWorldOut[]; };
-layout(std430, binding = kTemporalBindingVisibilityOut) writeonly buffer VisibilityOut { float visibilityOut[]; };
-layout(std430, binding = kTemporalBindingBentWorldOut) writeonly buffer BentWorldOut { float bentWorldOut[]; };
-layout(std430, binding = kTemporalBindingLengthOut) writeonly buffer LengthOut { float lengthOut[]; };
+layout(std430, binding = kTemporalBindingPreviousLength) readonly buffer PreviousLength { uint previousLength[]; };
+layout(std430, binding = kTemporalBindingDepthOut) writeonly buffer DepthOut { uint depthOut[]; };
+layout(std430, binding = kTemporalBindingNormalWorldOut) writeonly buffer NormalWorldOut { uint normalWorldOut[]; };
+layout(std430, binding = kTemporalBindingVisibilityOut) writeonly buffer VisibilityOut { uint visibilityOut[]; };
+layout(std430, binding = kTemporalBindingBentWorldOut) writeonly buffer BentWorldOut { uint bentWorldOut[]; };
+layout(std430, binding = kTemporalBindingLengthOut) writeonly buffer LengthOut { uint lengthOut[]; };
 layout(std430, binding = kTemporalBindingBentViewOut) writeonly buffer BentViewOut { float bentViewOut[]; };
 
 // ---- the grid the filter reads (temporal_filters.glsl): visibility, then the bent normal if any ----
@@ -68,6 +71,7 @@ float gridValue(int x, int y, int c) {
 }
 
 #include "temporal_filters.glsl"
+#include "obscura/history_packing.h"
 
 // ---- obscura/math.h ----
 // transformVector(m, v) for a matrix given as 3 rows of 4 floats.
@@ -105,12 +109,24 @@ vec2 previousPixelFromView(vec3 p, out float depth) {
     return vec2((ndcX + 1.0) * 0.5 * float(k.width), (1.0 - ndcY) * 0.5 * float(k.height));
 }
 
-// ---- src/ssao/gtao_temporal.cpp ----
-vec3 previousNormalWorldAt(uint i) {
-    return vec3(previousNormalWorld[3 * i], previousNormalWorld[3 * i + 1], previousNormalWorld[3 * i + 2]);
+// ---- src/ssao/gtao_temporal.cpp: the history images, read from their planes ----
+// previousDepth_, previousNormalWorld_, result_.visibility, bentWorld_ and historyLength_ at pixel i. With
+// kPackedHistory the CPU stores the values the packed words decode to, so both read the same floats.
+float previousDepthAt(uint i) { return uintBitsToFloat(previousDepth[i]); }
+vec3 wordsAt(uint i, bool packed, bool bent) {
+    if (packed) return unpackOctahedral(bent ? previousBentWorld[i] : previousNormalWorld[i]);
+    if (bent)
+        return uintBitsToFloat(uvec3(previousBentWorld[3 * i], previousBentWorld[3 * i + 1], previousBentWorld[3 * i + 2]));
+    return uintBitsToFloat(
+        uvec3(previousNormalWorld[3 * i], previousNormalWorld[3 * i + 1], previousNormalWorld[3 * i + 2]));
 }
-vec3 previousBentWorldAt(uint i) {
-    return vec3(previousBentWorld[3 * i], previousBentWorld[3 * i + 1], previousBentWorld[3 * i + 2]);
+vec3 previousNormalWorldAt(uint i) { return wordsAt(i, kPackedHistory != 0, false); }
+vec3 previousBentWorldAt(uint i) { return wordsAt(i, kPackedHistory != 0, true); }
+float previousVisibilityAt(uint i) {
+    return kPackedHistory != 0 ? unpackVisibility(previousVisibility[i]) : uintBitsToFloat(previousVisibility[i]);
+}
+float previousLengthAt(uint i) {
+    return kPackedHistory != 0 ? unpackLength(previousVisibility[i]) : uintBitsToFloat(previousLength[i]);
 }
 
 // Pixel (x, y) of the loop: `visibility` comes in as the spatial result and leaves accumulated, `bent` is
@@ -142,14 +158,14 @@ void temporalPixel(int x, int y, vec3 bent, inout float visibility, inout vec3 n
         const float bw = ((t & 1) != 0 ? fx : 1.0 - fx) * ((t >> 1) != 0 ? fy : 1.0 - fy);
         if (bw <= 0.0 || tx < 0 || ty < 0 || tx >= w || ty >= h) continue;
         const uint ti = uint(ty) * uint(w) + uint(tx);
-        const float pd = previousDepth[ti];
+        const float pd = previousDepthAt(ti);
         // Disocclusion: the previous frame saw another surface there, or one facing elsewhere.
         if (!finiteDepth(pd) || abs(pd - expectedDepth) > k.rejectDepth * expectedDepth) continue;
         if (dot3(previousNormalWorldAt(ti), nWorld) < k.rejectNormalCos) continue;
         weightSum += bw;
-        historyVisibility += bw * previousVisibility[ti];
+        historyVisibility += bw * previousVisibilityAt(ti);
         if (kBentNormal != 0) historyBent += previousBentWorldAt(ti) * bw;
-        historyLength += bw * previousLength[ti];
+        historyLength += bw * previousLengthAt(ti);
     }
     // Less than a quarter of the footprint confirmed: too little to trust.
     if (weightSum < 0.25) return;
@@ -184,13 +200,18 @@ void main() {
                   normalWorld);
     // result_.bentNormal: sky pixels 0, the others back in view space.
     const vec3 bentView = finiteDepth(depth) ? normalize3(viewFromWorldVector(newBentWorld)) : vec3(0.0);
-    visibilityOut[i] = visibility;
-    lengthOut[i] = newLength;
-    depthOut[i] = depth;  // previousDepth_ = g.depth
-    for (uint c = 0; c < 3; ++c) normalWorldOut[3 * i + c] = normalWorld[c];
-    if (kBentNormal == 0) return;
-    for (uint c = 0; c < 3; ++c) {
-        bentWorldOut[3 * i + c] = newBentWorld[c];
-        bentViewOut[3 * i + c] = bentView[c];
+    depthOut[i] = floatBitsToUint(depth);  // previousDepth_ = g.depth
+    if (kBentNormal != 0)
+        for (uint c = 0; c < 3; ++c) bentViewOut[3 * i + c] = bentView[c];
+    if (kPackedHistory != 0) {
+        visibilityOut[i] = packVisibilityLength(visibility, newLength);
+        normalWorldOut[i] = packOctahedral(normalWorld);
+        if (kBentNormal != 0) bentWorldOut[i] = packOctahedral(newBentWorld);
+        return;
     }
+    visibilityOut[i] = floatBitsToUint(visibility);
+    lengthOut[i] = floatBitsToUint(newLength);
+    for (uint c = 0; c < 3; ++c) normalWorldOut[3 * i + c] = floatBitsToUint(normalWorld[c]);
+    if (kBentNormal != 0)
+        for (uint c = 0; c < 3; ++c) bentWorldOut[3 * i + c] = floatBitsToUint(newBentWorld[c]);
 }

@@ -86,6 +86,11 @@ OBSCURA_CONST int kTemporalSpecDepthSigma = 1;
 // BentViewOut are left untouched, so any storage buffer may stand there. Visibility and history length come
 // out the same either way.
 OBSCURA_CONST int kTemporalSpecBentNormal = 2;
+// constant_id of GtaoTemporalSettings::packedHistory: 0 (the default) keeps the history as floats, the
+// planes below; 1 as the packed words of obscura/history_packing.h: the visibility plane holds visibility
+// and length in one word per pixel, the normal and bent-normal planes one word per pixel each, and
+// kTemporalBindingPreviousLength and LengthOut are left untouched.
+OBSCURA_CONST int kTemporalSpecPackedHistory = 3;
 // The previous camera's size, and so its aspect, are the current one's: the frame rejects a size change.
 // 128 bytes, Vulkan's guaranteed push-constant size (lavapipe's too).
 struct GtaoTemporalConstants {
@@ -111,7 +116,8 @@ OBSCURA_CONST int kTemporalBindingNormal = 1;      // width * height * 3 view no
 // The grid of ceil(width / step) x ceil(height / step) pixels the filter reads:
 OBSCURA_CONST int kTemporalBindingGridVisibility = 2;  // 1 float per grid pixel, visibility
 OBSCURA_CONST int kTemporalBindingGridBent = 3;        // 3 floats per grid pixel, view bent normals
-// The history the previous frame wrote (read only when maxHistory > 0; bound either way):
+// The history the previous frame wrote (read only when maxHistory > 0; bound either way), as floats or,
+// with kTemporalSpecPackedHistory, packed words (the sizes below are the float layout's):
 OBSCURA_CONST int kTemporalBindingPreviousDepth = 4;        // width * height linear depths
 OBSCURA_CONST int kTemporalBindingPreviousNormalWorld = 5;  // width * height * 3 world normals, sky 0
 OBSCURA_CONST int kTemporalBindingPreviousVisibility = 6;   // width * height accumulated visibility
