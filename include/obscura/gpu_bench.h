@@ -28,6 +28,8 @@ struct GpuBenchSettings {
     int temporalSlices = 1;  // slices of the `gtao-temporal` cases, [1, 64]: the paper's 1, times the 16
                              // interleave directions and 6 rotations of the history
     bool packedHistory = false;  // the temporal cases keep their history in packed words (obscura/history_packing.h)
+    bool callerKeepsDepth = false;  // the temporal cases read the previous frame's input depth instead of a
+                                    // copy in the history (GtaoTemporalVariant::callerKeepsDepth)
     bool bentNormals = true;  // the GTAO cases compute, filter and accumulate bent normals; false: visibility
                               // only (kGtaoSpecBentNormal 0), as an engine without bent-normal lighting runs them
     void validate() const;   // throws obscura::Error("gpu-bench-<field>: ...")

@@ -126,18 +126,23 @@ CaseSetup temporalCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s
     t.temporal = temporal;
     t.halfResolution = half;
     t.packedHistory = s.packedHistory;
-    auto passes = std::make_shared<GtaoTemporalPasses>(c, settings, t, w, h, s.bentNormals);
+    auto passes = std::make_shared<GtaoTemporalPasses>(c, settings, t, w, h,
+                                                       GtaoTemporalVariant{s.bentNormals, s.callerKeepsDepth});
     CaseSetup setup;
     setup.description = std::string(temporal ? "spatio-temporal" : "spatial") + " GTAO" +
                         (half ? " at half resolution" : "") + " (" + slicesText(settings) +
                         ", 4x4 interleave, r 1 m) + 5x5 reconstruction" + (half ? " + depth-aware upsample" : "") +
                         (temporal ? (s.packedHistory ? " + reprojected packed history" : " + reprojected history") : "") +
-                        (s.bentNormals ? "" : ", visibility only");
+                        (s.bentNormals ? "" : ", visibility only") +
+                        (temporal && s.callerKeepsDepth ? ", previous depth kept by the caller" : "");
     setup.bytes = double(passes->bytesPerFrame());
     setup.keepAlive = {passes};
-    setup.record = [passes](VkCommandBuffer cmd, const ResidentInput& in, int index,
-                            const std::function<void(const char*)>& mark) {
-        passes->record(cmd, {in.depth, in.normal, in.camera, index}, mark);
+    // The previous frame's depth: the rotating inputs stay resident, so it is still there (callerKeepsDepth).
+    auto previousDepth = std::make_shared<const Buffer*>(nullptr);
+    setup.record = [passes, previousDepth](VkCommandBuffer cmd, const ResidentInput& in, int index,
+                                           const std::function<void(const char*)>& mark) {
+        passes->record(cmd, {in.depth, in.normal, in.camera, index, *previousDepth}, mark);
+        *previousDepth = &in.depth;
     };
     return setup;
 }

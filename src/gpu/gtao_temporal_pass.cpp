@@ -85,10 +85,11 @@ void recordUpsample(Context::Impl& c, VkCommandBuffer cmd, const UpsampleBuffers
 
 GtaoTemporalPasses::GtaoTemporalPasses(Context::Impl& c, const ssao::GtaoSettings& settings,
                                        const ssao::GtaoTemporalSettings& temporal, int width, int height,
-                                       bool bentNormals)
+                                       GtaoTemporalVariant variant)
     : context_(c), settings_(settings), temporal_(temporal), width_(width), height_(height),
       step_(temporal.halfResolution ? 2 : 1), gridWidth_((width + step_ - 1) / step_),
-      gridHeight_((height + step_ - 1) / step_), bentNormals_(bentNormals), unused_(deviceFloats(c, 4)) {
+      gridHeight_((height + step_ - 1) / step_), variant_(variant), unused_(deviceFloats(c, 4)) {
+    const bool bentNormals = variant.bentNormals;
     assert(width >= 1 && height >= 1);
     const std::size_t pixels = std::size_t(width) * std::size_t(height);
     const std::size_t grid = std::size_t(gridWidth_) * std::size_t(gridHeight_);
@@ -104,7 +105,7 @@ GtaoTemporalPasses::GtaoTemporalPasses(Context::Impl& c, const ssao::GtaoSetting
     // Packed: one word per normal, and the length in the visibility's word (obscura/history_packing.h).
     const std::size_t vector = temporal.packedHistory ? 1 : 3;
     for (History& h : history_) {
-        h.depth = deviceFloats(c, pixels);
+        if (!variant.callerKeepsDepth) h.depth = deviceFloats(c, pixels);
         h.normalWorld = deviceFloats(c, vector * pixels);
         h.visibility = deviceFloats(c, pixels);
         if (bentNormals) h.bentWorld = deviceFloats(c, vector * pixels);
@@ -121,11 +122,11 @@ void GtaoTemporalPasses::record(VkCommandBuffer cmd, const GtaoTemporalFrameInpu
     };
     // 1. One interleaved evaluation per grid pixel, into the raw set the previous frame did not read.
     // Without bent normals, unused_ stands for every bent-normal buffer (the shaders leave those bindings alone).
-    const auto bent = [&](const Buffer& b) -> const Buffer& { return bentNormals_ ? b : unused_; };
+    const auto bent = [&](const Buffer& b) -> const Buffer& { return variant_.bentNormals ? b : unused_; };
     const Buffer& rawVisibility = rawVisibility_[1 - current_];
     const Buffer& rawBent = bent(rawBent_[1 - current_]);
     const ssao::GtaoConstants k = ssao::gtaoConstants(settings_, in.camera, in.frameIndex, true);
-    recordGtao(c, cmd, {in.depth, in.normal, rawVisibility, rawBent}, k, step_, bentNormals_);
+    recordGtao(c, cmd, {in.depth, in.normal, rawVisibility, rawBent}, k, step_, variant_.bentNormals);
     stage("gtao");
     computeBarrier(cmd);  // the next stage reads the raw values
 
@@ -137,7 +138,7 @@ void GtaoTemporalPasses::record(VkCommandBuffer cmd, const GtaoTemporalFrameInpu
         const ReconstructConstants rk =
             reconstructConstants(gridWidth_, gridHeight_, width_, step_, temporal_.depthSigma);
         recordReconstruct(c, cmd, {rawVisibility, in.depth, in.normal, visibility_}, rk, 1);
-        if (bentNormals_) recordReconstruct(c, cmd, {rawBent, in.depth, in.normal, bent_}, rk, 3);
+        if (variant_.bentNormals) recordReconstruct(c, cmd, {rawBent, in.depth, in.normal, bent_}, rk, 3);
         stage("denoise");
         computeBarrier(cmd);  // the accumulation reads the reconstructed values
         grid[0] = &visibility_;
@@ -153,14 +154,21 @@ void GtaoTemporalPasses::record(VkCommandBuffer cmd, const GtaoTemporalFrameInpu
     ComputePipeline& pipeline =
         c.pipeline("gtao_temporal", shaders::gtao_temporal, storageBuffers(kTemporalBindingCount),
                    kTemporalPushConstantBytes, kTemporalWorkgroupX, kTemporalWorkgroupY,
-                   {step_, std::bit_cast<std::int32_t>(temporal_.depthSigma), bentNormals_ ? 1 : 0,
-                    temporal_.packedHistory ? 1 : 0});  // kTemporalSpecGridStep, DepthSigma, BentNormal, PackedHistory
+                   {step_, std::bit_cast<std::int32_t>(temporal_.depthSigma), variant_.bentNormals ? 1 : 0,
+                    temporal_.packedHistory ? 1 : 0, variant_.callerKeepsDepth ? 0 : 1});
+    // (kTemporalSpecGridStep, DepthSigma, BentNormal, PackedHistory, DepthCopy.) The previous depth is the
+    // history's copy, or the caller's buffer of the last frame, which unused_ stands for on a first frame.
+    assert(!useHistory || !variant_.callerKeepsDepth || in.previousDepth);
+    const Buffer& previousDepth = !variant_.callerKeepsDepth ? previous.depth
+                                  : useHistory && in.previousDepth ? *in.previousDepth
+                                                                   : unused_;
+    const Buffer& depthOut = variant_.callerKeepsDepth ? unused_ : next.depth;
     // Packed, the length travels in the visibility's word: unused_ stands for the length planes.
     const auto length = [&](const Buffer& b) -> const Buffer& { return temporal_.packedHistory ? unused_ : b; };
     // In binding order: kTemporalBindingDepth ... kTemporalBindingBentViewOut.
     pipeline.dispatchGrid(cmd,
-                          {&in.depth, &in.normal, grid[0], grid[1], &previous.depth, &previous.normalWorld,
-                           &previous.visibility, &bent(previous.bentWorld), &length(previous.length), &next.depth,
+                          {&in.depth, &in.normal, grid[0], grid[1], &previousDepth, &previous.normalWorld,
+                           &previous.visibility, &bent(previous.bentWorld), &length(previous.length), &depthOut,
                            &next.normalWorld, &next.visibility, &bent(next.bentWorld), &length(next.length),
                            &bent(bentView_)},
                           &tk, sizeof tk, width_, height_);
@@ -175,7 +183,7 @@ std::size_t GtaoTemporalPasses::bytesPerFrame() const {
     const std::size_t f = sizeof(float);
     const std::size_t pixels = std::size_t(width_) * std::size_t(height_);
     const std::size_t grid = std::size_t(gridWidth_) * std::size_t(gridHeight_);
-    const std::size_t b = bentNormals_ ? 3 : 0;  // floats of a bent normal
+    const std::size_t b = variant_.bentNormals ? 3 : 0;  // floats of a bent normal
     // GTAO: the search reads the whole depth plane, the normals of the grid pixels; writes 1 + b per grid pixel.
     std::size_t bytes = f * (pixels + 3 * grid + (1 + b) * grid);
     // Half resolution: the reconstruction, 1 and b channels: values, guide depth and normals in, values out.
@@ -185,8 +193,10 @@ std::size_t GtaoTemporalPasses::bytesPerFrame() const {
     // normals and the history planes in; the next history planes and the view bent normals out. The
     // history: depth, world normal, visibility, world bent normal and length; packed, one word for the
     // normal, one for the bent normal if any, and the length inside the visibility's word.
+    // The depth is written only where the history keeps its own copy.
     const std::size_t history = temporal_.packedHistory ? 1 + 1 + 1 + (b > 0 ? 1 : 0) : 1 + 3 + 1 + b + 1;
-    bytes += f * (grid * (1 + b + (step_ == 2 ? 1 : 0)) + pixels * ((1 + 3) + history + history + b));
+    const std::size_t written = history - (variant_.callerKeepsDepth ? 1 : 0);
+    bytes += f * (grid * (1 + b + (step_ == 2 ? 1 : 0)) + pixels * ((1 + 3) + history + written + b));
     return bytes;
 }
 

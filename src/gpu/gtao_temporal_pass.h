@@ -49,6 +49,18 @@ struct GtaoTemporalFrameInputs {
     const Buffer& normal;  // width * height * 3 view normals
     Camera camera;         // of the passes' size
     int frameIndex;        // selects the rotation (ssao::gtaoConstants' frameIndex)
+    // With GtaoTemporalVariant::callerKeepsDepth: the previous recorded frame's `depth` buffer, unchanged
+    // since that frame (an engine that keeps last frame's depth, as TAA does); ignored otherwise.
+    const Buffer* previousDepth = nullptr;
+};
+
+// Variants of the frame that move fewer bytes, each the same visibility and history length.
+struct GtaoTemporalVariant {
+    // false: visibility alone (kGtaoSpecBentNormal and kTemporalSpecBentNormal 0); no bent-normal buffer.
+    bool bentNormals = true;
+    // true: the history keeps no copy of depth (kTemporalSpecDepthCopy 0); each frame after the first reads
+    // the previous frame's depth buffer from GtaoTemporalFrameInputs::previousDepth.
+    bool callerKeepsDepth = false;
 };
 
 // The resident buffers of ssao::GtaoTemporal for one size: the frame's intermediates and two sets of history
@@ -56,11 +68,10 @@ struct GtaoTemporalFrameInputs {
 // set the previous one wrote and writes the other. Made once; no allocation per frame.
 class GtaoTemporalPasses {
 public:
-    // Assumes validated settings and width, height >= 1. Without bentNormals the frame computes, filters and
-    // accumulates visibility alone (kGtaoSpecBentNormal and kTemporalSpecBentNormal 0), with the same
-    // visibility and history length, and holds no bent-normal buffer.
+    // Assumes validated settings and width, height >= 1.
     GtaoTemporalPasses(Context::Impl& context, const ssao::GtaoSettings& settings,
-                       const ssao::GtaoTemporalSettings& temporal, int width, int height, bool bentNormals = true);
+                       const ssao::GtaoTemporalSettings& temporal, int width, int height,
+                       GtaoTemporalVariant variant = {});
 
     // Records the whole frame into cmd, with a barrier between dependent dispatches. Frames recorded back to
     // back in one command buffer need none between them: a frame's first stage touches nothing its
@@ -81,7 +92,7 @@ public:
     // (ssao::unpackVisibility, ssao::unpackLength) and historyLength() is not to be read.
     const Buffer& visibility() const { return history_[current_].visibility; }
     const Buffer& bentNormal() const {
-        assert(bentNormals_);
+        assert(variant_.bentNormals);
         return bentView_;
     }
     const Buffer& historyLength() const {
@@ -114,7 +125,7 @@ private:
     Buffer visibility_, bent_;        // grid: reconstructed (half resolution only)
     Buffer bentView_;
     History history_[2];
-    bool bentNormals_;
+    GtaoTemporalVariant variant_;
     Buffer unused_;  // bound where a bent-normal buffer would be, without bentNormals; never accessed
     int current_ = 0;  // the set the last recorded frame wrote
     int recorded_ = 0;

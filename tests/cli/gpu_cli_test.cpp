@@ -202,6 +202,13 @@ TEST_F(GpuCommands, BenchGpuReportsEveryCase) {
     EXPECT_EQ(b["cases"][0]["bytes_per_frame"], p["cases"][0]["bytes_per_frame"]);  // no history in `gtao`
     EXPECT_EQ(b["cases"][1]["bytes_per_frame"].get<double>() - p["cases"][1]["bytes_per_frame"].get<double>(),
               px * 4 * 2 * (9 - 4));
+
+    // --keep-previous-depth: the history writes no copy of depth, one float per pixel less.
+    const CliResult kept = runCli(small + " --keep-previous-depth");
+    ASSERT_EQ(kept.code, 0) << kept.out;
+    const nlohmann::json k = nlohmann::json::parse(kept.out);
+    EXPECT_EQ(k["keep_previous_depth"], true);
+    EXPECT_EQ(b["cases"][1]["bytes_per_frame"].get<double>() - k["cases"][1]["bytes_per_frame"].get<double>(), px * 4);
 }
 
 TEST_F(GpuCommands, BenchGpuRejectsBadArguments) {

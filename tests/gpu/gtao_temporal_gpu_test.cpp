@@ -286,7 +286,7 @@ TEST(GpuGtaoTemporal, VisibilityOnlyGivesTheSameVisibility) {
         ssao::GtaoTemporalSettings t = mode(true, half);
         t.packedHistory = packed;  // then the visibility plane holds visibility and length in one word
         GtaoTemporalPasses full(c, settings, t, w, h);
-        GtaoTemporalPasses aoOnly(c, settings, t, w, h, false);
+        GtaoTemporalPasses aoOnly(c, settings, t, w, h, {.bentNormals = false});
         int differing = 0, occluded = 0;
         for (std::size_t f = 0; f < gbuffers.size(); ++f) {
             const Buffer depth = uploadChannels(c, gbuffers[f].depth, 1);
@@ -316,6 +316,44 @@ TEST(GpuGtaoTemporal, VisibilityOnlyGivesTheSameVisibility) {
                     name.c_str(), full.bytesPerFrame(), aoOnly.bytesPerFrame(), saved);
         const double history = packed ? 1 + 1 + 3 : 3 + 3 + 3;  // packed: one word in, one out
         EXPECT_NEAR(saved, history + (half ? (3 + 3 + 10) / 4.0 : 3 + 3), 0.2) << name;
+    }
+    EXPECT_EQ(testing::validationReport(context), "");
+}
+
+// The previous frame's depth from the caller instead of a copy in the history (kTemporalSpecDepthCopy 0):
+// the same words in every output, frame after frame, with and without the packed history; one plane less.
+TEST(GpuGtaoTemporal, CallerKeptDepthGivesTheSameFrames) {
+    OBSCURA_GPU_CONTEXT(context);
+    Context::Impl& c = context.impl();
+    const int w = 90, h = 57;
+    const std::vector<GBuffer> gbuffers = path("stairs", w, h, 4);
+    const auto words = [&](const Buffer& b, std::size_t count) {
+        std::vector<std::uint32_t> v(count);
+        download(c, b, v.data(), count * sizeof(std::uint32_t));
+        return v;
+    };
+    const std::size_t pixels = std::size_t(w) * std::size_t(h);
+    for (bool packed : {false, true}) {
+        ssao::GtaoTemporalSettings t = mode(true, false);
+        t.packedHistory = packed;
+        GtaoTemporalPasses copying(c, preset(ssao::GtaoQuality::Medium), t, w, h);
+        GtaoTemporalPasses keeping(c, preset(ssao::GtaoQuality::Medium), t, w, h, {.callerKeepsDepth = true});
+        std::vector<Buffer> depth;  // every frame's depth stays: the previous one is read by the next frame
+        int differing = 0;
+        for (std::size_t f = 0; f < gbuffers.size(); ++f) {
+            depth.push_back(uploadChannels(c, gbuffers[f].depth, 1));
+            const Buffer normal = uploadChannels(c, gbuffers[f].normal, 3);
+            const Buffer* previous = f > 0 ? &depth[f - 1] : nullptr;
+            c.submit([&](VkCommandBuffer cmd) {
+                copying.record(cmd, {depth[f], normal, gbuffers[f].camera, int(f)});
+                keeping.record(cmd, {depth[f], normal, gbuffers[f].camera, int(f), previous});
+            });
+            differing += words(copying.visibility(), pixels) != words(keeping.visibility(), pixels);
+            differing += words(copying.bentNormal(), 3 * pixels) != words(keeping.bentNormal(), 3 * pixels);
+            if (!packed) differing += words(copying.historyLength(), pixels) != words(keeping.historyLength(), pixels);
+        }
+        EXPECT_EQ(differing, 0) << packed;
+        EXPECT_EQ(copying.bytesPerFrame() - keeping.bytesPerFrame(), pixels * sizeof(float)) << packed;
     }
     EXPECT_EQ(testing::validationReport(context), "");
 }

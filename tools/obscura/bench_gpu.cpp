@@ -49,6 +49,7 @@ struct GpuBenchOptions {
     int temporalSlices = 1;
     bool visibilityOnly = false;
     bool packedHistory = false;
+    bool keepPreviousDepth = false;
     double peakGbps = 3000.0;
     int device = -1;
     bool json = false;
@@ -82,6 +83,9 @@ void GpuBenchOptions::add(CLI::App& bench) {
     bench.add_flag("--packed-history", packedHistory,
                    "--gpu: the temporal cases keep their history in packed words (visibility + length, octahedral "
                    "normals: 3 or 4 planes instead of 9 or 12)");
+    bench.add_flag("--keep-previous-depth", keepPreviousDepth,
+                   "--gpu: the temporal cases read the previous frame's depth buffer instead of a copy in the history, "
+                   "as an engine that keeps last frame's depth (for TAA, say) can");
     bench.add_option("--peak-gbps", peakGbps,
                      "--gpu: bandwidth ceiling the traffic is compared with, GB/s (default: a compute-shader copy on "
                      "an H100, 3.0 TB/s)")
@@ -99,6 +103,7 @@ void runGpuBench(const GpuBenchOptions& o) {
     settings.temporalSlices = o.temporalSlices;
     settings.bentNormals = !o.visibilityOnly;
     settings.packedHistory = o.packedHistory;
+    settings.callerKeepsDepth = o.keepPreviousDepth;
     try {
         settings.validate();
     } catch (const Error& e) {
@@ -150,19 +155,19 @@ void runGpuBench(const GpuBenchOptions& o) {
     report["peak_gbps"] = o.peakGbps;
     report["bent_normals"] = settings.bentNormals;
     report["packed_history"] = settings.packedHistory;
+    report["keep_previous_depth"] = settings.callerKeepsDepth;
     report["validation"] = context.validation();
     if (!o.json) {
+        std::string variants;  // the flags that change what the GTAO cases run
+        if (o.visibilityOnly) variants += ", GTAO visibility only";
+        if (o.packedHistory) variants += ", packed history";
+        if (o.keepPreviousDepth) variants += ", previous depth kept";
         std::printf("obscura bench --gpu: %s (%s, Vulkan %s), %s\n", info.name.c_str(), info.driver.c_str(),
                     apiText(info.apiVersion).c_str(), date);
         std::printf("scene %s%s; GPU ms from timestamps, median of %d frames after %d warm-up, rotating %d inputs;\n"
                     "MB = compulsory traffic per frame (each buffer a dispatch reads or writes, once); %% = its rate "
                     "over %.0f GB/s%s\n",
-                    loaded.name.c_str(),
-                    o.visibilityOnly && o.packedHistory ? ", GTAO visibility only, packed history"
-                    : o.visibilityOnly                  ? ", GTAO visibility only"
-                    : o.packedHistory                   ? ", packed history"
-                                                        : "",
-                    o.frames, o.warmup,
+                    loaded.name.c_str(), variants.c_str(), o.frames, o.warmup,
                     o.inputs, o.peakGbps,
                     context.validation() ? "; VALIDATION ON (timings are not representative)" : "");
     }

@@ -28,6 +28,7 @@ layout(constant_id = kTemporalSpecGridStep) const int kGridStep = 1;
 layout(constant_id = kTemporalSpecDepthSigma) const float kDepthSigma = 0.05;
 layout(constant_id = kTemporalSpecBentNormal) const int kBentNormal = 1;
 layout(constant_id = kTemporalSpecPackedHistory) const int kPackedHistory = 0;
+layout(constant_id = kTemporalSpecDepthCopy) const int kDepthCopy = 1;
 
 layout(push_constant, std430) uniform Constants { GtaoTemporalConstants k; };
 layout(std430, binding = kTemporalBindingDepth) readonly buffer DepthPlane { float depthPlane[]; };
@@ -200,7 +201,7 @@ void main() {
                   normalWorld);
     // result_.bentNormal: sky pixels 0, the others back in view space.
     const vec3 bentView = finiteDepth(depth) ? normalize3(viewFromWorldVector(newBentWorld)) : vec3(0.0);
-    depthOut[i] = floatBitsToUint(depth);  // previousDepth_ = g.depth
+    if (kDepthCopy != 0) depthOut[i] = floatBitsToUint(depth);  // previousDepth_ = g.depth
     if (kBentNormal != 0)
         for (uint c = 0; c < 3; ++c) bentViewOut[3 * i + c] = bentView[c];
     if (kPackedHistory != 0) {

@@ -91,6 +91,10 @@ OBSCURA_CONST int kTemporalSpecBentNormal = 2;
 // and length in one word per pixel, the normal and bent-normal planes one word per pixel each, and
 // kTemporalBindingPreviousLength and LengthOut are left untouched.
 OBSCURA_CONST int kTemporalSpecPackedHistory = 3;
+// constant_id of the depth copy: 1 (the default) copies the frame's depth into kTemporalBindingDepthOut for
+// the next frame; 0 leaves DepthOut untouched, and kTemporalBindingPreviousDepth is then the previous
+// frame's own depth buffer, which the caller keeps unchanged until this frame has run.
+OBSCURA_CONST int kTemporalSpecDepthCopy = 4;
 // The previous camera's size, and so its aspect, are the current one's: the frame rejects a size change.
 // 128 bytes, Vulkan's guaranteed push-constant size (lavapipe's too).
 struct GtaoTemporalConstants {
