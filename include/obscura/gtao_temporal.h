@@ -28,7 +28,8 @@ struct GtaoTemporalSettings {
                                   // [1, 1024]: 24 = 4 cycles of the 6 rotations
     bool packedHistory = false;   // keep the history as the GPU's packed words (obscura/history_packing.h):
                                   // visibility to 1/65535 and length to 1/32 frame in one word, world
-                                  // normal and bent normal octahedral in one word each (3 planes, not 9);
+                                  // normal and bent normal octahedral in one word each (with depth, 4
+                                  // words per pixel instead of 9 floats);
                                   // the returned visibility is the stored one
 
     void validate() const;        // throws obscura::Error("gtao-<field>: ...")

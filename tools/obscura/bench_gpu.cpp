@@ -82,7 +82,7 @@ void GpuBenchOptions::add(CLI::App& bench) {
                    "an engine without bent-normal lighting runs, and what XeGTAO computes by default)");
     bench.add_flag("--packed-history", packedHistory,
                    "--gpu: the temporal cases keep their history in packed words (visibility + length, octahedral "
-                   "normals: 3 or 4 planes instead of 9 or 12)");
+                   "normals: 4 words per pixel instead of 9 floats, 3 instead of 6 with --visibility-only)");
     bench.add_flag("--keep-previous-depth", keepPreviousDepth,
                    "--gpu: the temporal cases read the previous frame's depth buffer instead of a copy in the history, "
                    "as an engine that keeps last frame's depth (for TAA, say) can");

@@ -63,7 +63,7 @@ void GtaoOptions::add(CLI::App& app) {
     app.add_flag("--gtao-half-res", halfResolution, "GTAO spatial/temporal: evaluate at half resolution, upsample by depth");
     app.add_flag("--gtao-packed-history", packedHistory,
                  "GTAO temporal: keep the history in packed words (visibility to 1/65535, octahedral normals), "
-                 "3 planes instead of 9, as a GPU would");
+                 "4 words per pixel instead of 9 floats, as a GPU would");
     app.add_option("--gtao-thickness", thickness, "GTAO thin occluders: none, heuristic (eq. 9), bitmask")
         ->check(CLI::IsMember({"none", "heuristic", "bitmask"}))
         ->capture_default_str();
