@@ -55,12 +55,13 @@ OBSCURA_PACK_INLINE OBSCURA_PACK_UINT packUnorm16(float x) {
 }
 OBSCURA_PACK_INLINE float unpackUnorm16(OBSCURA_PACK_UINT q) { return float(q) * packInverse65535(); }
 
-// x in [-1, 1] -> -32767..32767 in 16 bits, to nearest (x is clamped).
+// x in [-1, 1] -> -32767..32767 to nearest (x is clamped), stored offset as 1..65535 so that the rounding
+// sees no negative number; code 0 is unused.
 OBSCURA_PACK_INLINE OBSCURA_PACK_UINT packSnorm16(float x) {
     const float c = x < -1.0f ? -1.0f : (x > 1.0f ? 1.0f : x);
-    OBSCURA_PACK_PRECISE const float scaled = c * 32767.0f + 32767.5f;  // 0..65534.5, so floor never sees < 0
-    return (OBSCURA_PACK_UINT(packFloor(scaled)) + 1u) & 0xffffu;       // 1..65535 stands for -32767..32767,
-}                                                                    // shifted: 0 is left unused
+    OBSCURA_PACK_PRECISE const float scaled = c * 32767.0f + 32767.5f;  // 0.5..65534.5
+    return OBSCURA_PACK_UINT(packFloor(scaled)) + 1u;
+}
 OBSCURA_PACK_INLINE float unpackSnorm16(OBSCURA_PACK_UINT q) { return (float(q) - 32768.0f) * packInverse32767(); }
 
 // Visibility in [0, 1] and a history length in [0, 2047] frames in one word.

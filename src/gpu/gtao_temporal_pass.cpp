@@ -116,6 +116,12 @@ GtaoTemporalPasses::GtaoTemporalPasses(Context::Impl& c, const ssao::GtaoSetting
 void GtaoTemporalPasses::record(VkCommandBuffer cmd, const GtaoTemporalFrameInputs& in,
                                 const std::function<void(const char*)>& mark) {
     assert(in.camera.width == width_ && in.camera.height == height_);
+    const bool useHistory = temporal_.temporal && recorded_ > 0;
+    // Checked even in release builds: without it the shader would read the 4-float placeholder as a depth
+    // plane, out of bounds on the device.
+    if (useHistory && variant_.callerKeepsDepth && !in.previousDepth)
+        fail("gtao temporal", "callerKeepsDepth needs the previous frame's depth buffer (previousDepth) from the "
+                              "second frame on");
     Context::Impl& c = context_;
     const auto stage = [&](const char* name) {
         if (mark) mark(name);
@@ -147,7 +153,6 @@ void GtaoTemporalPasses::record(VkCommandBuffer cmd, const GtaoTemporalFrameInpu
 
     // 4. Reprojection and exponential accumulation into the other history set. Without temporal filtering the
     // same pass runs with no history: it writes the view bent normals and the planes a later frame would read.
-    const bool useHistory = temporal_.temporal && recorded_ > 0;
     const GtaoTemporalConstants tk = gtaoTemporalConstants(temporal_, in.camera, previousCamera_, useHistory);
     const History& previous = history_[current_];
     const History& next = history_[1 - current_];
@@ -158,9 +163,8 @@ void GtaoTemporalPasses::record(VkCommandBuffer cmd, const GtaoTemporalFrameInpu
                     temporal_.packedHistory ? 1 : 0, variant_.callerKeepsDepth ? 0 : 1});
     // (kTemporalSpecGridStep, DepthSigma, BentNormal, PackedHistory, DepthCopy.) The previous depth is the
     // history's copy, or the caller's buffer of the last frame, which unused_ stands for on a first frame.
-    assert(!useHistory || !variant_.callerKeepsDepth || in.previousDepth);
     const Buffer& previousDepth = !variant_.callerKeepsDepth ? previous.depth
-                                  : useHistory && in.previousDepth ? *in.previousDepth
+                                  : useHistory                     ? *in.previousDepth
                                                                    : unused_;
     const Buffer& depthOut = variant_.callerKeepsDepth ? unused_ : next.depth;
     // Packed, the length travels in the visibility's word: unused_ stands for the length planes.

@@ -50,7 +50,8 @@ struct GtaoTemporalFrameInputs {
     Camera camera;         // of the passes' size
     int frameIndex;        // selects the rotation (ssao::gtaoConstants' frameIndex)
     // With GtaoTemporalVariant::callerKeepsDepth: the previous recorded frame's `depth` buffer, unchanged
-    // since that frame (an engine that keeps last frame's depth, as TAA does); ignored otherwise.
+    // since that frame (an engine that keeps last frame's depth, as TAA does); record() throws
+    // obscura::Error without it on a frame that uses the history. Ignored otherwise.
     const Buffer* previousDepth = nullptr;
 };
 
@@ -126,7 +127,9 @@ private:
     Buffer bentView_;
     History history_[2];
     GtaoTemporalVariant variant_;
-    Buffer unused_;  // bound where a bent-normal buffer would be, without bentNormals; never accessed
+    // Bound at the bindings a variant leaves untouched (bent normals, length planes, depth copy); never read
+    // or written.
+    Buffer unused_;
     int current_ = 0;  // the set the last recorded frame wrote
     int recorded_ = 0;
     Camera previousCamera_;

@@ -63,7 +63,9 @@ TEST_F(GtaoCli, BadInputFailsWithOneLine) {
                           {"--ao-output all", "--aov-dir"},
                           {"--gtao-falloff-start 1.5", "--gtao-falloff-start"},
                           {"--gtao-step-power 9", "--gtao-step-power"},
-                          {"--gtao-half-res --gtao-mode full", "--gtao-half-res"}};
+                          {"--gtao-half-res --gtao-mode full", "--gtao-half-res"},
+                          {"--gtao-packed-history --frames 1", "--gtao-packed-history"},
+                          {"--gtao-packed-history --frames 3 --gtao-mode spatial", "--gtao-packed-history"}};
     for (const Case& c : cases) {
         Result r = run("render plane --ao gtao --size 32x32 -q -o " + path("f.png") + " " + c.args);
         EXPECT_EQ(r.code, 1) << c.args << ": " << r.out;

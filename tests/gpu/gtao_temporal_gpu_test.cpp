@@ -21,6 +21,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <functional>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -144,6 +145,30 @@ ssao::GtaoTemporalSettings mode(bool temporal, bool half) {
     t.temporal = temporal;
     t.halfResolution = half;
     return t;
+}
+
+std::vector<std::uint32_t> downloadWords(Context::Impl& c, const Buffer& b, std::size_t count) {
+    std::vector<std::uint32_t> v(count);
+    download(c, b, v.data(), count * sizeof(std::uint32_t));
+    return v;
+}
+
+// Records the frames through two pass objects, both in one submission per frame, and calls compare(f) once
+// frame f has run. Every frame's depth stays uploaded and each frame is given the previous one's, which a
+// pass object with callerKeepsDepth reads (the others ignore it).
+void recordSideBySide(Context::Impl& c, GtaoTemporalPasses& a, GtaoTemporalPasses& b,
+                      const std::vector<GBuffer>& gbuffers, const std::function<void(std::size_t)>& compare) {
+    std::vector<Buffer> depth;
+    for (std::size_t f = 0; f < gbuffers.size(); ++f) {
+        depth.push_back(uploadChannels(c, gbuffers[f].depth, 1));
+        const Buffer normal = uploadChannels(c, gbuffers[f].normal, 3);
+        const GtaoTemporalFrameInputs in{depth[f], normal, gbuffers[f].camera, int(f), f > 0 ? &depth[f - 1] : nullptr};
+        c.submit([&](VkCommandBuffer cmd) {
+            a.record(cmd, in);
+            b.record(cmd, in);
+        });
+        compare(f);
+    }
 }
 
 } // namespace
@@ -277,33 +302,24 @@ TEST(GpuGtaoTemporal, VisibilityOnlyGivesTheSameVisibility) {
     const int w = 97, h = 61;
     const std::vector<GBuffer> gbuffers = path("demo", w, h, 4);
     const ssao::GtaoSettings settings = preset(ssao::GtaoQuality::Medium);
-    const auto words = [&](const Buffer& b) {
-        std::vector<std::uint32_t> v(std::size_t(w) * std::size_t(h));
-        download(c, b, v.data(), v.size() * sizeof(std::uint32_t));
-        return v;
-    };
+    const std::size_t pixels = std::size_t(w) * std::size_t(h);
     for (const auto& [half, packed] : {std::pair{false, false}, std::pair{true, false}, std::pair{false, true}}) {
         ssao::GtaoTemporalSettings t = mode(true, half);
         t.packedHistory = packed;  // then the visibility plane holds visibility and length in one word
         GtaoTemporalPasses full(c, settings, t, w, h);
         GtaoTemporalPasses aoOnly(c, settings, t, w, h, {.bentNormals = false});
         int differing = 0, occluded = 0;
-        for (std::size_t f = 0; f < gbuffers.size(); ++f) {
-            const Buffer depth = uploadChannels(c, gbuffers[f].depth, 1);
-            const Buffer normal = uploadChannels(c, gbuffers[f].normal, 3);
-            c.submit([&](VkCommandBuffer cmd) {
-                full.record(cmd, {depth, normal, gbuffers[f].camera, int(f)});
-                aoOnly.record(cmd, {depth, normal, gbuffers[f].camera, int(f)});
-            });
-            const std::vector<std::uint32_t> a = words(full.visibility()), b = words(aoOnly.visibility());
-            const std::vector<std::uint32_t> la = packed ? a : words(full.historyLength());
-            const std::vector<std::uint32_t> lb = packed ? b : words(aoOnly.historyLength());
-            for (std::size_t i = 0; i < a.size(); ++i) {
+        recordSideBySide(c, full, aoOnly, gbuffers, [&](std::size_t f) {
+            const std::vector<std::uint32_t> a = downloadWords(c, full.visibility(), pixels);
+            const std::vector<std::uint32_t> b = downloadWords(c, aoOnly.visibility(), pixels);
+            const std::vector<std::uint32_t> la = packed ? a : downloadWords(c, full.historyLength(), pixels);
+            const std::vector<std::uint32_t> lb = packed ? b : downloadWords(c, aoOnly.historyLength(), pixels);
+            for (std::size_t i = 0; i < pixels; ++i) {
                 differing += a[i] != b[i] || la[i] != lb[i];
                 const float v = packed ? ssao::unpackVisibility(a[i]) : std::bit_cast<float>(a[i]);
                 occluded += f + 1 == gbuffers.size() && v < 0.99f;
             }
-        }
+        });
         const std::string name = std::string(half ? "half resolution" : "full resolution") + (packed ? ", packed" : "");
         EXPECT_EQ(differing, 0) << name;
         EXPECT_GT(occluded, w * h / 50);  // not vacuous: there is occlusion to agree on
@@ -327,34 +343,32 @@ TEST(GpuGtaoTemporal, CallerKeptDepthGivesTheSameFrames) {
     Context::Impl& c = context.impl();
     const int w = 90, h = 57;
     const std::vector<GBuffer> gbuffers = path("stairs", w, h, 4);
-    const auto words = [&](const Buffer& b, std::size_t count) {
-        std::vector<std::uint32_t> v(count);
-        download(c, b, v.data(), count * sizeof(std::uint32_t));
-        return v;
-    };
     const std::size_t pixels = std::size_t(w) * std::size_t(h);
     for (bool packed : {false, true}) {
         ssao::GtaoTemporalSettings t = mode(true, false);
         t.packedHistory = packed;
         GtaoTemporalPasses copying(c, preset(ssao::GtaoQuality::Medium), t, w, h);
         GtaoTemporalPasses keeping(c, preset(ssao::GtaoQuality::Medium), t, w, h, {.callerKeepsDepth = true});
-        std::vector<Buffer> depth;  // every frame's depth stays: the previous one is read by the next frame
         int differing = 0;
-        for (std::size_t f = 0; f < gbuffers.size(); ++f) {
-            depth.push_back(uploadChannels(c, gbuffers[f].depth, 1));
-            const Buffer normal = uploadChannels(c, gbuffers[f].normal, 3);
-            const Buffer* previous = f > 0 ? &depth[f - 1] : nullptr;
-            c.submit([&](VkCommandBuffer cmd) {
-                copying.record(cmd, {depth[f], normal, gbuffers[f].camera, int(f)});
-                keeping.record(cmd, {depth[f], normal, gbuffers[f].camera, int(f), previous});
-            });
-            differing += words(copying.visibility(), pixels) != words(keeping.visibility(), pixels);
-            differing += words(copying.bentNormal(), 3 * pixels) != words(keeping.bentNormal(), 3 * pixels);
-            if (!packed) differing += words(copying.historyLength(), pixels) != words(keeping.historyLength(), pixels);
-        }
+        recordSideBySide(c, copying, keeping, gbuffers, [&](std::size_t) {
+            const auto same = [&](const Buffer& a, const Buffer& b, std::size_t count) {
+                return downloadWords(c, a, count) == downloadWords(c, b, count);
+            };
+            differing += !same(copying.visibility(), keeping.visibility(), pixels);
+            differing += !same(copying.bentNormal(), keeping.bentNormal(), 3 * pixels);
+            if (!packed) differing += !same(copying.historyLength(), keeping.historyLength(), pixels);
+        });
         EXPECT_EQ(differing, 0) << packed;
         EXPECT_EQ(copying.bytesPerFrame() - keeping.bytesPerFrame(), pixels * sizeof(float)) << packed;
     }
+    // A history frame without the previous depth is refused in words before anything is recorded.
+    GtaoTemporalPasses keeping(c, preset(ssao::GtaoQuality::Low), mode(true, false), w, h, {.callerKeepsDepth = true});
+    const Buffer depth = uploadChannels(c, gbuffers[0].depth, 1);
+    const Buffer normal = uploadChannels(c, gbuffers[0].normal, 3);
+    c.submit([&](VkCommandBuffer cmd) { keeping.record(cmd, {depth, normal, gbuffers[0].camera, 0}); });
+    EXPECT_THROW(c.submit([&](VkCommandBuffer cmd) { keeping.record(cmd, {depth, normal, gbuffers[1].camera, 1}); }),
+                 Error);
+    EXPECT_EQ(keeping.framesRecorded(), 1);
     EXPECT_EQ(testing::validationReport(context), "");
 }
 

@@ -114,15 +114,14 @@ vec2 previousPixelFromView(vec3 p, out float depth) {
 // previousDepth_, previousNormalWorld_, result_.visibility, bentWorld_ and historyLength_ at pixel i. With
 // kPackedHistory the CPU stores the values the packed words decode to, so both read the same floats.
 float previousDepthAt(uint i) { return uintBitsToFloat(previousDepth[i]); }
-vec3 wordsAt(uint i, bool packed, bool bent) {
-    if (packed) return unpackOctahedral(bent ? previousBentWorld[i] : previousNormalWorld[i]);
-    if (bent)
-        return uintBitsToFloat(uvec3(previousBentWorld[3 * i], previousBentWorld[3 * i + 1], previousBentWorld[3 * i + 2]));
-    return uintBitsToFloat(
-        uvec3(previousNormalWorld[3 * i], previousNormalWorld[3 * i + 1], previousNormalWorld[3 * i + 2]));
+vec3 previousNormalWorldAt(uint i) {
+    if (kPackedHistory != 0) return unpackOctahedral(previousNormalWorld[i]);
+    return uintBitsToFloat(uvec3(previousNormalWorld[3 * i], previousNormalWorld[3 * i + 1], previousNormalWorld[3 * i + 2]));
 }
-vec3 previousNormalWorldAt(uint i) { return wordsAt(i, kPackedHistory != 0, false); }
-vec3 previousBentWorldAt(uint i) { return wordsAt(i, kPackedHistory != 0, true); }
+vec3 previousBentWorldAt(uint i) {
+    if (kPackedHistory != 0) return unpackOctahedral(previousBentWorld[i]);
+    return uintBitsToFloat(uvec3(previousBentWorld[3 * i], previousBentWorld[3 * i + 1], previousBentWorld[3 * i + 2]));
+}
 float previousVisibilityAt(uint i) {
     return kPackedHistory != 0 ? unpackVisibility(previousVisibility[i]) : uintBitsToFloat(previousVisibility[i]);
 }
