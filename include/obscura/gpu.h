@@ -91,8 +91,15 @@ Image bilateralFilter(Context& context, const Image& ao, const GBuffer& gbuffer,
 // settings, validation, errors and output (visibility, sky 1; view-space bent normals, sky 0). Every option
 // of the constants is supported; the result differs from the CPU's by the GPU's sin, cos, acos, atan and
 // pow (tests/gpu bound it).
-ssao::GtaoResult computeGtao(Context& context, const GBuffer& gbuffer, const ssao::GtaoConstants& constants);
+//
+// GtaoOutputs::Visibility is the AO-only pass (kGtaoSpecBentNormal 0): the same visibility bit for bit, without
+// the bent normal's arithmetic and its 12 bytes per pixel; the result's bentNormal is then empty. For a caller
+// that shades with visibility alone, as XeGTAO's default does.
+enum class GtaoOutputs { VisibilityAndBentNormal, Visibility };
+ssao::GtaoResult computeGtao(Context& context, const GBuffer& gbuffer, const ssao::GtaoConstants& constants,
+                             GtaoOutputs outputs = GtaoOutputs::VisibilityAndBentNormal);
 // Validates the settings, then computeGtao(context, gbuffer, ssao::gtaoConstants(settings, gbuffer.camera)).
-ssao::GtaoResult computeGtao(Context& context, const GBuffer& gbuffer, const ssao::GtaoSettings& settings);
+ssao::GtaoResult computeGtao(Context& context, const GBuffer& gbuffer, const ssao::GtaoSettings& settings,
+                             GtaoOutputs outputs = GtaoOutputs::VisibilityAndBentNormal);
 
 } // namespace obscura::gpu

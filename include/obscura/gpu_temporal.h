@@ -28,6 +28,7 @@
 namespace obscura::gpu {
 
 class GtaoTemporalPasses;  // src/gpu/gtao_temporal_pass.h
+class Buffer;              // src/gpu/buffer.h
 
 // ssao::reconstructInterleaved: `values` 1 or 3 channels, `depth` and `normal` (at least 3 channels) of the
 // same size; the first 1 and 3 channels are read, as the CPU does. Sky pixels keep their value.
@@ -41,17 +42,22 @@ Image upsampleDepthAware(Context& context, const Image& low, const Image& lowDep
 
 // ssao::GtaoTemporal on the GPU. The context must outlive it. Results differ from the CPU's by the GPU's
 // trigonometry in the GTAO pass and its exp in the filters, and by what they feed through the rejection
-// tests over frames.
+// tests over frames. It keeps the previous frame's uploaded depth for the reprojection, as an engine with TAA
+// does, so the history holds no copy of depth (the same results as with the copy).
 class GtaoTemporal {
 public:
-    // Validates both settings (throws obscura::Error with the CPU's messages).
-    GtaoTemporal(Context& context, const ssao::GtaoSettings& settings, const ssao::GtaoTemporalSettings& temporal);
+    // Validates both settings (throws obscura::Error with the CPU's messages). With GtaoOutputs::Visibility
+    // the passes compute, filter and accumulate visibility alone: the same visibility and history length bit
+    // for bit, and frame()'s bentNormal is empty.
+    GtaoTemporal(Context& context, const ssao::GtaoSettings& settings, const ssao::GtaoTemporalSettings& temporal,
+                 GtaoOutputs outputs = GtaoOutputs::VisibilityAndBentNormal);
     ~GtaoTemporal();
     GtaoTemporal(GtaoTemporal&&) noexcept;
     GtaoTemporal& operator=(GtaoTemporal&&) noexcept;
 
     // Uploads the G-buffer's depth and normals, runs one frame in one submission and downloads its result
-    // (visibility and view-space bent normal). The camera may move; the size must stay.
+    // (visibility and, unless GtaoOutputs::Visibility, view-space bent normal). The camera may move; the size
+    // must stay.
     const ssao::GtaoResult& frame(const GBuffer& gbuffer);
     // Frames accumulated per pixel in the last result (downloaded on each call); empty before the first.
     Image historyLength() const;
@@ -63,9 +69,11 @@ private:
     Context* context_;
     ssao::GtaoSettings settings_;
     ssao::GtaoTemporalSettings temporal_;
+    GtaoOutputs outputs_;
     int frame_ = 0;
     ssao::GtaoResult result_;
     std::unique_ptr<GtaoTemporalPasses> passes_;  // made for the first frame's size
+    std::unique_ptr<Buffer> previousDepth_;       // the last frame's upload, read by the next frame
 };
 
 // The push constants of gtao_temporal.comp (temporal_layouts.h), for an engine that records the shaders

@@ -35,12 +35,13 @@ void recordGtao(Context::Impl& c, VkCommandBuffer cmd, const GtaoBuffers& b, con
                           (k.width + gridStep - 1) / gridStep, (k.height + gridStep - 1) / gridStep);
 }
 
-ssao::GtaoResult computeGtao(Context& context, const GBuffer& g, const ssao::GtaoConstants& k) {
+ssao::GtaoResult computeGtao(Context& context, const GBuffer& g, const ssao::GtaoConstants& k, GtaoOutputs outputs) {
     ssao::checkGtaoBuffers(g, k);  // ssao::computeGtao's check and message; the shader checks nothing
 
+    const bool bentNormal = outputs == GtaoOutputs::VisibilityAndBentNormal;
     ssao::GtaoResult r;
     r.visibility = Image(k.width, k.height, 1, 1.0f);
-    r.bentNormal = Image(k.width, k.height, 3, 0.0f);
+    if (bentNormal) r.bentNormal = Image(k.width, k.height, 3, 0.0f);
     const std::size_t pixels = std::size_t(k.width) * std::size_t(k.height);
     if (pixels == 0) return r;  // no buffer of 0 bytes
 
@@ -48,16 +49,19 @@ ssao::GtaoResult computeGtao(Context& context, const GBuffer& g, const ssao::Gta
     const Buffer depth = upload(c, g.depth.pixels.data(), pixels * sizeof(float));
     const Buffer normal = upload(c, g.normal.pixels.data(), 3 * pixels * sizeof(float));
     const Buffer visibility(c, pixels * sizeof(float), MemoryUse::Device);
-    const Buffer bent(c, 3 * pixels * sizeof(float), MemoryUse::Device);
-    c.submit([&](VkCommandBuffer cmd) { recordGtao(c, cmd, {depth, normal, visibility, bent}, k); }, true);
+    // Visibility alone leaves the bent-normal binding untouched: a 4-float buffer stands for it.
+    const Buffer bent(c, (bentNormal ? 3 * pixels : 4) * sizeof(float), MemoryUse::Device);
+    c.submit([&](VkCommandBuffer cmd) { recordGtao(c, cmd, {depth, normal, visibility, bent}, k, 1, bentNormal); },
+             true);
     download(c, visibility, r.visibility.pixels.data(), pixels * sizeof(float));
-    download(c, bent, r.bentNormal.pixels.data(), 3 * pixels * sizeof(float));
+    if (bentNormal) download(c, bent, r.bentNormal.pixels.data(), 3 * pixels * sizeof(float));
     return r;
 }
 
-ssao::GtaoResult computeGtao(Context& context, const GBuffer& gbuffer, const ssao::GtaoSettings& settings) {
+ssao::GtaoResult computeGtao(Context& context, const GBuffer& gbuffer, const ssao::GtaoSettings& settings,
+                             GtaoOutputs outputs) {
     settings.validate();
-    return computeGtao(context, gbuffer, ssao::gtaoConstants(settings, gbuffer.camera));
+    return computeGtao(context, gbuffer, ssao::gtaoConstants(settings, gbuffer.camera), outputs);
 }
 
 } // namespace obscura::gpu

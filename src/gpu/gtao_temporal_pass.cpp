@@ -93,7 +93,7 @@ GtaoTemporalPasses::GtaoTemporalPasses(Context::Impl& c, const ssao::GtaoSetting
     assert(width >= 1 && height >= 1);
     const std::size_t pixels = std::size_t(width) * std::size_t(height);
     const std::size_t grid = std::size_t(gridWidth_) * std::size_t(gridHeight_);
-    for (int set = 0; set < 2; ++set) {
+    for (int set = 0; set < rawSets(); ++set) {
         rawVisibility_[set] = deviceFloats(c, grid);
         if (bentNormals) rawBent_[set] = deviceFloats(c, 3 * grid);
     }
@@ -129,8 +129,9 @@ void GtaoTemporalPasses::record(VkCommandBuffer cmd, const GtaoTemporalFrameInpu
     // 1. One interleaved evaluation per grid pixel, into the raw set the previous frame did not read.
     // Without bent normals, unused_ stands for every bent-normal buffer (the shaders leave those bindings alone).
     const auto bent = [&](const Buffer& b) -> const Buffer& { return variant_.bentNormals ? b : unused_; };
-    const Buffer& rawVisibility = rawVisibility_[1 - current_];
-    const Buffer& rawBent = bent(rawBent_[1 - current_]);
+    const int rawSet = rawSets() == 2 ? 1 - current_ : 0;
+    const Buffer& rawVisibility = rawVisibility_[rawSet];
+    const Buffer& rawBent = bent(rawBent_[rawSet]);
     const ssao::GtaoConstants k = ssao::gtaoConstants(settings_, in.camera, in.frameIndex, true);
     recordGtao(c, cmd, {in.depth, in.normal, rawVisibility, rawBent}, k, step_, variant_.bentNormals);
     stage("gtao");
@@ -250,8 +251,8 @@ Image upsampleDepthAware(Context& context, const Image& low, const Image& lowDep
 }
 
 GtaoTemporal::GtaoTemporal(Context& context, const ssao::GtaoSettings& settings,
-                           const ssao::GtaoTemporalSettings& temporal)
-    : context_(&context), settings_(settings), temporal_(temporal) {
+                           const ssao::GtaoTemporalSettings& temporal, GtaoOutputs outputs)
+    : context_(&context), settings_(settings), temporal_(temporal), outputs_(outputs) {
     settings_.validate();
     temporal_.validate();
 }
@@ -273,14 +274,22 @@ const ssao::GtaoResult& GtaoTemporal::frame(const GBuffer& g) {
     if (w < 1 || h < 1) fail("gtao temporal", "G-buffer is empty");  // nothing to upload
 
     Context::Impl& c = context_->impl();
-    if (!passes_) passes_ = std::make_unique<GtaoTemporalPasses>(c, settings_, temporal_, w, h);
+    const bool bentNormals = outputs_ == GtaoOutputs::VisibilityAndBentNormal;
+    if (!passes_)
+        passes_ = std::make_unique<GtaoTemporalPasses>(c, settings_, temporal_, w, h,
+                                                       GtaoTemporalVariant{bentNormals, /*callerKeepsDepth=*/true});
     const std::size_t pixels = std::size_t(w) * std::size_t(h);
-    const Buffer depth = uploadChannels(c, g.depth, 1);
+    auto depth = std::make_unique<Buffer>(uploadChannels(c, g.depth, 1));
     const Buffer normal = uploadChannels(c, g.normal, 3);
-    c.submit([&](VkCommandBuffer cmd) { passes_->record(cmd, {depth, normal, g.camera, frame_}); }, true);
+    c.submit([&](VkCommandBuffer cmd) { passes_->record(cmd, {*depth, normal, g.camera, frame_, previousDepth_.get()}); },
+             true);
+    previousDepth_ = std::move(depth);  // the submission has completed: the next frame may read it
     result_.visibility = historyPlane(false);
-    result_.bentNormal = Image(w, h, 3);
-    download(c, passes_->bentNormal(), result_.bentNormal.pixels.data(), 3 * pixels * sizeof(float));
+    result_.bentNormal = Image();
+    if (bentNormals) {
+        result_.bentNormal = Image(w, h, 3);
+        download(c, passes_->bentNormal(), result_.bentNormal.pixels.data(), 3 * pixels * sizeof(float));
+    }
     ++frame_;
     return result_;
 }

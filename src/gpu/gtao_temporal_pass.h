@@ -120,8 +120,11 @@ private:
     ssao::GtaoSettings settings_;
     ssao::GtaoTemporalSettings temporal_;
     int width_, height_, step_, gridWidth_, gridHeight_;
-    // Grid: the GTAO pass's output, two sets written in turn like the history, because at full resolution the
-    // last stage reads them: a frame recorded right after another must not overwrite what that one reads.
+    // Grid: the GTAO pass's output. At full resolution two sets, written in turn like the history, because the
+    // last stage reads them and a frame recorded right after another must not overwrite what that one reads.
+    // At half resolution one: the reconstruction reads it, and the barrier before the accumulation orders that
+    // read before the next frame's GTAO pass.
+    int rawSets() const { return step_ == 2 ? 1 : 2; }
     Buffer rawVisibility_[2], rawBent_[2];
     Buffer visibility_, bent_;        // grid: reconstructed (half resolution only)
     Buffer bentView_;

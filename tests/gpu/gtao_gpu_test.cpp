@@ -165,6 +165,22 @@ TEST(GpuGtao, VisibilityOnlyGivesTheSameVisibility) {
     EXPECT_EQ(testing::validationReport(context), "");
 }
 
+// The public AO-only call (GtaoOutputs::Visibility): the full call's visibility bit for bit, no bent normal.
+TEST(GpuGtao, PublicVisibilityOnlyGivesTheSameVisibility) {
+    OBSCURA_GPU_CONTEXT(context);
+    const GBuffer g = testing::render("demo", 121, 77);
+    const ssao::GtaoSettings settings = preset(ssao::GtaoQuality::High);
+    const ssao::GtaoResult full = computeGtao(context, g, settings);
+    const ssao::GtaoResult aoOnly = computeGtao(context, g, settings, GtaoOutputs::Visibility);
+    EXPECT_EQ(full.visibility.pixels, aoOnly.visibility.pixels);
+    EXPECT_EQ(full.bentNormal.pixelCount(), g.depth.pixelCount());
+    EXPECT_TRUE(aoOnly.bentNormal.empty());
+    EXPECT_GT(std::count_if(aoOnly.visibility.pixels.begin(), aoOnly.visibility.pixels.end(),
+                            [](float v) { return v < 0.99f; }),
+              std::ptrdiff_t(g.depth.pixelCount() / 50));
+    EXPECT_EQ(testing::validationReport(context), "");
+}
+
 // The same validation and messages as ssao::computeGtao.
 TEST(GpuGtao, RejectsBadInputAsTheCpuPassDoes) {
     OBSCURA_GPU_CONTEXT(context);

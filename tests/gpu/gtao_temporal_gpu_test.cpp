@@ -372,6 +372,33 @@ TEST(GpuGtaoTemporal, CallerKeptDepthGivesTheSameFrames) {
     EXPECT_EQ(testing::validationReport(context), "");
 }
 
+// The public wrapper's AO-only frames (GtaoOutputs::Visibility): the visibility and history length of the
+// full frames bit for bit, at both resolutions, and no bent normal. The wrapper reprojects with the previous
+// frame's upload (callerKeepsDepth), which the CPU comparisons above check against the reference.
+TEST(GpuGtaoTemporal, WrapperWithoutBentNormalsGivesTheSameVisibility) {
+    OBSCURA_GPU_CONTEXT(context);
+    const int w = 71, h = 45;
+    const std::vector<GBuffer> gbuffers = path("stairs", w, h, 3);
+    for (bool half : {false, true}) {
+        GtaoTemporal full(context, preset(ssao::GtaoQuality::Medium), mode(true, half));
+        GtaoTemporal aoOnly(context, preset(ssao::GtaoQuality::Medium), mode(true, half), GtaoOutputs::Visibility);
+        int occluded = 0;
+        for (const GBuffer& g : gbuffers) {
+            const ssao::GtaoResult a = full.frame(g);
+            const ssao::GtaoResult& b = aoOnly.frame(g);
+            EXPECT_EQ(a.visibility.pixels, b.visibility.pixels) << half;
+            EXPECT_EQ(full.historyLength().pixels, aoOnly.historyLength().pixels) << half;
+            EXPECT_EQ(a.bentNormal.pixelCount(), std::size_t(w) * std::size_t(h)) << half;
+            EXPECT_TRUE(b.bentNormal.empty()) << half;
+            occluded = int(std::count_if(b.visibility.pixels.begin(), b.visibility.pixels.end(),
+                                         [](float v) { return v < 0.99f; }));
+        }
+        EXPECT_GT(occluded, w * h / 50) << half;  // not vacuous
+        EXPECT_EQ(aoOnly.framesRendered(), 3);
+    }
+    EXPECT_EQ(testing::validationReport(context), "");
+}
+
 // The same validation and messages as ssao::GtaoTemporal.
 TEST(GpuGtaoTemporal, RejectsBadInputAsTheCpuPassDoes) {
     OBSCURA_GPU_CONTEXT(context);

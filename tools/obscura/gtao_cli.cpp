@@ -118,14 +118,18 @@ GtaoFrame renderGtaoFrames(const GtaoOptions& o, float radius, const trace::Trac
     temporalSettings.temporal = mode == "temporal";
     temporalSettings.halfResolution = o.halfResolution;
     temporalSettings.packedHistory = o.packedHistory;
+    const bool bent = o.output != "visibility";
+    const bool all = o.output == "all";
+    // The GPU skips the bent normal where nothing reads it: no bent-normal image, no specular occlusion (the
+    // shading uses visibility alone). Its visibility is the same bits either way.
+    const gpu::GtaoOutputs outputs = bent || o.specular != "none" ? gpu::GtaoOutputs::VisibilityAndBentNormal
+                                                                 : gpu::GtaoOutputs::Visibility;
     std::optional<ssao::GtaoTemporal> temporal;
     std::optional<gpu::GtaoTemporal> gpuTemporal;
     if (mode != "full" && context)
-        gpuTemporal.emplace(*context, settings, temporalSettings);
+        gpuTemporal.emplace(*context, settings, temporalSettings, outputs);
     else if (mode != "full")
         temporal.emplace(settings, temporalSettings);
-    const bool bent = o.output != "visibility";
-    const bool all = o.output == "all";
 
     GtaoFrame f;
     Progress p("GTAO frames", progress && o.frames > 1);
@@ -134,7 +138,8 @@ GtaoFrame renderGtaoFrames(const GtaoOptions& o, float radius, const trace::Trac
         ssao::GtaoResult r;
         const ssao::GtaoConstants constants = ssao::gtaoConstants(settings, f.gbuffer.camera, k);
         if (mode == "full")
-            r = context ? gpu::computeGtao(*context, f.gbuffer, constants) : ssao::computeGtao(f.gbuffer, constants);
+            r = context ? gpu::computeGtao(*context, f.gbuffer, constants, outputs)
+                        : ssao::computeGtao(f.gbuffer, constants);
         else
             r = context ? gpuTemporal->frame(f.gbuffer) : temporal->frame(f.gbuffer);
         f.visibility = std::move(r.visibility);

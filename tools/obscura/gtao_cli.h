@@ -46,7 +46,7 @@ Camera gtaoPathCamera(const Camera& base, int k);
 struct GtaoFrame {
     GBuffer gbuffer;        // the last frame's
     Image visibility;       // 1 channel
-    Image bentNormal;       // 3 channels, view space
+    Image bentNormal;       // 3 channels, view space; empty on the GPU when nothing reads it
     Image multibounce;      // 3 channels G(A, albedo), empty unless --multibounce
     Image specular;         // 1 channel, empty unless --specular-occlusion
 };
