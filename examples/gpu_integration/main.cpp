@@ -274,6 +274,9 @@ int main(int argc, char** argv) try {
     std::memcpy(spatial.data, blur.logSpatial.data(), spatial.bytes);
     using namespace obscura::gpu;
     const Pass prepare(e, "prepare_depth", kPrepBindingCount, kPrepPushConstantBytes, 1);
+    // No specialization: gtao.comp's defaults are the default settings' modes (planar samples, cosine weighting,
+    // no thickness, column rule) and bent normals on. Other settings set kGtaoSpecSampling ... BeyondRadius
+    // from gtaoK's fields (layouts.h).
     const Pass gtao(e, "gtao", kGtaoBindingCount, kGtaoPushConstantBytes, 1);
     const Pass bilateral(e, "bilateral_separable", kBilateralBindingCount, kBilateralPushConstantBytes, 2);
 

@@ -32,6 +32,7 @@ struct GpuBenchSettings {
                                     // copy in the history (GtaoTemporalVariant::callerKeepsDepth)
     bool bentNormals = true;  // the GTAO cases compute, filter and accumulate bent normals; false: visibility
                               // only (kGtaoSpecBentNormal 0), as an engine without bent-normal lighting runs them
+    ssao::GtaoSampling sampling = ssao::GtaoSampling::Planar;  // the GTAO cases' horizon samples (GtaoSettings)
     void validate() const;   // throws obscura::Error("gpu-bench-<field>: ...")
 };
 

@@ -28,6 +28,13 @@ enum class GtaoQuality { Low, Medium, High, Ultra };
 // while the wall under it is not. Column keeps the assumption consistent and counts the column's part
 // within r; Drop ignores the sample, as most implementations do, and loses that occlusion.
 enum class GtaoBeyondRadius { Column, Drop };
+// How a horizon sample at a continuous image position reads the depth buffer. Planar interpolates inverse
+// depth over the 2x2 quad around it where those pixels lie on one plane, so the point stays on the slice
+// line (five reads and four reciprocals). Nearest takes the nearest pixel's own point (one read), as XeGTAO
+// does: at grazing angles that point can sit off the slice line by metres of depth and make a false
+// horizon, so far open ground darkens (by up to 0.17 at a plane's far edge against the sky; elsewhere both
+// are within 0.001 of each other against ray tracing: docs/QUALITY.md).
+enum class GtaoSampling { Planar, Nearest };
 
 struct GtaoSettings {
     float radius = 1.0f;            // r: m, (0, 1e4]; occluders farther than r from the point do not count
@@ -41,6 +48,7 @@ struct GtaoSettings {
                                     // more samples near the centre. 1 measured closest to ray-traced AO on
                                     // every preset but low (docs/QUALITY.md)
     GtaoBeyondRadius beyondRadius = GtaoBeyondRadius::Column;
+    GtaoSampling sampling = GtaoSampling::Planar;
     GtaoWeighting weighting = GtaoWeighting::Cosine;  // App. A's uniform weighting is an option
     GtaoThickness thickness = GtaoThickness::None;
     float thicknessBlend = 0.3f;    // eq. 9 blend towards a lower sample horizon, [0, 1): 0 = plain maximum

@@ -22,6 +22,8 @@ using uint = std::uint32_t;
 #define GTAO_BITMASK_SECTORS 32
 #define GTAO_BEYOND_DROP 0        // a sample farther than r does not count
 #define GTAO_BEYOND_COLUMN 1      // ... but the depth buffer's column behind it does, where it comes within r
+#define GTAO_SAMPLING_PLANAR 0    // a horizon sample interpolates inverse depth over a planar 2x2 quad
+#define GTAO_SAMPLING_NEAREST 1   // ... or takes the nearest pixel's point: one read instead of five
 
 struct GtaoConstants {
     int width;                 // image size, pixels
@@ -47,7 +49,7 @@ struct GtaoConstants {
     int noiseMode;             // 0: fixed slice angles and step offsets; 1: per-pixel hashed jitter
     int frameIndex;            // selects the temporal rotation (of 6) and the jitter
     int beyondRadius;          // GTAO_BEYOND_*: what a sample farther than the full-weight distance stands for
-    int pad1;                  // keeps the size a multiple of 16 bytes
+    int sampling;              // GTAO_SAMPLING_*: how a horizon sample reads the depth buffer
 };
 
 #ifdef __cplusplus

@@ -33,28 +33,31 @@ AoMethod alchemy(const char* name, const char* description, ssao::AlchemyFormula
 
 // GTAO with a preset; `samples` > 0 sets the slice count to samples / (2 x steps per side), the horizon
 // samples per pixel being 2 x slices x steps. Its integral is binary AO of the same radius (default 1 m).
-ssao::GtaoSettings gtaoSettings(ssao::GtaoQuality quality, const MethodOptions& o) {
+ssao::GtaoSettings gtaoSettings(ssao::GtaoQuality quality, ssao::GtaoSampling sampling, const MethodOptions& o) {
     ssao::GtaoSettings s;
     ssao::applyQuality(s, quality);
+    s.sampling = sampling;
     if (o.radius > 0.0f) s.radius = o.radius;
     if (o.samples > 0) s.sliceCount = std::clamp(o.samples / (2 * s.stepsPerSide), 1, 64);
     return s;
 }
 
-AoMethod gtao(const char* name, const char* description, ssao::GtaoQuality quality) {
+AoMethod gtao(const char* name, const char* description, ssao::GtaoQuality quality,
+             ssao::GtaoSampling sampling = ssao::GtaoSampling::Planar) {
     return {name, description,
-            [quality](const GBuffer& g, const MethodOptions& o) {
-                if (o.gpu) {
-                    ssao::GtaoResult r = gpu::computeGtao(*o.gpu, g, gtaoSettings(quality, o));
+            [quality, sampling](const GBuffer& g, const MethodOptions& o) {
+                if (o.gpu) {  // AO alone: the method's result is its visibility
+                    ssao::GtaoResult r =
+                        gpu::computeGtao(*o.gpu, g, gtaoSettings(quality, sampling, o), gpu::GtaoOutputs::Visibility);
                     return gpu::bilateralFilter(*o.gpu, r.visibility, g, o.blur);
                 }
-                ssao::GtaoResult r = ssao::computeGtao(g, gtaoSettings(quality, o));
+                ssao::GtaoResult r = ssao::computeGtao(g, gtaoSettings(quality, sampling, o));
                 return ssao::bilateralFilter(r.visibility, g, o.blur);
             },
-            [quality](const MethodOptions& o, int rays) {
+            [quality, sampling](const MethodOptions& o, int rays) {
                 trace::ObscuranceSettings ref;
                 ref.falloff = trace::Falloff::Binary;
-                ref.radius = gtaoSettings(quality, o).radius;
+                ref.radius = gtaoSettings(quality, sampling, o).radius;
                 ref.rays = rays;
                 return ref;
             }};
@@ -71,6 +74,8 @@ const std::vector<AoMethod>& aoMethods() {
         gtao("gtao", "GTAO, Jimenez et al. 2016, high preset (3 slices x 3 steps per side, r 1 m, binary AO)",
              ssao::GtaoQuality::High),
         gtao("gtao-ultra", "GTAO, ultra preset (9 slices x 3 steps per side, r 1 m, binary AO)", ssao::GtaoQuality::Ultra),
+        gtao("gtao-nearest", "GTAO high preset with nearest-pixel horizon samples (1 depth read per sample, as XeGTAO)",
+             ssao::GtaoQuality::High, ssao::GtaoSampling::Nearest),
     };
     return methods;
 }

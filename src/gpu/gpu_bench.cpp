@@ -52,12 +52,14 @@ struct CaseSetup {
 ssao::GtaoSettings gtaoSettings(const GpuBenchSettings& s) {
     ssao::GtaoSettings g;
     ssao::applyQuality(g, s.quality);
+    g.sampling = s.sampling;
     return g;
 }
 
 std::string slicesText(const ssao::GtaoSettings& g) {
     return std::to_string(g.sliceCount) + " slice" + (g.sliceCount > 1 ? "s" : "") + " x " +
-           std::to_string(g.stepsPerSide) + " steps per side";
+           std::to_string(g.stepsPerSide) + " steps per side" +
+           (g.sampling == ssao::GtaoSampling::Nearest ? ", nearest-pixel samples" : "");
 }
 
 // The constants hold the projection only, which the rotated inputs share (their cameras differ in position).

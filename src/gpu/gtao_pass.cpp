@@ -29,7 +29,8 @@ void recordGtao(Context::Impl& c, VkCommandBuffer cmd, const GtaoBuffers& b, con
     ComputePipeline& pipeline =
         c.pipeline("gtao", shaders::gtao, std::vector<BindingKind>(kGtaoBindingCount, BindingKind::StorageBuffer),
                    kGtaoPushConstantBytes, kGtaoWorkgroupX, kGtaoWorkgroupY,
-                   {gridStep, bentNormal ? 1 : 0});  // kGtaoSpecGridStep, kGtaoSpecBentNormal
+                   // kGtaoSpecGridStep, BentNormal, then the constants' modes (Sampling ... BeyondRadius).
+                   {gridStep, bentNormal ? 1 : 0, k.sampling, k.weighting, k.thicknessMode, k.beyondRadius});
     // In binding order: kGtaoBindingDepth, Normal, Visibility, BentNormal.
     pipeline.dispatchGrid(cmd, {&b.depth, &b.normal, &b.visibility, &b.bentNormal}, &k, sizeof k,
                           (k.width + gridStep - 1) / gridStep, (k.height + gridStep - 1) / gridStep);

@@ -56,15 +56,15 @@ float fract(float v) { return v - std::floor(v); }
 // The quad around (sx, sy) is tried first, then the three other quads that hold the nearest pixel as a
 // corner (extrapolating an affine function is exact too): that keeps the interpolation at a surface's
 // edge against the sky, at its corners (where only the diagonal quad lies on the surface) and at the image
-// border. Across an edge or a silhouette the nearest pixel's own point is used. False for sky or for
-// (sx, sy) in the centre pixel (cx, cy).
+// border. Across an edge or a silhouette, and always with GTAO_SAMPLING_NEAREST, the nearest pixel's own
+// point is used. False for sky or for (sx, sy) in the centre pixel (cx, cy).
 bool samplePosition(const GtaoConstants& c, const GBuffer& g, float sx, float sy, int cx, int cy, Vec3& out) {
     const int ix = int(sx), iy = int(sy);
     if (ix == cx && iy == cy) return false;
     const float nearest = g.depth.at(ix, iy);
     if (!(nearest < 1e30f)) return false;
     const float gx = sx - 0.5f, gy = sy - 0.5f;
-    if (c.width > 1 && c.height > 1) {
+    if (c.sampling == GTAO_SAMPLING_PLANAR && c.width > 1 && c.height > 1) {
         // The quad around (sx, sy) has the nearest pixel (ix, iy) as a corner; ox, oy pick the other quads.
         const int bx = int(std::floor(gx)), by = int(std::floor(gy));
         const int ox = bx == ix ? ix - 1 : ix, oy = by == iy ? iy - 1 : iy;
@@ -180,6 +180,7 @@ GtaoConstants gtaoConstants(const GtaoSettings& s, const Camera& camera, int fra
     c.noiseMode = s.jitter ? 1 : 0;
     c.frameIndex = frameIndex;
     c.beyondRadius = s.beyondRadius == GtaoBeyondRadius::Column ? GTAO_BEYOND_COLUMN : GTAO_BEYOND_DROP;
+    c.sampling = s.sampling == GtaoSampling::Nearest ? GTAO_SAMPLING_NEAREST : GTAO_SAMPLING_PLANAR;
     return c;
 }
 

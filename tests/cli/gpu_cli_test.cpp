@@ -224,6 +224,19 @@ TEST_F(GpuCommands, BenchGpuReportsEveryCase) {
     const nlohmann::json k = nlohmann::json::parse(kept.out);
     EXPECT_EQ(k["keep_previous_depth"], true);
     EXPECT_EQ(b["cases"][1]["bytes_per_frame"].get<double>() - k["cases"][1]["bytes_per_frame"].get<double>(), px * 4);
+
+    // --gtao-sampling nearest: the same buffers (the extra reads of planar samples hit in cache), said in the
+    // report and in each GTAO case's description.
+    const CliResult nearest = runCli(small + " --gtao-sampling nearest");
+    ASSERT_EQ(nearest.code, 0) << nearest.out;
+    const nlohmann::json n = nlohmann::json::parse(nearest.out);
+    EXPECT_EQ(b["gtao_sampling"], "planar");
+    EXPECT_EQ(n["gtao_sampling"], "nearest");
+    for (int i = 0; i < 2; ++i) {
+        EXPECT_EQ(b["cases"][i]["bytes_per_frame"], n["cases"][i]["bytes_per_frame"]);
+        EXPECT_NE(n["cases"][i]["description"].get<std::string>().find("nearest-pixel samples"), std::string::npos);
+        EXPECT_EQ(b["cases"][i]["description"].get<std::string>().find("nearest"), std::string::npos);
+    }
 }
 
 TEST_F(GpuCommands, BenchGpuRejectsBadArguments) {
@@ -232,6 +245,7 @@ TEST_F(GpuCommands, BenchGpuRejectsBadArguments) {
     expectFailure("bench --gpu --sizes 0x10", {"--sizes"});
     expectFailure("bench --gpu --inputs 40", {"--inputs"});
     expectFailure("bench --gpu --peak-gbps 0", {"--peak-gbps"});
+    expectFailure("bench --gpu --gtao-sampling bilinear", {"--gtao-sampling", "planar,nearest"}, 2);
     expectFailure("bench --gpu --gpu-device 99 --sizes 8x8 --frames 1", {"--gpu-device", "99"});
     expectFailure("bench", {"bench", "--gpu"});
 }

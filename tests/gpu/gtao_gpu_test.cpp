@@ -94,7 +94,7 @@ TEST(GpuGtao, MatchesTheCpuReferenceOnScenesAndPresets) {
 // well 120x90: uniform 5.7e-5 / 1.5e-4 and 2.1e-4 / 1.1e-4; heuristic thickness 8.4e-5 / 9.6e-5 and
 // 7.4e-5 / 1.1e-4; beyond radius drop 8.2e-5 / 1.5e-4 and 8.5e-5 / 1.1e-4; jitter 1.0e-4 / 1.5e-4 and
 // 8.6e-5 / 1.6e-4; falloff 0.5 with step power 2 (the GPU's pow) 8.8e-5 / 9.9e-5 and 7.4e-5 / 9.7e-5;
-// interleaved 1.4e-4 / up to 3.4e-4 on each frame. Bitmask thickness: 2.2e-2 / 2.4e-2 and 5.1e-3 / 6.5e-3 over
+// nearest samples (2026-11-25) 8.5e-5 / 1.0e-4 and 7.4e-5 / 1.1e-4; interleaved 1.4e-4 / up to 3.4e-4 on each frame. Bitmask thickness: 2.2e-2 / 2.4e-2 and 5.1e-3 / 6.5e-3 over
 // all pixels from 6 and 2 pixels beyond the bounds (the size of one sector of one slice, see allowedBeyond),
 // and 8.7e-4 / 1.5e-3 and 7.3e-4 / 1.1e-3 on the rest.
 TEST(GpuGtao, MatchesTheCpuReferenceWithEveryOption) {
@@ -116,10 +116,12 @@ TEST(GpuGtao, MatchesTheCpuReferenceWithEveryOption) {
     falloff.falloffStart = 0.5f;
     falloff.stepPower = 2.0f;
     falloff.radius = 0.7f;
+    ssao::GtaoSettings nearest = high;
+    nearest.sampling = ssao::GtaoSampling::Nearest;
     for (const auto& [name, s] :
          {std::pair{"uniform", uniform}, std::pair{"heuristic thickness", heuristic},
           std::pair{"bitmask thickness", bitmask}, std::pair{"beyond radius drop", drop}, std::pair{"jitter", jitter},
-          std::pair{"falloff 0.5, step power 2", falloff}}) {
+          std::pair{"falloff 0.5, step power 2", falloff}, std::pair{"nearest samples", nearest}}) {
         expectMatch(context, g, ssao::gtaoConstants(s, g.camera, 3), std::string("stairs ") + name);
         expectMatch(context, well, ssao::gtaoConstants(s, well.camera, 3), std::string("well ") + name);
     }

@@ -50,6 +50,7 @@ struct GpuBenchOptions {
     bool visibilityOnly = false;
     bool packedHistory = false;
     bool keepPreviousDepth = false;
+    std::string sampling = "planar";
     double peakGbps = 3000.0;
     int device = -1;
     bool json = false;
@@ -86,6 +87,11 @@ void GpuBenchOptions::add(CLI::App& bench) {
     bench.add_flag("--keep-previous-depth", keepPreviousDepth,
                    "--gpu: the temporal cases read the previous frame's depth buffer instead of a copy in the history, "
                    "as an engine that keeps last frame's depth (for TAA, say) can");
+    bench.add_option("--gtao-sampling", sampling,
+                     "--gpu: how the GTAO cases' horizon samples read depth: planar (inverse depth over a planar 2x2 "
+                     "quad, 5 reads) or nearest (the nearest pixel, 1 read, as XeGTAO)")
+        ->check(CLI::IsMember({"planar", "nearest"}))
+        ->capture_default_str();
     bench.add_option("--peak-gbps", peakGbps,
                      "--gpu: bandwidth ceiling the traffic is compared with, GB/s (default: a compute-shader copy on "
                      "an H100, 3.0 TB/s)")
@@ -104,6 +110,7 @@ void runGpuBench(const GpuBenchOptions& o) {
     settings.bentNormals = !o.visibilityOnly;
     settings.packedHistory = o.packedHistory;
     settings.callerKeepsDepth = o.keepPreviousDepth;
+    settings.sampling = o.sampling == "nearest" ? ssao::GtaoSampling::Nearest : ssao::GtaoSampling::Planar;
     try {
         settings.validate();
     } catch (const Error& e) {
@@ -156,12 +163,14 @@ void runGpuBench(const GpuBenchOptions& o) {
     report["bent_normals"] = settings.bentNormals;
     report["packed_history"] = settings.packedHistory;
     report["keep_previous_depth"] = settings.callerKeepsDepth;
+    report["gtao_sampling"] = o.sampling;
     report["validation"] = context.validation();
     if (!o.json) {
         std::string variants;  // the flags that change what the GTAO cases run
         if (o.visibilityOnly) variants += ", GTAO visibility only";
         if (o.packedHistory) variants += ", packed history";
         if (o.keepPreviousDepth) variants += ", previous depth kept";
+        if (o.sampling == "nearest") variants += ", GTAO nearest-pixel samples";
         std::printf("obscura bench --gpu: %s (%s, Vulkan %s), %s\n", info.name.c_str(), info.driver.c_str(),
                     apiText(info.apiVersion).c_str(), date);
         std::printf("scene %s%s; GPU ms from timestamps, median of %d frames after %d warm-up, rotating %d inputs;\n"

@@ -74,6 +74,12 @@ void GtaoOptions::add(CLI::App& app) {
                    "that comes within the radius (column), or not at all (drop)")
         ->check(CLI::IsMember({"column", "drop"}))
         ->capture_default_str();
+    app.add_option("--gtao-sampling", sampling,
+                   "GTAO: how a horizon sample reads depth: planar (inverse depth interpolated over a planar 2x2 quad, "
+                   "on the slice line) or nearest (the nearest pixel: 1 read instead of 5, as XeGTAO; far open ground "
+                   "at grazing angles darkens)")
+        ->check(CLI::IsMember({"planar", "nearest"}))
+        ->capture_default_str();
     app.add_option("--gtao-step-power", stepPower,
                    "GTAO: horizon step distribution, distance ~ (k / steps)^power, [1, 4]; > 1 packs steps near the centre")
         ->capture_default_str();
@@ -87,6 +93,7 @@ ssao::GtaoSettings GtaoOptions::settings(float radius) const {
     s.falloffStart = falloffStart;
     s.beyondRadius = beyondRadius == "drop" ? ssao::GtaoBeyondRadius::Drop : ssao::GtaoBeyondRadius::Column;
     s.stepPower = stepPower;
+    s.sampling = sampling == "nearest" ? ssao::GtaoSampling::Nearest : ssao::GtaoSampling::Planar;
     s.thickness = thickness == "heuristic" ? ssao::GtaoThickness::Heuristic
                   : thickness == "bitmask" ? ssao::GtaoThickness::Bitmask
                                            : ssao::GtaoThickness::None;

@@ -31,6 +31,7 @@ struct GtaoOptions {
     std::string thickness = "none";
     float falloffStart = 1.0f;
     std::string beyondRadius = "column";
+    std::string sampling = "planar";
     float stepPower = 1.0f;
 
     void add(CLI::App& app);

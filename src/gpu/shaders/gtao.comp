@@ -14,7 +14,9 @@
 // What remains is the GPU's sin, cos, acos, atan and pow, which round differently from libm: tests/gpu
 // measure the difference.
 //
-// With the specialization constant kGtaoSpecBentNormal 0 (layouts.h) the pass writes visibility alone.
+// With the specialization constant kGtaoSpecBentNormal 0 (layouts.h) the pass writes visibility alone. The
+// modes of the constants (sampling, weighting, thickness, beyond radius) are specialization constants too,
+// so that each variant compiles without the others' code.
 // The grid step (a specialization constant, temporal_layouts.h) is the loop of step 1 of
 // ssao::GtaoTemporal::frame (src/ssao/gtao_temporal.cpp): with step 2 each invocation evaluates every other
 // pixel in x and y, with the interleave index of its place in the half-resolution grid.
@@ -29,6 +31,12 @@ layout(local_size_x = kGtaoWorkgroupX, local_size_y = kGtaoWorkgroupY, local_siz
 
 layout(constant_id = kGtaoSpecGridStep) const int kGridStep = 1;
 layout(constant_id = kGtaoSpecBentNormal) const int kBentNormal = 1;
+// The constants' modes, as specialization constants (layouts.h says why); recordGtao sets each from the
+// GtaoConstants field named beside it, which the shader does not read.
+layout(constant_id = kGtaoSpecSampling) const int kSampling = GTAO_SAMPLING_PLANAR;             // k.sampling
+layout(constant_id = kGtaoSpecWeighting) const int kWeighting = GTAO_WEIGHTING_COSINE;          // k.weighting
+layout(constant_id = kGtaoSpecThicknessMode) const int kThicknessMode = GTAO_THICKNESS_NONE;    // k.thicknessMode
+layout(constant_id = kGtaoSpecBeyondRadius) const int kBeyondRadius = GTAO_BEYOND_COLUMN;       // k.beyondRadius
 
 layout(push_constant, std430) uniform Constants { GtaoConstants k; };
 layout(std430, binding = kGtaoBindingDepth) readonly buffer DepthPlane { float depthPlane[]; };
@@ -97,7 +105,7 @@ bool samplePosition(float sx, float sy, int cx, int cy, out vec3 result) {
     const float nearest = depthAt(ix, iy);
     if (!(nearest < 1e30)) return false;
     const float gx = sx - 0.5, gy = sy - 0.5;
-    if (k.width > 1 && k.height > 1) {
+    if (kSampling == GTAO_SAMPLING_PLANAR && k.width > 1 && k.height > 1) {
         const int bx = int(floor(gx)), by = int(floor(gy));
         const int ox = bx == ix ? ix - 1 : ix, oy = by == iy ? iy - 1 : iy;
         const ivec2 quads[4] = ivec2[4](ivec2(bx, by), ivec2(ox, by), ivec2(bx, oy), ivec2(ox, oy));
@@ -127,7 +135,7 @@ struct ArcWeights {
 };
 ArcWeights arc(float t0, float t1, float n) {
     ArcWeights w;
-    if (k.weighting == GTAO_WEIGHTING_UNIFORM)
+    if (kWeighting == GTAO_WEIGHTING_UNIFORM)
         w.visibility = 0.5 * (uniformArcIntegral(t1) - uniformArcIntegral(t0));
     else
         w.visibility = arcIntegral(t1, n) - arcIntegral(t0, n);
@@ -207,7 +215,7 @@ GtaoPixel gtaoPixel(int x, int y, int interleave) {
                 if (!(distance > 0.0)) continue;
                 const float weight = saturate((k.radius - distance) * k.falloffInvRange);
 
-                if (k.thicknessMode == GTAO_THICKNESS_BITMASK) {
+                if (kThicknessMode == GTAO_THICKNESS_BITMASK) {
                     if (weight <= 0.0) continue;
                     const vec3 back = sp + normalize3(sp) * k.bitmaskThickness - p;
                     const float tFront = atan2(dot3(delta, t), dot3(delta, v));
@@ -222,7 +230,7 @@ GtaoPixel gtaoPixel(int x, int y, int interleave) {
                 }
                 const float lowCos = side == 0 ? lowCos0 : lowCos1;
                 float sampleCos = lerp(lowCos, dot3(delta, v) / distance, weight);
-                if (k.beyondRadius == GTAO_BEYOND_COLUMN && distance > k.falloffFrom) {
+                if (kBeyondRadius == GTAO_BEYOND_COLUMN && distance > k.falloffFrom) {
                     const vec3 u = normalize3(sp);
                     const float du = dot3(delta, u);
                     const float disc = du * du - (distance - k.falloffFrom) * (distance + k.falloffFrom);
@@ -243,7 +251,7 @@ GtaoPixel gtaoPixel(int x, int y, int interleave) {
         }
 
         float sliceVisibility = 0.0, alongV = 0.0, alongT = 0.0;
-        if (k.thicknessMode == GTAO_THICKNESS_BITMASK) {
+        if (kThicknessMode == GTAO_THICKNESS_BITMASK) {
             for (int i = 0; i < GTAO_BITMASK_SECTORS; ++i) {
                 if ((occluded & (1u << i)) != 0u) continue;
                 const float t0 = n - kHalfPi + kPi * float(i) / GTAO_BITMASK_SECTORS;
@@ -262,7 +270,7 @@ GtaoPixel gtaoPixel(int x, int y, int interleave) {
             alongV = w.alongV;
             alongT = w.alongT;
         }
-        const float normalScale = k.weighting == GTAO_WEIGHTING_UNIFORM ? 1.0 : projectedLength;
+        const float normalScale = kWeighting == GTAO_WEIGHTING_UNIFORM ? 1.0 : projectedLength;
         visibility += normalScale * sliceVisibility;
         const ArcWeights open = arc(n - kHalfPi, n + kHalfPi, n);
         unoccluded += normalScale * open.visibility;

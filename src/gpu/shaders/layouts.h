@@ -61,6 +61,18 @@ OBSCURA_CONST int kGtaoBindingCount = 4;
 // default) writes the bent normals; 0 computes visibility alone, for callers that want AO only (as XeGTAO
 // does by default), and leaves kGtaoBindingBentNormal untouched: bind any storage buffer there.
 OBSCURA_CONST int kGtaoSpecBentNormal = 1;
+// constant_ids of the modes of GtaoConstants: sampling, weighting, thicknessMode and beyondRadius. The
+// kernel branches on these specialization constants, not on the push constants the CPU kernel reads, so
+// that a variant's code holds nothing of the modes it does not use: a branch on a push constant is uniform,
+// but the compiler keeps both paths, and their registers. On lavapipe (2026-11-25, high preset, 640x360) the
+// unused bitmask path cost 27% of the pass, and behind a push-constant branch nearest sampling saved 12 ms
+// of the 41 it saves specialized. The host sets them
+// from the constants it pushes (recordGtao), so both always agree; an engine that records gtao.comp
+// itself sets each from its GtaoConstants field.
+OBSCURA_CONST int kGtaoSpecSampling = 2;
+OBSCURA_CONST int kGtaoSpecWeighting = 3;
+OBSCURA_CONST int kGtaoSpecThicknessMode = 4;
+OBSCURA_CONST int kGtaoSpecBeyondRadius = 5;
 // The push constants are one GtaoConstants (obscura/gtao_constants.h).
 OBSCURA_CONST int kGtaoPushConstantBytes = 96;
 OBSCURA_CONST int kGtaoWorkgroupX = 8;
