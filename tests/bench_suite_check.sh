@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# scripts/bench-gpu-suite on this build, at a tiny size on whatever Vulkan device there is (lavapipe in CI):
+# the four JSON files, each with its variant's flags; FLAGS after -- reach every run; a failing run stops
+# the suite with a non-zero exit and leaves no JSON of its own. Exit 77 (skipped) without a Vulkan device.
+# Arguments: source dir, build dir, scratch dir.
+set -euo pipefail
+src=$1 build=$2 work=$3
+rm -rf "$work"
+mkdir -p "$work"
+fail() { echo "bench_suite_check: $*" >&2; exit 1; }
+tool=$build/obscura
+
+if ! "$tool" bench --gpu --sizes 8x8 --cases gtao --frames 1 --warmup 0 --inputs 1 >/dev/null 2>"$work/probe"; then
+  echo "bench_suite_check: no Vulkan device: $(cat "$work/probe")"
+  exit 77
+fi
+
+tiny=(--sizes 24x16 --frames 2 --warmup 0 --inputs 1)
+"$src/scripts/bench-gpu-suite" "$tool" "$work/out" -- "${tiny[@]}" 2>"$work/log" || fail "the suite failed: $(cat "$work/log")"
+expect() {  # file, then the text each must hold
+  local file=$work/out/$1
+  shift
+  [ -s "$file" ] || fail "$file is missing"
+  for needle in "$@"; do grep -q -- "$needle" "$file" || fail "$file lacks $needle"; done
+}
+expect default.json '"bent_normals": true' '"gtao_sampling": "planar"' '"case": "alchemy"' '"width": 24' '"frames": 2'
+expect ao.json '"bent_normals": false' '"gtao_sampling": "planar"' '"case": "gtao-temporal-half"'
+expect ao-nearest.json '"bent_normals": false' '"gtao_sampling": "nearest"' 'nearest-pixel samples'
+expect ao-lightest.json '"packed_history": true' '"keep_previous_depth": true' '"case": "gtao-temporal"'
+if grep -q '"case": "alchemy"' "$work/out/ao-lightest.json"; then fail "ao-lightest ran more than the temporal cases"; fi
+[ "$(ls -A "$work/out" | wc -l)" -eq 4 ] || fail "expected exactly 4 files, got: $(ls -A "$work/out")"
+
+# A bad flag fails the first run: non-zero exit, its one-line error, nothing written.
+if "$src/scripts/bench-gpu-suite" "$tool" "$work/bad" -- --frames 0 2>"$work/err"; then fail "--frames 0 did not fail"; fi
+grep -q -- "--frames" "$work/err" || fail "the error does not name --frames: $(cat "$work/err")"
+[ -z "$(ls -A "$work/bad")" ] || fail "a failed run left files: $(ls -A "$work/bad")"
+if "$src/scripts/bench-gpu-suite" "$work/no-such-tool" "$work/none" 2>"$work/err"; then fail "a missing tool did not fail"; fi
+[ "$(wc -l <"$work/err")" -eq 1 ] || fail "expected a one-line error, got: $(cat "$work/err")"
+echo "bench_suite_check: ok"
