@@ -65,6 +65,12 @@ void runGtaoBench(const GtaoBenchOptions& o) {
                    std::to_string(s.stepsPerSide) + ")",
                timeRuns(o.repeat, [&] { ssao::computeGtao(g, c); }));
     }
+    // High with one depth read per horizon sample instead of the planar quad's five (GtaoSampling).
+    ssao::GtaoSettings nearest;
+    nearest.radius = o.radius;
+    nearest.sampling = ssao::GtaoSampling::Nearest;
+    const ssao::GtaoConstants nearestConstants = ssao::gtaoConstants(nearest, camera);
+    record("high (3x3), nearest samples", timeRuns(o.repeat, [&] { ssao::computeGtao(g, nearestConstants); }));
     // The paper's real-time configuration: one slice per pixel, high's 3 steps, reconstruction + history.
     ssao::GtaoSettings one;
     one.radius = o.radius;
