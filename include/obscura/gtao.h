@@ -48,7 +48,8 @@ struct GtaoSettings {
                                     // more samples near the centre. 1 measured closest to ray-traced AO on
                                     // every preset but low (docs/QUALITY.md)
     GtaoBeyondRadius beyondRadius = GtaoBeyondRadius::Column;
-    GtaoSampling sampling = GtaoSampling::Planar;
+    GtaoSampling sampling = GtaoSampling::Planar;  // horizon samples' depth reads: Planar (5 reads, on the
+                                                   // slice line) or Nearest (1 read, as XeGTAO; see above)
     GtaoWeighting weighting = GtaoWeighting::Cosine;  // App. A's uniform weighting is an option
     GtaoThickness thickness = GtaoThickness::None;
     float thicknessBlend = 0.3f;    // eq. 9 blend towards a lower sample horizon, [0, 1): 0 = plain maximum

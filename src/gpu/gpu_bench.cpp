@@ -15,6 +15,7 @@
 #include "obscura/gtao_temporal.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <functional>
 #include <map>
 #include <memory>
@@ -53,7 +54,15 @@ ssao::GtaoSettings gtaoSettings(const GpuBenchSettings& s) {
     ssao::GtaoSettings g;
     ssao::applyQuality(g, s.quality);
     g.sampling = s.sampling;
+    g.radius = s.gtaoRadius;
     return g;
+}
+
+// ", r 1 m": the radius as the descriptions give it.
+std::string radiusText(const ssao::GtaoSettings& g) {
+    char text[32];
+    std::snprintf(text, sizeof text, ", r %g m", double(g.radius));
+    return text;
 }
 
 std::string slicesText(const ssao::GtaoSettings& g) {
@@ -105,7 +114,7 @@ CaseSetup gtaoCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s, co
     auto out = std::make_shared<Buffer>(c, px * sizeof(float), MemoryUse::Device);
     CaseSetup setup;
     setup.description = "GTAO " + std::string(ssao::qualityName(s.quality)) + " (" + slicesText(settings) +
-                        ", r 1 m), visibility" + (s.bentNormals ? " + bent normal" : " only") +
+                        radiusText(settings) + "), visibility" + (s.bentNormals ? " + bent normal" : " only") +
                         ", + separable bilateral, 13 taps per axis";
     // GTAO: depth + normal in, visibility (+ bent normal) out; blur axes as in the alchemy case.
     setup.bytes = double(px) * (4 + 12 + 4 + (s.bentNormals ? 12 : 0)) + 2 * double(px) * (4 + 4 + 4);
@@ -133,7 +142,7 @@ CaseSetup temporalCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s
     CaseSetup setup;
     setup.description = std::string(temporal ? "spatio-temporal" : "spatial") + " GTAO" +
                         (half ? " at half resolution" : "") + " (" + slicesText(settings) +
-                        ", 4x4 interleave, r 1 m) + 5x5 reconstruction" + (half ? " + depth-aware upsample" : "") +
+                        ", 4x4 interleave" + radiusText(settings) + ") + 5x5 reconstruction" + (half ? " + depth-aware upsample" : "") +
                         (temporal ? (s.packedHistory ? " + reprojected packed history" : " + reprojected history") : "") +
                         (s.bentNormals ? "" : ", visibility only") +
                         (temporal && s.callerKeepsDepth ? ", previous depth kept by the caller" : "");
@@ -159,6 +168,7 @@ void GpuBenchSettings::validate() const {
     check(warmup >= 0 && warmup <= 10000, "warmup", "[0, 10000]");
     check(alchemySamples >= 1 && alchemySamples <= 1024, "alchemy-samples", "[1, 1024]");
     check(temporalSlices >= 1 && temporalSlices <= 64, "temporal-slices", "[1, 64]");
+    check(gtaoRadius > 0.0f && gtaoRadius <= 1e4f, "ao-radius", "(0, 1e4] m");
 }
 
 std::vector<GpuBenchCaseInfo> gpuBenchCases() {

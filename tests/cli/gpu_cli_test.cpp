@@ -237,6 +237,18 @@ TEST_F(GpuCommands, BenchGpuReportsEveryCase) {
         EXPECT_NE(n["cases"][i]["description"].get<std::string>().find("nearest-pixel samples"), std::string::npos);
         EXPECT_EQ(b["cases"][i]["description"].get<std::string>().find("nearest"), std::string::npos);
     }
+
+    // --ao-radius: the GTAO cases' radius, in the report and the descriptions; the same buffers.
+    const CliResult small4 = runCli(small + " --ao-radius 0.25");
+    ASSERT_EQ(small4.code, 0) << small4.out;
+    const nlohmann::json q = nlohmann::json::parse(small4.out);
+    EXPECT_EQ(b["gtao_radius_m"], 1.0);
+    EXPECT_EQ(q["gtao_radius_m"], 0.25);
+    for (int i = 0; i < 2; ++i) {
+        EXPECT_EQ(b["cases"][i]["bytes_per_frame"], q["cases"][i]["bytes_per_frame"]);
+        EXPECT_NE(b["cases"][i]["description"].get<std::string>().find("r 1 m"), std::string::npos);
+        EXPECT_NE(q["cases"][i]["description"].get<std::string>().find("r 0.25 m"), std::string::npos);
+    }
 }
 
 TEST_F(GpuCommands, BenchGpuRejectsBadArguments) {
@@ -246,6 +258,7 @@ TEST_F(GpuCommands, BenchGpuRejectsBadArguments) {
     expectFailure("bench --gpu --inputs 40", {"--inputs"});
     expectFailure("bench --gpu --peak-gbps 0", {"--peak-gbps"});
     expectFailure("bench --gpu --gtao-sampling bilinear", {"--gtao-sampling", "planar,nearest"}, 2);
+    expectFailure("bench --gpu --ao-radius 0", {"--ao-radius", "(0, 1e4] m"});
     expectFailure("bench --gpu --gpu-device 99 --sizes 8x8 --frames 1", {"--gpu-device", "99"});
     expectFailure("bench", {"bench", "--gpu"});
 }

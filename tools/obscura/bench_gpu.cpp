@@ -51,6 +51,7 @@ struct GpuBenchOptions {
     bool packedHistory = false;
     bool keepPreviousDepth = false;
     std::string sampling = "planar";
+    float radius = 1.0f;
     double peakGbps = 3000.0;
     int device = -1;
     bool json = false;
@@ -92,6 +93,10 @@ void GpuBenchOptions::add(CLI::App& bench) {
                      "quad, 5 reads) or nearest (the nearest pixel, 1 read, as XeGTAO)")
         ->check(CLI::IsMember({"planar", "nearest"}))
         ->capture_default_str();
+    bench.add_option("--ao-radius", radius,
+                     "--gpu: the GTAO cases' radius, m, (0, 1e4]; a smaller one keeps the horizon samples nearer the "
+                     "pixel on screen (fewer cache lines per frame, nearly the same arithmetic)")
+        ->capture_default_str();
     bench.add_option("--peak-gbps", peakGbps,
                      "--gpu: bandwidth ceiling the traffic is compared with, GB/s (default: a compute-shader copy on "
                      "an H100, 3.0 TB/s)")
@@ -111,6 +116,7 @@ void runGpuBench(const GpuBenchOptions& o) {
     settings.packedHistory = o.packedHistory;
     settings.callerKeepsDepth = o.keepPreviousDepth;
     settings.sampling = o.sampling == "nearest" ? ssao::GtaoSampling::Nearest : ssao::GtaoSampling::Planar;
+    settings.gtaoRadius = o.radius;
     try {
         settings.validate();
     } catch (const Error& e) {
@@ -164,6 +170,7 @@ void runGpuBench(const GpuBenchOptions& o) {
     report["packed_history"] = settings.packedHistory;
     report["keep_previous_depth"] = settings.callerKeepsDepth;
     report["gtao_sampling"] = o.sampling;
+    report["gtao_radius_m"] = o.radius;
     report["validation"] = context.validation();
     if (!o.json) {
         std::string variants;  // the flags that change what the GTAO cases run
@@ -171,6 +178,11 @@ void runGpuBench(const GpuBenchOptions& o) {
         if (o.packedHistory) variants += ", packed history";
         if (o.keepPreviousDepth) variants += ", previous depth kept";
         if (o.sampling == "nearest") variants += ", GTAO nearest-pixel samples";
+        if (o.radius != 1.0f) {
+            char text[48];
+            std::snprintf(text, sizeof text, ", GTAO r %g m", double(o.radius));
+            variants += text;
+        }
         std::printf("obscura bench --gpu: %s (%s, Vulkan %s), %s\n", info.name.c_str(), info.driver.c_str(),
                     apiText(info.apiVersion).c_str(), date);
         std::printf("scene %s%s; GPU ms from timestamps, median of %d frames after %d warm-up, rotating %d inputs;\n"
