@@ -73,8 +73,8 @@ protected:
 // The bound: `render --gpu --ao gtao` and the CPU path give frames whose mean absolute difference is
 // at most 1e-3 (linear radiance, which is about 0.1-1 on these views). Measured on lavapipe (Mesa 22.3.6,
 // LLVM 15.0.6), 2026-11-25, in the order below, frame mean / AO max: 2.3e-6 / 8.7e-5, 7.8e-7 / 9.3e-5,
-// 1.6e-7 / 5.5e-5, 1.5e-6 / 7.1e-5, and with the packed history 4.4e-6 / 6.1e-5 (the "[ measured ]" lines of
-// a run).
+// 1.6e-7 / 5.5e-5, 1.5e-6 / 7.1e-5, with the packed history 4.4e-6 / 6.1e-5, and with nearest samples
+// 1.2e-6 / 4.3e-5 (the "[ measured ]" lines of a run).
 TEST_F(GpuCommands, RenderGtaoMatchesTheCpu) {
     const char* cases[] = {
         "demo --size 96x54 --ao gtao",
@@ -82,6 +82,7 @@ TEST_F(GpuCommands, RenderGtaoMatchesTheCpu) {
         "well --size 64x48 --ao gtao --frames 3",                                 // temporal
         "demo --size 75x41 --ao gtao --frames 2 --gtao-mode spatial --gtao-half-res",
         "corner --size 70x40 --ao gtao --frames 3 --gtao-half-res --gtao-packed-history",
+        "stairs --size 81x47 --ao gtao --frames 3 --gtao-sampling nearest",  // temporal, nearest samples
     };
     for (const char* c : cases) {
         const Pair d = renderBoth(c);
