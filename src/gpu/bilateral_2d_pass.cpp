@@ -7,12 +7,17 @@
 #include "gpu/image_planes.h"
 #include "gpu/spirv.h"
 
+#include <vector>
+
 namespace obscura::gpu {
 
 void recordBilateral2D(Context::Impl& c, VkCommandBuffer cmd, const Bilateral2DBuffers& b,
                        const BilateralConstants& k) {
-    ComputePipeline& pipeline = c.pipeline("bilateral_2d", shaders::bilateral_2d, kBilateralBindingCount,
-                                           kBilateralPushConstantBytes, kBilateralWorkgroupX, kBilateralWorkgroupY);
+    ComputePipeline& pipeline =
+        c.pipeline("bilateral_2d", shaders::bilateral_2d,
+                   std::vector<BindingKind>(kBilateralBindingCount, BindingKind::StorageBuffer),
+                   kBilateralPushConstantBytes, kBilateralWorkgroupX, kBilateralWorkgroupY,
+                   {k.useNormal});  // kBilateralSpecUseNormal
     // In binding order: kBilateralBindingDepth, Normal, kBilateral2DBindingKernel, Input, Output.
     pipeline.dispatchGrid(cmd, {&b.depth, &b.normal, &b.kernel, &b.input, &b.output}, &k, sizeof k, k.width,
                           k.height);

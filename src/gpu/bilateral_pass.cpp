@@ -33,8 +33,11 @@ SeparableBilateral separableBilateral(const ssao::BilateralSettings& s, int widt
 
 void recordSeparableBilateral(Context::Impl& c, VkCommandBuffer cmd, const SeparableBilateralBuffers& b,
                               const SeparableBilateral& f) {
-    ComputePipeline& pipeline = c.pipeline("bilateral_separable", shaders::bilateral_separable, kBilateralBindingCount,
-                                           kBilateralPushConstantBytes, kBilateralWorkgroupX, kBilateralWorkgroupY);
+    ComputePipeline& pipeline =
+        c.pipeline("bilateral_separable", shaders::bilateral_separable,
+                   std::vector<BindingKind>(kBilateralBindingCount, BindingKind::StorageBuffer),
+                   kBilateralPushConstantBytes, kBilateralWorkgroupX, kBilateralWorkgroupY,
+                   {f.constants.useNormal});  // kBilateralSpecUseNormal
     BilateralConstants k = f.constants;
     // In binding order: kBilateralBindingDepth, Normal, LogSpatial, Input, Output.
     k.axis = 0;

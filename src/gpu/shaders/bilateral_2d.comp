@@ -14,6 +14,8 @@
 
 layout(local_size_x = kBilateralWorkgroupX, local_size_y = kBilateralWorkgroupY, local_size_z = 1) in;
 
+layout(constant_id = kBilateralSpecUseNormal) const int kUseNormal = 1;  // = k.useNormal (layouts.h)
+
 layout(push_constant, std430) uniform Constants { BilateralConstants k; };
 layout(std430, binding = kBilateralBindingDepth) readonly buffer DepthPlane { float depth[]; };
 layout(std430, binding = kBilateralBindingNormal) readonly buffer NormalPlane { float normal[]; };
@@ -34,7 +36,7 @@ void main() {
         return;
     }
     const float c = k.depthScale / (d * d);  // 0 on sky: its output is its input anyway
-    const vec3 n = normalAt(x);
+    const vec3 n = kUseNormal != 0 ? normalAt(x) : vec3(0.0);
     float sum = 0.0, wsum = 0.0;
     for (int ty = max(-k.radius, -p.y); ty <= min(k.radius, k.height - 1 - p.y); ++ty) {
         const float ky = kernel[abs(ty)];
@@ -42,7 +44,7 @@ void main() {
             const uint o = uint((p.y + ty) * k.width + p.x + tx);
             const float dd = depth[o] - d;
             float w = kernel[abs(tx)] * ky * exp2(-dd * dd * c);
-            if (k.useNormal != 0) w *= max(0.0, dot(n, normalAt(o)));
+            if (kUseNormal != 0) w *= max(0.0, dot(n, normalAt(o)));
             sum += w * aoIn[o];
             wsum += w;
         }

@@ -12,6 +12,8 @@
 
 layout(local_size_x = kBilateralWorkgroupX, local_size_y = kBilateralWorkgroupY, local_size_z = 1) in;
 
+layout(constant_id = kBilateralSpecUseNormal) const int kUseNormal = 0;  // = k.useNormal (layouts.h)
+
 layout(push_constant, std430) uniform Constants { BilateralConstants k; };
 layout(std430, binding = kBilateralBindingDepth) readonly buffer DepthPlane { float depth[]; };
 layout(std430, binding = kBilateralBindingNormal) readonly buffer NormalPlane { float normal[]; };
@@ -30,7 +32,7 @@ Centre beginCentres(uint x) {
     Centre q;
     q.d = depth[x];
     q.c = k.depthScale / (q.d * q.d);  // 0 on sky: its output is its input anyway
-    q.n = vec3(normal[3 * x], normal[3 * x + 1], normal[3 * x + 2]);
+    q.n = kUseNormal != 0 ? vec3(normal[3 * x], normal[3 * x + 1], normal[3 * x + 2]) : vec3(0.0);
     q.sum = 0.0;
     q.wsum = 0.0;
     return q;
@@ -39,7 +41,7 @@ Centre beginCentres(uint x) {
 void addTap(inout Centre q, uint o, float logSpatial) {
     const float dd = depth[o] - q.d;
     float w = exp2(logSpatial - dd * dd * q.c);
-    if (k.useNormal != 0) w *= max(0.0, dot(q.n, vec3(normal[3 * o], normal[3 * o + 1], normal[3 * o + 2])));
+    if (kUseNormal != 0) w *= max(0.0, dot(q.n, vec3(normal[3 * o], normal[3 * o + 1], normal[3 * o + 2])));
     q.sum += w * aoIn[o];
     q.wsum += w;
 }

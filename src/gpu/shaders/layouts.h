@@ -49,6 +49,11 @@ OBSCURA_CONST int kBilateralBindingCount = 5;
 OBSCURA_CONST int kBilateralPushConstantBytes = 32;
 OBSCURA_CONST int kBilateralWorkgroupX = 8;
 OBSCURA_CONST int kBilateralWorkgroupY = 8;
+// constant_id of the normal weight in both blurs (bilateral_separable, bilateral_2d): BilateralConstants::
+// useNormal, which the host sets from the constants it pushes. A specialization constant so that the variant
+// without it (the separable default) holds no normal reads: as with gtao.comp's modes, a branch on the push
+// constant leaves the compiler both paths.
+OBSCURA_CONST int kBilateralSpecUseNormal = 0;
 
 // ---- gtao.comp (src/gpu/gtao_pass.cpp) ----
 // Storage buffers of set 0 (float arrays, std430).
