@@ -88,11 +88,7 @@ void GpuBenchOptions::add(CLI::App& bench) {
     bench.add_flag("--keep-previous-depth", keepPreviousDepth,
                    "--gpu: the temporal cases read the previous frame's depth buffer instead of a copy in the history, "
                    "as an engine that keeps last frame's depth (for TAA, say) can");
-    bench.add_option("--gtao-sampling", sampling,
-                     "--gpu: how the GTAO cases' horizon samples read depth: planar (inverse depth over a planar 2x2 "
-                     "quad, 5 reads) or nearest (the nearest pixel, 1 read, as XeGTAO)")
-        ->check(CLI::IsMember({"planar", "nearest"}))
-        ->capture_default_str();
+    addGtaoSamplingOption(bench, sampling, "--gpu: how the GTAO cases' horizon samples read depth");
     bench.add_option("--ao-radius", radius,
                      "--gpu: the GTAO cases' radius, m, (0, 1e4]; a smaller one keeps the horizon samples nearer the "
                      "pixel on screen (fewer cache lines per frame, nearly the same arithmetic)")
@@ -115,7 +111,7 @@ void runGpuBench(const GpuBenchOptions& o) {
     settings.bentNormals = !o.visibilityOnly;
     settings.packedHistory = o.packedHistory;
     settings.callerKeepsDepth = o.keepPreviousDepth;
-    settings.sampling = o.sampling == "nearest" ? ssao::GtaoSampling::Nearest : ssao::GtaoSampling::Planar;
+    settings.sampling = gtaoSampling(o.sampling);
     settings.gtaoRadius = o.radius;
     try {
         settings.validate();

@@ -33,6 +33,18 @@ std::string numbered(const std::string& dir, const char* name, int frame) {
 
 } // namespace
 
+void addGtaoSamplingOption(CLI::App& app, std::string& sampling, const std::string& lead) {
+    app.add_option("--gtao-sampling", sampling,
+                   lead + ": planar (inverse depth interpolated over a planar 2x2 quad, on the slice line; 5 reads) or "
+                          "nearest (the nearest pixel, 1 read, as XeGTAO; far open ground at grazing angles darkens)")
+        ->check(CLI::IsMember({"planar", "nearest"}))
+        ->capture_default_str();
+}
+
+ssao::GtaoSampling gtaoSampling(const std::string& sampling) {
+    return sampling == "nearest" ? ssao::GtaoSampling::Nearest : ssao::GtaoSampling::Planar;
+}
+
 // Slow enough for the history to follow and fast enough to disocclude something over a few frames.
 Camera gtaoPathCamera(const Camera& base, int k) { return turnedAboutTarget(base, 0.5f * kPi / 180.0f * float(k)); }
 
@@ -74,12 +86,7 @@ void GtaoOptions::add(CLI::App& app) {
                    "that comes within the radius (column), or not at all (drop)")
         ->check(CLI::IsMember({"column", "drop"}))
         ->capture_default_str();
-    app.add_option("--gtao-sampling", sampling,
-                   "GTAO: how a horizon sample reads depth: planar (inverse depth interpolated over a planar 2x2 quad, "
-                   "on the slice line) or nearest (the nearest pixel: 1 read instead of 5, as XeGTAO; far open ground "
-                   "at grazing angles darkens)")
-        ->check(CLI::IsMember({"planar", "nearest"}))
-        ->capture_default_str();
+    addGtaoSamplingOption(app, sampling, "GTAO: how a horizon sample reads depth");
     app.add_option("--gtao-step-power", stepPower,
                    "GTAO: horizon step distribution, distance ~ (k / steps)^power, [1, 4]; > 1 packs steps near the centre")
         ->capture_default_str();
@@ -93,7 +100,7 @@ ssao::GtaoSettings GtaoOptions::settings(float radius) const {
     s.falloffStart = falloffStart;
     s.beyondRadius = beyondRadius == "drop" ? ssao::GtaoBeyondRadius::Drop : ssao::GtaoBeyondRadius::Column;
     s.stepPower = stepPower;
-    s.sampling = sampling == "nearest" ? ssao::GtaoSampling::Nearest : ssao::GtaoSampling::Planar;
+    s.sampling = gtaoSampling(sampling);
     s.thickness = thickness == "heuristic" ? ssao::GtaoThickness::Heuristic
                   : thickness == "bitmask" ? ssao::GtaoThickness::Bitmask
                                            : ssao::GtaoThickness::None;

@@ -41,6 +41,11 @@ struct GtaoOptions {
     void validate(const std::string& aovDir) const;
 };
 
+// --gtao-sampling (planar, nearest) on `app`, its help starting with `lead` (what the flag sets, for this
+// command), and its value as the setting.
+void addGtaoSamplingOption(CLI::App& app, std::string& sampling, const std::string& lead);
+ssao::GtaoSampling gtaoSampling(const std::string& sampling);
+
 // Frame k of the built-in camera path: `base` turned k * 0.5 degrees about the vertical through its target.
 Camera gtaoPathCamera(const Camera& base, int k);
 
