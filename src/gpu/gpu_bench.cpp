@@ -108,8 +108,7 @@ CaseSetup gtaoCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s, co
     const std::size_t px = std::size_t(w) * std::size_t(h);
     auto logSpatial = std::make_shared<Buffer>(upload(c, blur.logSpatial.data(), blur.logSpatial.size() * sizeof(float)));
     auto visibility = std::make_shared<Buffer>(c, px * sizeof(float), MemoryUse::Device);
-    // Visibility only: the pass leaves its bent-normal binding alone, so a 4-float buffer stands there.
-    auto bent = std::make_shared<Buffer>(c, (s.bentNormals ? 3 * px : 4) * sizeof(float), MemoryUse::Device);
+    auto bent = std::make_shared<Buffer>(gtaoBentNormalBuffer(c, px, s.bentNormals));
     auto scratch = std::make_shared<Buffer>(c, px * sizeof(float), MemoryUse::Device);
     auto out = std::make_shared<Buffer>(c, px * sizeof(float), MemoryUse::Device);
     CaseSetup setup;

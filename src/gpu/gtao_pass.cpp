@@ -36,6 +36,10 @@ void recordGtao(Context::Impl& c, VkCommandBuffer cmd, const GtaoBuffers& b, con
                           (k.width + gridStep - 1) / gridStep, (k.height + gridStep - 1) / gridStep);
 }
 
+Buffer gtaoBentNormalBuffer(Context::Impl& c, std::size_t pixels, bool bentNormal) {
+    return Buffer(c, (bentNormal ? 3 * pixels : 4) * sizeof(float), MemoryUse::Device);
+}
+
 ssao::GtaoResult computeGtao(Context& context, const GBuffer& g, const ssao::GtaoConstants& k, GtaoOutputs outputs) {
     ssao::checkGtaoBuffers(g, k);  // ssao::computeGtao's check and message; the shader checks nothing
 
@@ -50,8 +54,7 @@ ssao::GtaoResult computeGtao(Context& context, const GBuffer& g, const ssao::Gta
     const Buffer depth = upload(c, g.depth.pixels.data(), pixels * sizeof(float));
     const Buffer normal = upload(c, g.normal.pixels.data(), 3 * pixels * sizeof(float));
     const Buffer visibility(c, pixels * sizeof(float), MemoryUse::Device);
-    // Visibility alone leaves the bent-normal binding untouched: a 4-float buffer stands for it.
-    const Buffer bent(c, (bentNormal ? 3 * pixels : 4) * sizeof(float), MemoryUse::Device);
+    const Buffer bent = gtaoBentNormalBuffer(c, pixels, bentNormal);
     c.submit([&](VkCommandBuffer cmd) { recordGtao(c, cmd, {depth, normal, visibility, bent}, k, 1, bentNormal); },
              true);
     download(c, visibility, r.visibility.pixels.data(), pixels * sizeof(float));

@@ -7,6 +7,8 @@
 
 #include "obscura/gtao.h"
 
+#include <cstddef>
+
 namespace obscura::gpu {
 
 // Storage buffers of gtao.comp (shaders/layouts.h states their contents).
@@ -24,5 +26,9 @@ struct GtaoBuffers {
 // does not touch buffers.bentNormal, which may be any buffer.
 void recordGtao(Context::Impl& context, VkCommandBuffer cmd, const GtaoBuffers& buffers, const ssao::GtaoConstants& k,
                 int gridStep = 1, bool bentNormal = true);
+
+// The bent-normal output of a pass over `pixels` pixels: 3 floats each, or without bentNormal a 4-float
+// buffer that only fills the binding (the pass does not touch it; Vulkan has no empty buffers).
+Buffer gtaoBentNormalBuffer(Context::Impl& context, std::size_t pixels, bool bentNormal);
 
 } // namespace obscura::gpu
