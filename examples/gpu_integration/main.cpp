@@ -269,6 +269,9 @@ int main(int argc, char** argv) try {
     HostBuffer zBuffer(e, pixels), normalIn(e, 3 * pixels), depth(e, pixels), normal(e, 3 * pixels);
     HostBuffer visibility(e, pixels), bent(e, 3 * pixels), spatial(e, blur.logSpatial.size()), scratch(e, pixels),
         ao(e, pixels);
+    // Planar samples read no depth MIP chain, but its binding needs a buffer. With GtaoSampling::Mip it holds
+    // gtaoMipOffset(width, height, mipLevels + 1) floats that gtao_mips.comp writes from `depth` first.
+    HostBuffer noChain(e, 4);
     std::memcpy(zBuffer.data, deviceDepth.pixels.data(), zBuffer.bytes);
     std::memcpy(normalIn.data, worldNormal.pixels.data(), normalIn.bytes);
     std::memcpy(spatial.data, blur.logSpatial.data(), spatial.bytes);
@@ -302,7 +305,7 @@ int main(int argc, char** argv) try {
     prepare.record(cmd, 0, {&zBuffer, &normalIn, &depth, &normal}, &prepK, width, height, ssao::kDepthPrepWorkgroupX,
                    ssao::kDepthPrepWorkgroupY);
     barrier(cmd);
-    gtao.record(cmd, 0, {&depth, &normal, &visibility, &bent}, &gtaoK, width, height, kGtaoWorkgroupX, kGtaoWorkgroupY);
+    gtao.record(cmd, 0, {&depth, &normal, &visibility, &bent, &noChain}, &gtaoK, width, height, kGtaoWorkgroupX, kGtaoWorkgroupY);
     barrier(cmd);
     BilateralConstants k = blur.constants;
     k.axis = 0;

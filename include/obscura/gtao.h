@@ -13,9 +13,11 @@
 
 #include "obscura/gbuffer.h"
 #include "obscura/gtao_constants.h"
+#include "obscura/gtao_mips.h"
 #include "obscura/image.h"
 
 #include <string>
+#include <vector>
 
 namespace obscura::ssao {
 
@@ -33,8 +35,11 @@ enum class GtaoBeyondRadius { Column, Drop };
 // line (five reads and four reciprocals). Nearest takes the nearest pixel's own point (one read), as XeGTAO
 // does: at grazing angles that point can sit off the slice line by metres of depth and make a false
 // horizon, so far open ground darkens (by up to 0.17 at a plane's far edge against the sky; elsewhere both
-// are within 0.001 of each other against ray tracing: docs/QUALITY.md).
-enum class GtaoSampling { Planar, Nearest };
+// are within 0.001 of each other against ray tracing: docs/QUALITY.md). Mip reads samples beyond
+// 2 mipDistanceRatio pixels from a coarser level of a depth MIP chain (XeGTAO's depth MIPs; obscura/gtao_mips.h
+// says how it is filtered), so that far samples of neighbouring pixels share texels and cache lines; nearer
+// ones read as Nearest.
+enum class GtaoSampling { Planar, Nearest, Mip };
 
 struct GtaoSettings {
     float radius = 1.0f;            // r: m, (0, 1e4]; occluders farther than r from the point do not count
@@ -49,7 +54,10 @@ struct GtaoSettings {
                                     // every preset but low (docs/QUALITY.md)
     GtaoBeyondRadius beyondRadius = GtaoBeyondRadius::Column;
     GtaoSampling sampling = GtaoSampling::Planar;  // horizon samples' depth reads: Planar (5 reads, on the
-                                                   // slice line) or Nearest (1 read, as XeGTAO; see above)
+                                                   // slice line), Nearest (1 read, as XeGTAO) or Mip (see above)
+    int depthMipLevels = 4;         // with Mip: coarse levels of the chain, [0, 4] (4: 5 MIPs, as XeGTAO's)
+    float mipDistanceRatio = 7.0f;  // with Mip: a sample d pixels away reads the coarsest level whose texels
+                                    // are at most d / ratio pixels wide, [2, 64] (7: XeGTAO's MIP offset 3.3)
     GtaoWeighting weighting = GtaoWeighting::Cosine;  // App. A's uniform weighting is an option
     GtaoThickness thickness = GtaoThickness::None;
     float thicknessBlend = 0.3f;    // eq. 9 blend towards a lower sample horizon, [0, 1): 0 = plain maximum
@@ -85,6 +93,24 @@ GtaoPixel gtaoPixel(const GtaoConstants& constants, const GBuffer& gbuffer, int 
 // The same with the interleave index (0..15) given, for grids that are not the G-buffer's own (half
 // resolution evaluates full-resolution pixel (2x, 2y) with the pattern of low-resolution pixel (x, y)).
 GtaoPixel gtaoPixel(const GtaoConstants& constants, const GBuffer& gbuffer, int x, int y, int interleave);
+
+// The coarse levels of GtaoSampling::Mip's depth MIP chain (layout and filter in obscura/gtao_mips.h).
+struct GtaoDepthMips {
+    int width = 0, height = 0;  // of the depth buffer, level 0
+    int levels = 0;             // coarse levels, [0, GTAO_MAX_MIP_LEVELS]
+    std::vector<float> texels;  // inverse depths (0: sky), level 1 first, gtaoMipOffset(width, height, levels + 1)
+    float at(int level, int x, int y) const;  // level in 1..levels, no checks
+};
+// The coarse levels the settings' sampling reads: depthMipLevels with GtaoSampling::Mip, else 0.
+int gtaoDepthMipLevels(const GtaoSettings& settings);
+// Builds `levels` coarse levels from linear depths (+inf or >= 1e30 for sky). Assumes a depth image of at
+// least 1x1 and levels in [0, GTAO_MAX_MIP_LEVELS].
+GtaoDepthMips buildGtaoDepthMips(const Image& depth, int levels);
+
+// The kernel with its depth MIP chain, which the constants' GTAO_SAMPLING_MIP needs (built from the same
+// depth with constants.mipLevels levels); the overloads without it throw obscura::Error for that mode.
+GtaoPixel gtaoPixel(const GtaoConstants& constants, const GBuffer& gbuffer, const GtaoDepthMips* mips, int x, int y,
+                    int interleave);
 
 struct GtaoResult {
     Image visibility;  // 1 channel, [0, 1]; sky 1

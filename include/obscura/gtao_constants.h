@@ -24,6 +24,8 @@ using uint = std::uint32_t;
 #define GTAO_BEYOND_COLUMN 1      // ... but the depth buffer's column behind it does, where it comes within r
 #define GTAO_SAMPLING_PLANAR 0    // a horizon sample interpolates inverse depth over a planar 2x2 quad
 #define GTAO_SAMPLING_NEAREST 1   // ... or takes the nearest pixel's point: one read instead of five
+#define GTAO_SAMPLING_MIP 2       // ... or, farther out, the point of a coarser level of a depth MIP chain
+                                  // (obscura/gtao_mips.h); nearest where no coarser level is fine enough
 
 struct GtaoConstants {
     int width;                 // image size, pixels
@@ -50,10 +52,12 @@ struct GtaoConstants {
     int frameIndex;            // selects the temporal rotation (of 6) and the jitter
     int beyondRadius;          // GTAO_BEYOND_*: what a sample farther than the full-weight distance stands for
     int sampling;              // GTAO_SAMPLING_*: how a horizon sample reads the depth buffer
+    int mipLevels;             // GTAO_SAMPLING_MIP: coarse levels of the chain, [0, GTAO_MAX_MIP_LEVELS]; else 0
+    float mipTexelScale;       // GTAO_SAMPLING_MIP: widest texel a sample may read per pixel of its distance
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(GtaoConstants) == 24 * 4, "GtaoConstants must stay 24 scalars (std430 layout)");
+static_assert(sizeof(GtaoConstants) == 26 * 4, "GtaoConstants must stay 26 scalars (std430 layout)");
 static_assert(alignof(GtaoConstants) == 4, "GtaoConstants holds 32-bit scalars only");
 } // namespace obscura::ssao
 #endif

@@ -68,7 +68,10 @@ std::string radiusText(const ssao::GtaoSettings& g) {
 std::string slicesText(const ssao::GtaoSettings& g) {
     return std::to_string(g.sliceCount) + " slice" + (g.sliceCount > 1 ? "s" : "") + " x " +
            std::to_string(g.stepsPerSide) + " steps per side" +
-           (g.sampling == ssao::GtaoSampling::Nearest ? ", nearest-pixel samples" : "");
+           (g.sampling == ssao::GtaoSampling::Nearest ? ", nearest-pixel samples"
+            : g.sampling == ssao::GtaoSampling::Mip
+                ? ", depth MIP samples (" + std::to_string(g.depthMipLevels + 1) + " levels)"
+                : "");
 }
 
 // The constants hold the projection only, which the rotated inputs share (their cameras differ in position).
@@ -109,6 +112,7 @@ CaseSetup gtaoCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s, co
     auto logSpatial = std::make_shared<Buffer>(upload(c, blur.logSpatial.data(), blur.logSpatial.size() * sizeof(float)));
     auto visibility = std::make_shared<Buffer>(c, px * sizeof(float), MemoryUse::Device);
     auto bent = std::make_shared<Buffer>(gtaoBentNormalBuffer(c, px, s.bentNormals));
+    auto mips = std::make_shared<Buffer>(gtaoDepthMipsBuffer(c, w, h, k.mipLevels));
     auto scratch = std::make_shared<Buffer>(c, px * sizeof(float), MemoryUse::Device);
     auto out = std::make_shared<Buffer>(c, px * sizeof(float), MemoryUse::Device);
     CaseSetup setup;
@@ -117,10 +121,17 @@ CaseSetup gtaoCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s, co
                         ", + separable bilateral, 13 taps per axis";
     // GTAO: depth + normal in, visibility (+ bent normal) out; blur axes as in the alchemy case.
     setup.bytes = double(px) * (4 + 12 + 4 + (s.bentNormals ? 12 : 0)) + 2 * double(px) * (4 + 4 + 4);
-    setup.keepAlive = {logSpatial, visibility, bent, scratch, out};
-    setup.record = [&c, k, blur, logSpatial, visibility, bent, scratch, out, bentNormals = s.bentNormals](
+    // Mip sampling: the chain's pass reads depth and writes the chain, which the GTAO pass reads.
+    if (k.mipLevels > 0) setup.bytes += 4.0 * (double(px) + 2.0 * double(gtaoDepthMipsFloats(w, h, k.mipLevels)));
+    setup.keepAlive = {logSpatial, visibility, bent, mips, scratch, out};
+    setup.record = [&c, k, blur, logSpatial, visibility, bent, mips, scratch, out, bentNormals = s.bentNormals](
                        VkCommandBuffer cmd, const ResidentInput& in, int, const std::function<void(const char*)>& mark) {
-        recordGtao(c, cmd, {in.depth, in.normal, *visibility, *bent}, k, 1, bentNormals);
+        if (k.mipLevels > 0) {
+            recordGtaoDepthMips(c, cmd, in.depth, *mips, k);
+            mark("mips");
+            computeBarrier(cmd);  // the GTAO pass reads the chain
+        }
+        recordGtao(c, cmd, {in.depth, in.normal, *visibility, *bent, *mips}, k, 1, bentNormals);
         mark("gtao");
         computeBarrier(cmd);  // the blur reads the visibility
         recordSeparableBilateral(c, cmd, {in.depth, in.normal, *logSpatial, *visibility, *scratch, *out}, blur);

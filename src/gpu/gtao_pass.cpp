@@ -31,9 +31,31 @@ void recordGtao(Context::Impl& c, VkCommandBuffer cmd, const GtaoBuffers& b, con
                    kGtaoPushConstantBytes, kGtaoWorkgroupX, kGtaoWorkgroupY,
                    // kGtaoSpecGridStep, BentNormal, then the constants' modes (Sampling ... BeyondRadius).
                    {gridStep, bentNormal ? 1 : 0, k.sampling, k.weighting, k.thicknessMode, k.beyondRadius});
-    // In binding order: kGtaoBindingDepth, Normal, Visibility, BentNormal.
-    pipeline.dispatchGrid(cmd, {&b.depth, &b.normal, &b.visibility, &b.bentNormal}, &k, sizeof k,
+    // In binding order: kGtaoBindingDepth, Normal, Visibility, BentNormal, DepthMips.
+    pipeline.dispatchGrid(cmd, {&b.depth, &b.normal, &b.visibility, &b.bentNormal, &b.depthMips}, &k, sizeof k,
                           (k.width + gridStep - 1) / gridStep, (k.height + gridStep - 1) / gridStep);
+}
+
+std::size_t gtaoDepthMipsFloats(int width, int height, int mipLevels) {
+    return mipLevels > 0 ? std::size_t(ssao::gtaoMipOffset(width, height, mipLevels + 1)) : 0;
+}
+
+Buffer gtaoDepthMipsBuffer(Context::Impl& c, int width, int height, int mipLevels) {
+    const std::size_t floats = gtaoDepthMipsFloats(width, height, mipLevels);
+    return Buffer(c, (floats > 0 ? floats : 4) * sizeof(float), MemoryUse::Device);
+}
+
+void recordGtaoDepthMips(Context::Impl& c, VkCommandBuffer cmd, const Buffer& depth, const Buffer& chain,
+                         const ssao::GtaoConstants& k) {
+    if (k.mipLevels <= 0) return;
+    assert(k.mipLevels <= GTAO_MAX_MIP_LEVELS &&
+           chain.size() >= gtaoDepthMipsFloats(k.width, k.height, k.mipLevels) * sizeof(float));
+    ComputePipeline& pipeline = c.pipeline("gtao_mips", shaders::gtao_mips, kGtaoMipsBindingCount,
+                                           kGtaoMipsPushConstantBytes, GTAO_MIP_WORKGROUP, GTAO_MIP_WORKGROUP);
+    const GtaoMipConstants m{k.width, k.height, k.mipLevels, 0};
+    // One invocation per texel of level 1.
+    pipeline.dispatchGrid(cmd, {&depth, &chain}, &m, sizeof m, ssao::gtaoMipSize(k.width, 1),
+                          ssao::gtaoMipSize(k.height, 1));
 }
 
 Buffer gtaoBentNormalBuffer(Context::Impl& c, std::size_t pixels, bool bentNormal) {
@@ -55,8 +77,16 @@ ssao::GtaoResult computeGtao(Context& context, const GBuffer& g, const ssao::Gta
     const Buffer normal = upload(c, g.normal.pixels.data(), 3 * pixels * sizeof(float));
     const Buffer visibility(c, pixels * sizeof(float), MemoryUse::Device);
     const Buffer bent = gtaoBentNormalBuffer(c, pixels, bentNormal);
-    c.submit([&](VkCommandBuffer cmd) { recordGtao(c, cmd, {depth, normal, visibility, bent}, k, 1, bentNormal); },
-             true);
+    const Buffer mips = gtaoDepthMipsBuffer(c, k.width, k.height, k.mipLevels);
+    c.submit(
+        [&](VkCommandBuffer cmd) {
+            if (k.mipLevels > 0) {
+                recordGtaoDepthMips(c, cmd, depth, mips, k);
+                computeBarrier(cmd);  // the GTAO pass reads the chain
+            }
+            recordGtao(c, cmd, {depth, normal, visibility, bent, mips}, k, 1, bentNormal);
+        },
+        true);
     download(c, visibility, r.visibility.pixels.data(), pixels * sizeof(float));
     if (bentNormal) download(c, bent, r.bentNormal.pixels.data(), 3 * pixels * sizeof(float));
     return r;

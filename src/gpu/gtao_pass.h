@@ -17,7 +17,19 @@ struct GtaoBuffers {
     const Buffer& normal;      // width * height * 3 view normals
     const Buffer& visibility;  // gridWidth * gridHeight visibility
     const Buffer& bentNormal;  // gridWidth * gridHeight * 3 view-space bent normals
+    const Buffer& depthMips;   // GTAO_SAMPLING_MIP: the chain recordGtaoDepthMips made from `depth`
 };
+
+// The depth MIP chain of constants with mipLevels coarse levels (0: any other sampling) for a width x height
+// depth buffer: gtaoMipOffset(width, height, mipLevels + 1) floats, or with no level a 4-float buffer that
+// only fills gtao.comp's binding.
+Buffer gtaoDepthMipsBuffer(Context::Impl& context, int width, int height, int mipLevels);
+std::size_t gtaoDepthMipsFloats(int width, int height, int mipLevels);  // 0 without levels
+// Records gtao_mips.comp, which writes k.mipLevels coarse levels of `depth` (k.width x k.height) into
+// `chain`; nothing when k.mipLevels is 0. The depth must be visible to compute shaders; the GTAO pass that
+// reads the chain needs a barrier after this.
+void recordGtaoDepthMips(Context::Impl& context, VkCommandBuffer cmd, const Buffer& depth, const Buffer& chain,
+                         const ssao::GtaoConstants& k);
 
 // Records one dispatch over the grid of ceil(width / gridStep) x ceil(height / gridStep) pixels (gridStep 1:
 // the whole image; 2: the half-resolution grid of ssao::GtaoTemporal, see kGtaoSpecGridStep). The inputs

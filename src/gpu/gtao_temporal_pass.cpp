@@ -102,6 +102,7 @@ GtaoTemporalPasses::GtaoTemporalPasses(Context::Impl& c, const ssao::GtaoSetting
         if (bentNormals) bent_ = deviceFloats(c, 3 * grid);
     }
     if (bentNormals) bentView_ = deviceFloats(c, 3 * pixels);
+    depthMips_ = gtaoDepthMipsBuffer(c, width, height, ssao::gtaoDepthMipLevels(settings));
     // Packed: one word per normal, and the length in the visibility's word (obscura/history_packing.h).
     const std::size_t vector = temporal.packedHistory ? 1 : 3;
     for (History& h : history_) {
@@ -133,7 +134,14 @@ void GtaoTemporalPasses::record(VkCommandBuffer cmd, const GtaoTemporalFrameInpu
     const Buffer& rawVisibility = rawVisibility_[rawSet];
     const Buffer& rawBent = bent(rawBent_[rawSet]);
     const ssao::GtaoConstants k = ssao::gtaoConstants(settings_, in.camera, in.frameIndex, true);
-    recordGtao(c, cmd, {in.depth, in.normal, rawVisibility, rawBent}, k, step_, variant_.bentNormals);
+    // With mip sampling the chain is made first, from this frame's depth. The previous frame's GTAO pass,
+    // its only reader, is ordered before this by that frame's later barriers.
+    if (k.mipLevels > 0) {
+        recordGtaoDepthMips(c, cmd, in.depth, depthMips_, k);
+        stage("mips");
+        computeBarrier(cmd);  // the GTAO pass reads the chain
+    }
+    recordGtao(c, cmd, {in.depth, in.normal, rawVisibility, rawBent, depthMips_}, k, step_, variant_.bentNormals);
     stage("gtao");
     computeBarrier(cmd);  // the next stage reads the raw values
 
@@ -191,6 +199,9 @@ std::size_t GtaoTemporalPasses::bytesPerFrame() const {
     const std::size_t b = variant_.bentNormals ? 3 : 0;  // floats of a bent normal
     // GTAO: the search reads the whole depth plane, the normals of the grid pixels; writes 1 + b per grid pixel.
     std::size_t bytes = f * (pixels + 3 * grid + (1 + b) * grid);
+    // Mip sampling: the chain's pass reads depth and writes the chain, which the GTAO pass reads.
+    const std::size_t chain = gtaoDepthMipsFloats(width_, height_, ssao::gtaoDepthMipLevels(settings_));
+    if (chain > 0) bytes += f * (pixels + 2 * chain);
     // Half resolution: the reconstruction, 1 and b channels: values, guide depth and normals in, values out.
     if (step_ == 2) bytes += f * grid * ((1 + 1 + 3 + 1) + (b > 0 ? b + 1 + 3 + b : 0));
     // Accumulation: the grid's 1 + b values (its depth and normals are those of the full planes at full

@@ -79,7 +79,8 @@ public:
     // predecessor's last stage does (at half resolution it overwrites the raw values its predecessor's
     // reconstruction read, which that frame's barrier before its accumulation already orders), and its later
     // barriers order the rest (the history it reads, the intermediates it overwrites). A caller that reads the result records its own barrier. After each stage
-    // it calls mark(stage) if set, so that a caller can write a timestamp: "gtao", "denoise" (both
+    // it calls mark(stage) if set, so that a caller can write a timestamp: "mips" (the depth MIP chain, with
+    // mip sampling only), "gtao", "denoise" (both
     // reconstructions, half resolution only: at full resolution the accumulation reconstructs its own pixel),
     // "temporal" (the upsampling at half resolution, the reconstruction at full, and the accumulation with
     // temporal.temporal; else "resolve", the same pass without history). The history is used from the second
@@ -129,6 +130,7 @@ private:
     Buffer rawVisibility_[2], rawBent_[2];
     Buffer visibility_, bent_;        // grid: reconstructed (half resolution only)
     Buffer bentView_;
+    Buffer depthMips_;  // GtaoSampling::Mip's chain of the frame's depth (a placeholder otherwise)
     History history_[2];
     GtaoTemporalVariant variant_;
     // Bound at the bindings a variant leaves untouched (bent normals, length planes, depth copy); never read

@@ -57,10 +57,19 @@ float fract(float v) { return v - std::floor(v); }
 // corner (extrapolating an affine function is exact too): that keeps the interpolation at a surface's
 // edge against the sky, at its corners (where only the diagonal quad lies on the surface) and at the image
 // border. Across an edge or a silhouette, and always with GTAO_SAMPLING_NEAREST, the nearest pixel's own
-// point is used. False for sky or for (sx, sy) in the centre pixel (cx, cy).
-bool samplePosition(const GtaoConstants& c, const GBuffer& g, float sx, float sy, int cx, int cy, Vec3& out) {
+// point is used. With GTAO_SAMPLING_MIP and level >= 1 the point is that of the chain's texel holding the
+// nearest pixel (obscura/gtao_mips.h). False for sky or for (sx, sy) in the centre pixel (cx, cy).
+bool samplePosition(const GtaoConstants& c, const GBuffer& g, const GtaoDepthMips* mips, int level, float sx, float sy,
+                    int cx, int cy, Vec3& out) {
     const int ix = int(sx), iy = int(sy);
     if (ix == cx && iy == cy) return false;
+    if (level > 0) {
+        const int tx = ix >> level, ty = iy >> level;
+        const float w = mips->at(level, tx, ty);
+        if (!(w > 0.0f)) return false;
+        out = viewPosition(c, gtaoMipCentre(tx, level, c.width), gtaoMipCentre(ty, level, c.height), 1.0f / w);
+        return true;
+    }
     const float nearest = g.depth.at(ix, iy);
     if (!(nearest < 1e30f)) return false;
     const float gx = sx - 0.5f, gy = sy - 0.5f;
@@ -123,6 +132,8 @@ void GtaoSettings::validate() const {
     check(stepPower >= 1.0f && stepPower <= 4.0f, "step-power", "[1, 4]");
     check(thicknessBlend >= 0.0f && thicknessBlend < 1.0f, "thickness-blend", "[0, 1)");
     check(bitmaskThickness > 0.0f && bitmaskThickness <= 1e4f, "bitmask-thickness", "(0, 1e4] m");
+    check(depthMipLevels >= 0 && depthMipLevels <= GTAO_MAX_MIP_LEVELS, "depth-mips", "[0, 4]");
+    check(mipDistanceRatio >= 2.0f && mipDistanceRatio <= 64.0f, "mip-distance-ratio", "[2, 64]");
 }
 
 void applyQuality(GtaoSettings& settings, GtaoQuality quality) {
@@ -149,6 +160,8 @@ int interleaveIndex(int x, int y) {
     static constexpr int kBayer[16] = {0, 8, 2, 10, 12, 4, 14, 6, 3, 11, 1, 9, 15, 7, 13, 5};
     return kBayer[(y & 3) * 4 + (x & 3)];
 }
+
+int gtaoDepthMipLevels(const GtaoSettings& s) { return s.sampling == GtaoSampling::Mip ? s.depthMipLevels : 0; }
 
 GtaoConstants gtaoConstants(const GtaoSettings& s, const Camera& camera, int frameIndex, bool interleaved) {
     GtaoConstants c{};
@@ -180,7 +193,11 @@ GtaoConstants gtaoConstants(const GtaoSettings& s, const Camera& camera, int fra
     c.noiseMode = s.jitter ? 1 : 0;
     c.frameIndex = frameIndex;
     c.beyondRadius = s.beyondRadius == GtaoBeyondRadius::Column ? GTAO_BEYOND_COLUMN : GTAO_BEYOND_DROP;
-    c.sampling = s.sampling == GtaoSampling::Nearest ? GTAO_SAMPLING_NEAREST : GTAO_SAMPLING_PLANAR;
+    c.sampling = s.sampling == GtaoSampling::Nearest ? GTAO_SAMPLING_NEAREST
+                 : s.sampling == GtaoSampling::Mip   ? GTAO_SAMPLING_MIP
+                                                     : GTAO_SAMPLING_PLANAR;
+    c.mipLevels = gtaoDepthMipLevels(s);
+    c.mipTexelScale = s.sampling == GtaoSampling::Mip ? 1.0f / s.mipDistanceRatio : 0.0f;
     return c;
 }
 
@@ -189,6 +206,11 @@ GtaoPixel gtaoPixel(const GtaoConstants& c, const GBuffer& g, int x, int y) {
 }
 
 GtaoPixel gtaoPixel(const GtaoConstants& c, const GBuffer& g, int x, int y, int interleave) {
+    if (c.mipLevels > 0) fail("gtao", "mip sampling needs the depth MIP chain (buildGtaoDepthMips)");
+    return gtaoPixel(c, g, nullptr, x, y, interleave);
+}
+
+GtaoPixel gtaoPixel(const GtaoConstants& c, const GBuffer& g, const GtaoDepthMips* mips, int x, int y, int interleave) {
     GtaoPixel out;
     const float depth = g.depth.at(x, y);
     if (!(depth < 1e30f)) return out;
@@ -238,13 +260,14 @@ GtaoPixel gtaoPixel(const GtaoConstants& c, const GBuffer& g, int x, int y, int 
             float s = (float(step) + stepJitter) / float(c.stepsPerSide);
             s = std::pow(s, c.stepPower) + minS;
             const float offset = s * screenRadius;
+            const int level = c.mipLevels > 0 ? gtaoMipLevel(offset, c.mipTexelScale, c.mipLevels) : 0;
             for (int side = 0; side < 2; ++side) {
                 const float sign = side == 0 ? 1.0f : -1.0f;
                 const float sx = float(x) + 0.5f + sign * offset * cosPhi;
                 const float sy = float(y) + 0.5f - sign * offset * sinPhi;
                 if (!(sx >= 0.0f && sy >= 0.0f && sx < float(c.width) && sy < float(c.height))) continue;
                 Vec3 sp;
-                if (!samplePosition(c, g, sx, sy, x, y, sp)) continue;
+                if (!samplePosition(c, g, mips, level, sx, sy, x, y, sp)) continue;
                 const Vec3 delta = sp - p;
                 const float distance = length(delta);
                 if (!(distance > 0.0f)) continue;
@@ -338,6 +361,9 @@ void checkGtaoBuffers(const GBuffer& gbuffer, const GtaoConstants& constants) {
         fail("gtao", "G-buffer is " + std::to_string(gbuffer.depth.width) + "x" + std::to_string(gbuffer.depth.height) +
                          " but the constants are for " + std::to_string(constants.width) + "x" +
                          std::to_string(constants.height) + " (or its normal image is not 3 channels)");
+    if (constants.mipLevels < 0 || constants.mipLevels > GTAO_MAX_MIP_LEVELS)
+        fail("gtao", "the constants ask for " + std::to_string(constants.mipLevels) +
+                         " depth MIP levels; the chain has 0 to " + std::to_string(GTAO_MAX_MIP_LEVELS));
 }
 
 GtaoResult computeGtao(const GBuffer& gbuffer, const GtaoConstants& constants) {
@@ -345,11 +371,13 @@ GtaoResult computeGtao(const GBuffer& gbuffer, const GtaoConstants& constants) {
     GtaoResult r;
     r.visibility = Image(constants.width, constants.height, 1, 1.0f);
     r.bentNormal = Image(constants.width, constants.height, 3, 0.0f);
+    if (constants.width < 1 || constants.height < 1) return r;
+    const GtaoDepthMips mips = buildGtaoDepthMips(gbuffer.depth, constants.mipLevels);
     parallelFor(std::size_t(constants.height), [&](std::size_t begin, std::size_t end) {
         for (std::size_t yy = begin; yy < end; ++yy) {
             const int y = int(yy);
             for (int x = 0; x < constants.width; ++x) {
-                GtaoPixel px = gtaoPixel(constants, gbuffer, x, y);
+                GtaoPixel px = gtaoPixel(constants, gbuffer, &mips, x, y, interleaveIndex(x, y));
                 r.visibility.at(x, y) = px.visibility;
                 r.bentNormal.at(x, y, 0) = px.bentNormal.x;
                 r.bentNormal.at(x, y, 1) = px.bentNormal.y;

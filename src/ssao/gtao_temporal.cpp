@@ -142,10 +142,11 @@ const GtaoResult& GtaoTemporal::frame(const GBuffer& g) {
     const int step = temporal_.halfResolution ? 2 : 1;
     const int gw = (w + step - 1) / step, gh = (h + step - 1) / step;
     Image rawVisibility(gw, gh, 1, 1.0f), rawBent(gw, gh, 3, 0.0f), gridDepth(gw, gh, 1), gridNormal(gw, gh, 3);
+    const GtaoDepthMips mips = buildGtaoDepthMips(g.depth, constants.mipLevels);
     forRows(gh, [&](int y) {
         for (int x = 0; x < gw; ++x) {
             const int fx = x * step, fy = y * step;
-            GtaoPixel p = gtaoPixel(constants, g, fx, fy, interleaveIndex(x, y));
+            GtaoPixel p = gtaoPixel(constants, g, &mips, fx, fy, interleaveIndex(x, y));
             rawVisibility.at(x, y) = p.visibility;
             setVec3(rawBent, x, y, p.bentNormal);
             gridDepth.at(x, y) = g.depth.at(fx, fy);

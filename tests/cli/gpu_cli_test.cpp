@@ -5,6 +5,7 @@
 #include "cli/cli_harness.h"
 
 #include "obscura/gpu.h"
+#include "obscura/gtao_mips.h"
 #include "obscura/image_io.h"
 
 #include <gtest/gtest.h>
@@ -83,6 +84,8 @@ TEST_F(GpuCommands, RenderGtaoMatchesTheCpu) {
         "demo --size 75x41 --ao gtao --frames 2 --gtao-mode spatial --gtao-half-res",
         "corner --size 70x40 --ao gtao --frames 3 --gtao-half-res --gtao-packed-history",
         "stairs --size 81x47 --ao gtao --frames 3 --gtao-sampling nearest",  // temporal, nearest samples
+        "demo --size 99x57 --ao gtao --gtao-sampling mip",                     // depth MIP chain
+        "stairs --size 81x47 --ao gtao --frames 3 --gtao-sampling mip --gtao-half-res",  // temporal, half, MIP
     };
     for (const char* c : cases) {
         const Pair d = renderBoth(c);
@@ -239,6 +242,20 @@ TEST_F(GpuCommands, BenchGpuReportsEveryCase) {
         EXPECT_EQ(b["cases"][i]["description"].get<std::string>().find("nearest"), std::string::npos);
     }
 
+    // --gtao-sampling mip: said in the report and the descriptions; the chain's pass adds its compulsory
+    // traffic (the depth read once, the chain written once and read once) to both GTAO cases.
+    const CliResult mip = runCli(small + " --gtao-sampling mip");
+    ASSERT_EQ(mip.code, 0) << mip.out;
+    const nlohmann::json m = nlohmann::json::parse(mip.out);
+    EXPECT_EQ(m["gtao_sampling"], "mip");
+    const double chain = 4.0 * double(obscura::ssao::gtaoMipOffset(40, 24, 5));
+    for (int i = 0; i < 2; ++i) {
+        EXPECT_EQ(m["cases"][i]["bytes_per_frame"].get<double>() - b["cases"][i]["bytes_per_frame"].get<double>(),
+                  px * 4 + 2 * chain);
+        EXPECT_NE(m["cases"][i]["description"].get<std::string>().find("depth MIP samples (5 levels)"),
+                  std::string::npos);
+    }
+
     // --ao-radius: the GTAO cases' radius, in the report and the descriptions; the same buffers.
     const CliResult small4 = runCli(small + " --ao-radius 0.25");
     ASSERT_EQ(small4.code, 0) << small4.out;
@@ -258,7 +275,7 @@ TEST_F(GpuCommands, BenchGpuRejectsBadArguments) {
     expectFailure("bench --gpu --sizes 0x10", {"--sizes"});
     expectFailure("bench --gpu --inputs 40", {"--inputs"});
     expectFailure("bench --gpu --peak-gbps 0", {"--peak-gbps"});
-    expectFailure("bench --gpu --gtao-sampling bilinear", {"--gtao-sampling", "planar,nearest"}, 2);
+    expectFailure("bench --gpu --gtao-sampling bilinear", {"--gtao-sampling", "planar,nearest,mip"}, 2);
     expectFailure("bench --gpu --ao-radius 0", {"--ao-radius", "(0, 1e4] m"});
     expectFailure("bench --gpu --gpu-device 99 --sizes 8x8 --frames 1", {"--gpu-device", "99"});
     expectFailure("bench", {"bench", "--gpu"});

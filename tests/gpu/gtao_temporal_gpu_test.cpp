@@ -85,6 +85,7 @@ struct Run {
     const char* scene;
     int width, height;
     ssao::GtaoQuality quality;
+    ssao::GtaoSampling sampling = ssao::GtaoSampling::Planar;
 };
 
 // Runs the frames through both implementations, compares every frame (visibility, bent normals, history
@@ -92,13 +93,15 @@ struct Run {
 void expectMatch(Context& context, const Run& run, const ssao::GtaoTemporalSettings& t, int frames,
                  int allowedLavapipe, const std::string& mode) {
     const std::vector<GBuffer> gbuffers = path(run.scene, run.width, run.height, frames);
-    const ssao::GtaoSettings settings = preset(run.quality);
+    ssao::GtaoSettings settings = preset(run.quality);
+    settings.sampling = run.sampling;
     ssao::GtaoTemporal cpu(settings, t);
     GtaoTemporal gpu(context, settings, t);
     Difference worst;
     Image lastVisibility;
     const int pixels = run.width * run.height;
-    const std::string name = std::string(run.scene) + " " + ssao::qualityName(run.quality) + " " + mode;
+    const std::string name = std::string(run.scene) + " " + ssao::qualityName(run.quality) +
+                             (run.sampling == ssao::GtaoSampling::Mip ? " mip " : " ") + mode;
     for (int f = 0; f < frames; ++f) {
         const ssao::GtaoResult& c = cpu.frame(gbuffers[std::size_t(f)]);
         const ssao::GtaoResult& g = gpu.frame(gbuffers[std::size_t(f)]);
@@ -239,6 +242,20 @@ TEST(GpuGtaoTemporal, TemporalMatchesTheCpuReference) {
     EXPECT_EQ(testing::validationReport(context), "");
 }
 
+// Mip sampling (GtaoSampling::Mip): each frame makes the depth MIP chain of its own depth before the GTAO
+// pass, at both resolutions (the chain is of the full-resolution depth either way).
+TEST(GpuGtaoTemporal, MipSamplingMatchesTheCpuReference) {
+    OBSCURA_GPU_CONTEXT(context);
+    for (bool half : {false, true}) {
+        const std::string m = half ? "temporal, half resolution" : "temporal";
+        expectMatch(context, {"demo", 333, 197, ssao::GtaoQuality::High, ssao::GtaoSampling::Mip}, mode(true, half),
+                    3, 0, m);
+        expectMatch(context, {"stairs", 96, 64, ssao::GtaoQuality::Medium, ssao::GtaoSampling::Mip},
+                    mode(true, half), 3, 0, m);
+    }
+    EXPECT_EQ(testing::validationReport(context), "");
+}
+
 // The packed history (GtaoTemporalSettings::packedHistory): both sides decode the same words, so the bounds
 // and counts are those of the float history. Also at half resolution, and without bent normals.
 TEST(GpuGtaoTemporal, PackedHistoryMatchesTheCpuReference) {
@@ -256,12 +273,16 @@ TEST(GpuGtaoTemporal, PackedHistoryMatchesTheCpuReference) {
 
 // The benchmark's path: frames recorded back to back on resident buffers in one submission (the barrier at
 // the start of each frame orders them), with a mark after each stage, give the bits of GtaoTemporal's
-// frame-per-submission path.
+// frame-per-submission path. Also with mip sampling, whose chain each frame rewrites after the previous
+// frame's GTAO pass read it.
 TEST(GpuGtaoTemporal, RecordsFramesOnResidentBuffers) {
     OBSCURA_GPU_CONTEXT(context);
     const std::vector<GBuffer> gbuffers = path("stairs", 96, 64, 3);
-    const ssao::GtaoSettings settings = preset(ssao::GtaoQuality::Low);
-    for (bool half : {false, true}) {
+    using ssao::GtaoSampling;
+    for (const auto& [sampling, half] : {std::pair{GtaoSampling::Planar, false}, std::pair{GtaoSampling::Planar, true},
+                                         std::pair{GtaoSampling::Mip, false}, std::pair{GtaoSampling::Mip, true}}) {
+        ssao::GtaoSettings settings = preset(ssao::GtaoQuality::Low);
+        settings.sampling = sampling;
         Context::Impl& c = context.impl();
         GtaoTemporalPasses passes(c, settings, mode(true, half), 96, 64);
         std::vector<Buffer> depth, normal;
@@ -276,7 +297,8 @@ TEST(GpuGtaoTemporal, RecordsFramesOnResidentBuffers) {
                               [&](const char* stage) { stages += std::string(stage) + " "; });
         });
         // At full resolution the accumulation reconstructs its own pixel; at half it upsamples its own pixel.
-        const std::string frame = half ? "gtao denoise temporal " : "gtao temporal ";
+        const std::string frame = std::string(sampling == GtaoSampling::Mip ? "mips " : "") +
+                                  (half ? "gtao denoise temporal " : "gtao temporal ");
         EXPECT_EQ(stages, frame + frame + frame);
         EXPECT_EQ(passes.framesRecorded(), 3);
         ssao::GtaoResult r{Image(96, 64, 1), Image(96, 64, 3)};

@@ -56,13 +56,16 @@ TEST(GtaoGroundTruth, MatchesRayTracedFromAbove) {
         double high = test::meanAbsoluteError(g, computeGtao(g, settings).visibility, reference);
         settings.sampling = GtaoSampling::Nearest;
         double highNearest = test::meanAbsoluteError(g, computeGtao(g, settings).visibility, reference);
+        settings.sampling = GtaoSampling::Mip;
+        double highMip = test::meanAbsoluteError(g, computeGtao(g, settings).visibility, reference);
         std::printf("%s (occluders seen at %.0f%% of pixels): MAE against ray-traced AO, r = %.1f m: ultra 9x3 "
-                    "%.4f (nearest samples %.4f), 9x8 %.4f, high 3x3 %.4f (nearest samples %.4f)\n",
-                    name, 100.0 * seen, double(view.radius), ultra, ultraNearest, steps8, high, highNearest);
+                    "%.4f (nearest samples %.4f), 9x8 %.4f, high 3x3 %.4f (nearest samples %.4f, mip %.4f)\n",
+                    name, 100.0 * seen, double(view.radius), ultra, ultraNearest, steps8, high, highNearest, highMip);
         EXPECT_LE(ultra, 0.02) << name;
         EXPECT_LE(steps8, 0.02) << name;
         EXPECT_LE(ultraNearest, 0.02) << name;
         EXPECT_LE(high, 0.02) << name;
         EXPECT_LE(highNearest, 0.02) << name;
+        EXPECT_LE(highMip, 0.02) << name;
     }
 }

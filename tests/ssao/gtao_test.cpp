@@ -263,43 +263,62 @@ TEST(Gtao, FarEdgeOfAFinitePlaneStaysOpen) {
 // (a^2 / (a^2 + h^2) = 0.2). Both scenes are planes seen away from grazing angles, where a pixel centre's
 // point is off the slice line by less than a pixel of nearly constant depth. Measured (2026-11-25): wall foot
 // 0.5046-0.5053 (planar 0.5065-0.5072), well floor 0.2015 (planar 0.2000).
-TEST(Gtao, NearestSamplingMeetsTheClosedForms) {
-    {
-        GBuffer g = wallFootView();
-        GtaoSettings settings = dense(4.0f, 32, 128);
-        settings.sampling = GtaoSampling::Nearest;
-        GtaoConstants c = gtaoConstants(settings, g.camera);
-        for (int x : {96, 128, 160}) {
-            int y = footRow(g, x);
-            ASSERT_GE(y, 0);
-            const float a = gtaoPixel(c, g, x, y).visibility;
-            std::printf("nearest samples, wall foot pixel %d,%d: A = %.4f\n", x, y, double(a));
-            EXPECT_NEAR(a, 0.5f, 0.01f) << "pixel " << x << "," << y;
+//
+// The same with the depth MIP chain (GtaoSampling::Mip): samples from 14 pixels out read levels 1-4. Its
+// coarse texels stand for planes exactly (mean inverse depth at the mean of their centres), so the wall foot
+// holds; but a texel across the well's rim averages the rim with the wall below it, a point lower than the
+// rim, and the floor sees a lower horizon: its A is too high by 0.013 (0.027 with mipDistanceRatio 2, which
+// reads coarser levels sooner). Measured (2026-11-25): wall foot 0.5002-0.5013, well floor 0.2133. Bounds:
+// 0.01 (nearest), 0.02 (mip, on the well).
+TEST(Gtao, NearestAndMipSamplingMeetTheClosedForms) {
+    struct Variant {
+        const char* name;
+        GtaoSampling sampling;
+        double wellBound;
+    };
+    for (const Variant& v :
+         {Variant{"nearest", GtaoSampling::Nearest, 0.01}, Variant{"mip", GtaoSampling::Mip, 0.02}}) {
+        {
+            GBuffer g = wallFootView();
+            GtaoSettings settings = dense(4.0f, 32, 128);
+            settings.sampling = v.sampling;
+            const GtaoConstants c = gtaoConstants(settings, g.camera);
+            const GtaoDepthMips mips = buildGtaoDepthMips(g.depth, c.mipLevels);
+            for (int x : {96, 128, 160}) {
+                int y = footRow(g, x);
+                ASSERT_GE(y, 0);
+                const float a = gtaoPixel(c, g, &mips, x, y, interleaveIndex(x, y)).visibility;
+                std::printf("%s samples, wall foot pixel %d,%d: A = %.4f\n", v.name, x, y, double(a));
+                EXPECT_NEAR(a, 0.5f, 0.01f) << v.name << " pixel " << x << "," << y;
+            }
         }
+        GBuffer g = wellFromAbove();
+        const double a = builtin::kWellRadius, h = builtin::kWellDepth;
+        GtaoSettings settings = dense(3.0f, 32, 256);
+        settings.sampling = v.sampling;
+        const GtaoConstants c = gtaoConstants(settings, g.camera);
+        const GtaoDepthMips mips = buildGtaoDepthMips(g.depth, c.mipLevels);
+        double sum = 0;
+        for (int y : {127, 128})
+            for (int x : {127, 128})
+                sum += double(gtaoPixel(c, g, &mips, x, y, interleaveIndex(x, y)).visibility) / 4.0;
+        std::printf("%s samples, well floor: cosine %.4f (exact 0.2)\n", v.name, sum);
+        EXPECT_NEAR(sum, a * a / (a * a + h * h), v.wellBound) << v.name;
     }
-    GBuffer g = wellFromAbove();
-    const double a = builtin::kWellRadius, h = builtin::kWellDepth;
-    GtaoSettings settings = dense(3.0f, 32, 256);
-    settings.sampling = GtaoSampling::Nearest;
-    GtaoConstants c = gtaoConstants(settings, g.camera);
-    double sum = 0;
-    for (int y : {127, 128})
-        for (int x : {127, 128}) sum += double(gtaoPixel(c, g, x, y).visibility) / 4.0;
-    std::printf("nearest samples, well floor: cosine %.4f (exact 0.2)\n", sum);
-    EXPECT_NEAR(sum, a * a / (a * a + h * h), 0.01);
 }
 
 // What planar sampling is for: on an open plane the nearest pixel's point leaves the slice line, and where
 // depth changes fast across pixels (far away, at grazing angles) it rises above the slice's horizon and
 // occludes. Planar samples keep the plane at 1 (OpenPlaneIsOneEverywhere); nearest ones darken it a little.
 // Measured at 320x180, r 1 m, high preset (2026-11-25): planar exactly 1; nearest mean 1 - A 3.3e-4, worst
-// 0.004, 4862 of 53440 pixels below 0.999.
+// 0.004, 4862 of 53440 pixels below 0.999; mip (whose texels lie on the plane, but off the slice line by up
+// to half a texel) 4.2e-4, worst 0.004, 6574 pixels.
 TEST(Gtao, NearestSamplingDarkensAnOpenPlaneSlightly) {
     BuiltinScene s = makeBuiltinScene("plane");
     GBuffer g = render(s.scene, s.camera, 320, 180);
     GtaoSettings settings;
     settings.radius = 1.0f;
-    for (GtaoSampling sampling : {GtaoSampling::Planar, GtaoSampling::Nearest}) {
+    for (GtaoSampling sampling : {GtaoSampling::Planar, GtaoSampling::Nearest, GtaoSampling::Mip}) {
         settings.sampling = sampling;
         const GtaoResult r = computeGtao(g, settings);
         double sum = 0, worst = 0;
@@ -313,7 +332,9 @@ TEST(Gtao, NearestSamplingDarkensAnOpenPlaneSlightly) {
                 darker += e > 1e-3;
                 ++count;
             }
-        const char* name = sampling == GtaoSampling::Planar ? "planar" : "nearest";
+        const char* name = sampling == GtaoSampling::Planar ? "planar"
+                           : sampling == GtaoSampling::Mip  ? "mip"
+                                                            : "nearest";
         std::printf("open plane, %s samples: mean 1 - A %.2e, worst %.3f, %d of %d px below 0.999\n", name,
                     sum / count, worst, darker, count);
         if (sampling == GtaoSampling::Planar) {

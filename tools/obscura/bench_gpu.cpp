@@ -174,6 +174,7 @@ void runGpuBench(const GpuBenchOptions& o) {
         if (o.packedHistory) variants += ", packed history";
         if (o.keepPreviousDepth) variants += ", previous depth kept";
         if (o.sampling == "nearest") variants += ", GTAO nearest-pixel samples";
+        if (o.sampling == "mip") variants += ", GTAO depth MIP samples";
         if (settings.gtaoRadius != gpu::GpuBenchSettings{}.gtaoRadius) {
             char text[48];
             std::snprintf(text, sizeof text, ", GTAO r %g m", double(o.radius));

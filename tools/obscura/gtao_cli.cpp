@@ -35,14 +35,18 @@ std::string numbered(const std::string& dir, const char* name, int frame) {
 
 void addGtaoSamplingOption(CLI::App& app, std::string& sampling, const std::string& lead) {
     app.add_option("--gtao-sampling", sampling,
-                   lead + ": planar (inverse depth interpolated over a planar 2x2 quad, on the slice line; 5 reads) or "
-                          "nearest (the nearest pixel, 1 read, as XeGTAO; far open ground at grazing angles darkens)")
-        ->check(CLI::IsMember({"planar", "nearest"}))
+                   lead + ": planar (inverse depth interpolated over a planar 2x2 quad, on the slice line; 5 reads), "
+                          "nearest (the nearest pixel, 1 read, as XeGTAO; far open ground at grazing angles darkens) or "
+                          "mip (nearest, and samples farther than 14 pixels read a coarser level of a 5-level depth "
+                          "MIP chain, as XeGTAO)")
+        ->check(CLI::IsMember({"planar", "nearest", "mip"}))
         ->capture_default_str();
 }
 
 ssao::GtaoSampling gtaoSampling(const std::string& sampling) {
-    return sampling == "nearest" ? ssao::GtaoSampling::Nearest : ssao::GtaoSampling::Planar;
+    return sampling == "nearest" ? ssao::GtaoSampling::Nearest
+           : sampling == "mip"     ? ssao::GtaoSampling::Mip
+                                   : ssao::GtaoSampling::Planar;
 }
 
 // Slow enough for the history to follow and fast enough to disocclude something over a few frames.

@@ -8,9 +8,10 @@
 // integer arithmetic); read them side by side. The differences are GLSL's: Vec3 is vec3, but dot, length,
 // normalize and cross are written out as the C++ ones compute them (a GPU's built-ins may fuse or use an
 // inverse square root); mix is `lerp`, since GLSL's mix rounds differently; the G-buffer planes are the
-// buffers `depthPlane` and `normalPlane` (C++: g.depth, g.normal), the result `out` is `result` (a GLSL
-// keyword); std::lround is roundHalfUp (its arguments are >= 0); std::atan2(0, 0) is
-// atan2's 0. The constants are the push constants `k`, filled by ssao::gtaoConstants().
+// buffers `depthPlane` and `normalPlane` (C++: g.depth, g.normal) and the MIP chain `depthMips` (C++:
+// mips, made by gtao_mips.comp), the result `out` is `result` (a GLSL keyword); std::lround is roundHalfUp
+// (its arguments are >= 0); std::atan2(0, 0) is atan2's 0. The constants are the push constants `k`, filled
+// by ssao::gtaoConstants().
 // What remains is the GPU's sin, cos, acos, atan and pow, which round differently from libm: tests/gpu
 // measure the difference.
 //
@@ -24,6 +25,7 @@
 #extension GL_GOOGLE_include_directive : require
 
 #include "obscura/gtao_constants.h"
+#include "obscura/gtao_mips.h"
 #include "layouts.h"
 #include "temporal_layouts.h"
 
@@ -43,6 +45,7 @@ layout(std430, binding = kGtaoBindingDepth) readonly buffer DepthPlane { float d
 layout(std430, binding = kGtaoBindingNormal) readonly buffer NormalPlane { float normalPlane[]; };
 layout(std430, binding = kGtaoBindingVisibility) writeonly buffer Visibility { float visibilityOut[]; };
 layout(std430, binding = kGtaoBindingBentNormal) writeonly buffer BentNormal { float bentNormalOut[]; };
+layout(std430, binding = kGtaoBindingDepthMips) readonly buffer DepthMips { float depthMips[]; };
 
 const float kPi = 3.14159265358979323846;
 const float kHalfPi = 0.5 * kPi;
@@ -98,10 +101,27 @@ vec3 viewPosition(float px, float py, float depth) {
 
 float depthAt(int x, int y) { return depthPlane[uint(y) * uint(k.width) + uint(x)]; }
 
-bool samplePosition(float sx, float sy, int cx, int cy, out vec3 result) {
+// Where levels 2-4 start in the chain (level 1 at 0), set once by main: gtaoMipOffset loops over the levels,
+// and these are the same for every sample.
+uint mipBase2 = 0u, mipBase3 = 0u, mipBase4 = 0u;
+
+// GtaoDepthMips::at
+float mipAt(int level, int x, int y) {
+    const uint base = level == 1 ? 0u : level == 2 ? mipBase2 : level == 3 ? mipBase3 : mipBase4;
+    return depthMips[base + uint(y) * uint(gtaoMipSize(k.width, level)) + uint(x)];
+}
+
+bool samplePosition(int level, float sx, float sy, int cx, int cy, out vec3 result) {
     result = vec3(0.0);
     const int ix = int(sx), iy = int(sy);
     if (ix == cx && iy == cy) return false;
+    if (kSampling == GTAO_SAMPLING_MIP && level > 0) {
+        const int tx = ix >> level, ty = iy >> level;
+        const float w = mipAt(level, tx, ty);
+        if (!(w > 0.0)) return false;
+        result = viewPosition(gtaoMipCentre(tx, level, k.width), gtaoMipCentre(ty, level, k.height), 1.0 / w);
+        return true;
+    }
     const float nearest = depthAt(ix, iy);
     if (!(nearest < 1e30)) return false;
     const float gx = sx - 0.5, gy = sy - 0.5;
@@ -203,13 +223,16 @@ GtaoPixel gtaoPixel(int x, int y, int interleave) {
             // std::pow(s, 1) is s exactly; the GPU's pow (exp2 of log2) is not.
             s = (k.stepPower == 1.0 ? s : pow(s, k.stepPower)) + minS;
             const float offset = s * screenRadius;
+            // gtaoMipLevel: the largest l <= mipLevels with 2^l <= offset * mipTexelScale, by its highest bit.
+            const int level =
+                kSampling == GTAO_SAMPLING_MIP ? clamp(findMSB(int(offset * k.mipTexelScale)), 0, k.mipLevels) : 0;
             for (int side = 0; side < 2; ++side) {
                 const float sign = side == 0 ? 1.0 : -1.0;
                 const float sx = float(x) + 0.5 + sign * offset * cosPhi;
                 const float sy = float(y) + 0.5 - sign * offset * sinPhi;
                 if (!(sx >= 0.0 && sy >= 0.0 && sx < float(k.width) && sy < float(k.height))) continue;
                 vec3 sp;
-                if (!samplePosition(sx, sy, x, y, sp)) continue;
+                if (!samplePosition(level, sx, sy, x, y, sp)) continue;
                 const vec3 delta = sp - p;
                 const float distance = length3(delta);
                 if (!(distance > 0.0)) continue;
@@ -286,6 +309,11 @@ void main() {
     const ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     const int gridWidth = (k.width + kGridStep - 1) / kGridStep, gridHeight = (k.height + kGridStep - 1) / kGridStep;
     if (p.x >= gridWidth || p.y >= gridHeight) return;
+    if (kSampling == GTAO_SAMPLING_MIP) {
+        mipBase2 = uint(gtaoMipOffset(k.width, k.height, 2));
+        mipBase3 = uint(gtaoMipOffset(k.width, k.height, 3));
+        mipBase4 = uint(gtaoMipOffset(k.width, k.height, 4));
+    }
     const GtaoPixel px = gtaoPixel(p.x * kGridStep, p.y * kGridStep, interleaveIndex(p.x, p.y));
     const uint i = uint(p.y) * uint(gridWidth) + uint(p.x);
     visibilityOut[i] = px.visibility;

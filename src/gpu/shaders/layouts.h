@@ -61,7 +61,9 @@ OBSCURA_CONST int kGtaoBindingDepth = 0;       // width * height linear depths, 
 OBSCURA_CONST int kGtaoBindingNormal = 1;      // width * height * 3 view normals
 OBSCURA_CONST int kGtaoBindingVisibility = 2;  // width * height visibility, the pass's output
 OBSCURA_CONST int kGtaoBindingBentNormal = 3;  // width * height * 3 bent normals, the pass's output
-OBSCURA_CONST int kGtaoBindingCount = 4;
+OBSCURA_CONST int kGtaoBindingDepthMips = 4;   // GTAO_SAMPLING_MIP: the coarse levels (gtao_mips.comp's output);
+                                               // other modes leave it untouched: bind any storage buffer
+OBSCURA_CONST int kGtaoBindingCount = 5;
 // constant_id of the bent-normal output (the grid step's is kGtaoSpecGridStep, temporal_layouts.h): 1 (the
 // default) writes the bent normals; 0 computes visibility alone, for callers that want AO only (as XeGTAO
 // does by default), and leaves kGtaoBindingBentNormal untouched: bind any storage buffer there.
@@ -79,12 +81,28 @@ OBSCURA_CONST int kGtaoSpecWeighting = 3;
 OBSCURA_CONST int kGtaoSpecThicknessMode = 4;
 OBSCURA_CONST int kGtaoSpecBeyondRadius = 5;
 // The push constants are one GtaoConstants (obscura/gtao_constants.h).
-OBSCURA_CONST int kGtaoPushConstantBytes = 96;
+OBSCURA_CONST int kGtaoPushConstantBytes = 104;
 OBSCURA_CONST int kGtaoWorkgroupX = 8;
 OBSCURA_CONST int kGtaoWorkgroupY = 8;
 OBSCURA_CONST int kGtaoRotations = 6;  // ssao::kGtaoRotations, which GLSL cannot include
 
+// ---- gtao_mips.comp (src/gpu/gtao_pass.cpp) ----
+// The coarse levels of GTAO_SAMPLING_MIP's depth MIP chain (obscura/gtao_mips.h: layout, filter) in one
+// dispatch: a workgroup of GTAO_MIP_WORKGROUP^2 invocations makes an 8x8 tile of level 1 from 16x16 depths,
+// then 4x4, 2x2 and 1x1 of levels 2-4 from shared memory, as XeGTAO's prefilter does.
+struct GtaoMipConstants {
+    int width;   // of the depth buffer, pixels
+    int height;
+    int levels;  // coarse levels to write, [1, GTAO_MAX_MIP_LEVELS]
+    int pad0;
+};
+OBSCURA_CONST int kGtaoMipsBindingDepth = 0;  // width * height linear depths, +inf for sky
+OBSCURA_CONST int kGtaoMipsBindingChain = 1;  // gtaoMipOffset(width, height, levels + 1) inverse depths, the output
+OBSCURA_CONST int kGtaoMipsBindingCount = 2;
+OBSCURA_CONST int kGtaoMipsPushConstantBytes = 16;
+
 #ifdef __cplusplus
+static_assert(sizeof(GtaoMipConstants) == kGtaoMipsPushConstantBytes, "GtaoMipConstants keeps its std430 layout");
 static_assert(sizeof(BilateralConstants) == kBilateralPushConstantBytes &&
                   offsetof(BilateralConstants, useNormal) == 16 && offsetof(BilateralConstants, depthScale) == 20,
               "BilateralConstants keeps its std430 layout");
