@@ -46,15 +46,17 @@ TEST_F(BenchCli, GtaoJsonTimesEveryPreset) {
     const auto r = runCli("bench gtao --size 32x18 --repeats 1 --json");
     ASSERT_EQ(r.code, 0) << r.out;
     const nlohmann::json j = nlohmann::json::parse(r.out);
-    int presets = 0, nearest = 0;
+    int presets = 0, nearest = 0, mip = 0;
     for (const auto& c : j["cases"]) {
         EXPECT_GT(c["median_ms"].get<double>(), 0.0) << c["label"];
         EXPECT_LE(c["min_ms"].get<double>(), c["median_ms"].get<double>()) << c["label"];
         presets += c["label"].get<std::string>().rfind("full ", 0) == 0;
         nearest += c["label"].get<std::string>().find("nearest samples") != std::string::npos;
+        mip += c["label"].get<std::string>().find("depth MIP samples") != std::string::npos;
     }
     EXPECT_EQ(presets, 4);
     EXPECT_EQ(nearest, 1);
+    EXPECT_EQ(mip, 1);
 }
 
 TEST_F(BenchCli, BadArgumentsFailWithOneLine) {

@@ -65,12 +65,16 @@ void runGtaoBench(const GtaoBenchOptions& o) {
                    std::to_string(s.stepsPerSide) + ")",
                timeRuns(o.repeat, [&] { ssao::computeGtao(g, c); }));
     }
-    // High with one depth read per horizon sample instead of the planar quad's five (GtaoSampling).
-    ssao::GtaoSettings nearest;
-    nearest.radius = o.radius;
-    nearest.sampling = ssao::GtaoSampling::Nearest;
-    const ssao::GtaoConstants nearestConstants = ssao::gtaoConstants(nearest, camera);
-    record("high (3x3), nearest samples", timeRuns(o.repeat, [&] { ssao::computeGtao(g, nearestConstants); }));
+    // High with one depth read per horizon sample instead of the planar quad's five, and with far samples from
+    // the depth MIP chain, which computeGtao builds first (GtaoSampling).
+    for (auto [label, sampling] : {std::pair{"high (3x3), nearest samples", ssao::GtaoSampling::Nearest},
+                                   std::pair{"high (3x3), depth MIP samples", ssao::GtaoSampling::Mip}}) {
+        ssao::GtaoSettings s;
+        s.radius = o.radius;
+        s.sampling = sampling;
+        const ssao::GtaoConstants c = ssao::gtaoConstants(s, camera);
+        record(label, timeRuns(o.repeat, [&] { ssao::computeGtao(g, c); }));
+    }
     // The paper's real-time configuration: one slice per pixel, high's 3 steps, reconstruction + history.
     ssao::GtaoSettings one;
     one.radius = o.radius;
