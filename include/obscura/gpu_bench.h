@@ -33,6 +33,7 @@ struct GpuBenchSettings {
     bool bentNormals = true;  // the GTAO cases compute, filter and accumulate bent normals; false: visibility
                               // only (kGtaoSpecBentNormal 0), as an engine without bent-normal lighting runs them
     ssao::GtaoSampling sampling = ssao::GtaoSampling::Planar;  // the GTAO cases' horizon samples (GtaoSettings)
+    float mipDistanceRatio = 7.0f;  // with GtaoSampling::Mip (GtaoSettings::mipDistanceRatio), [2, 64]
     float gtaoRadius = 1.0f;  // the GTAO cases' radius r, m, (0, 1e4]: with the camera it sets how far on screen
                               // the horizon samples reach (GtaoSettings::radius)
     void validate() const;   // throws obscura::Error("gpu-bench-<field>: ...")

@@ -54,6 +54,7 @@ ssao::GtaoSettings gtaoSettings(const GpuBenchSettings& s) {
     ssao::GtaoSettings g;
     ssao::applyQuality(g, s.quality);
     g.sampling = s.sampling;
+    g.mipDistanceRatio = s.mipDistanceRatio;
     g.radius = s.gtaoRadius;
     return g;
 }
@@ -65,12 +66,20 @@ std::string radiusText(const ssao::GtaoSettings& g) {
     return text;
 }
 
+// "7", "3.5": a MIP ratio as the descriptions give it.
+std::string ratioText(float ratio) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", double(ratio));
+    return text;
+}
+
 std::string slicesText(const ssao::GtaoSettings& g) {
     return std::to_string(g.sliceCount) + " slice" + (g.sliceCount > 1 ? "s" : "") + " x " +
            std::to_string(g.stepsPerSide) + " steps per side" +
            (g.sampling == ssao::GtaoSampling::Nearest ? ", nearest-pixel samples"
             : g.sampling == ssao::GtaoSampling::Mip
-                ? ", depth MIP samples (" + std::to_string(g.depthMipLevels + 1) + " levels)"
+                ? ", depth MIP samples (" + std::to_string(g.depthMipLevels + 1) + " levels, ratio " +
+                      ratioText(g.mipDistanceRatio) + ")"
                 : "");
 }
 
@@ -179,6 +188,7 @@ void GpuBenchSettings::validate() const {
     check(alchemySamples >= 1 && alchemySamples <= 1024, "alchemy-samples", "[1, 1024]");
     check(temporalSlices >= 1 && temporalSlices <= 64, "temporal-slices", "[1, 64]");
     check(gtaoRadius > 0.0f && gtaoRadius <= 1e4f, "ao-radius", "(0, 1e4] m");
+    check(mipDistanceRatio >= 2.0f && mipDistanceRatio <= 64.0f, "gtao-mip-ratio", "[2, 64]");
 }
 
 std::vector<GpuBenchCaseInfo> gpuBenchCases() {

@@ -133,7 +133,7 @@ void GtaoSettings::validate() const {
     check(thicknessBlend >= 0.0f && thicknessBlend < 1.0f, "thickness-blend", "[0, 1)");
     check(bitmaskThickness > 0.0f && bitmaskThickness <= 1e4f, "bitmask-thickness", "(0, 1e4] m");
     check(depthMipLevels >= 0 && depthMipLevels <= GTAO_MAX_MIP_LEVELS, "depth-mips", "[0, 4]");
-    check(mipDistanceRatio >= 2.0f && mipDistanceRatio <= 64.0f, "mip-distance-ratio", "[2, 64]");
+    check(mipDistanceRatio >= 2.0f && mipDistanceRatio <= 64.0f, "mip-ratio", "[2, 64]");
 }
 
 void applyQuality(GtaoSettings& settings, GtaoQuality quality) {

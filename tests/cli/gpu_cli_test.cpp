@@ -252,9 +252,15 @@ TEST_F(GpuCommands, BenchGpuReportsEveryCase) {
     for (int i = 0; i < 2; ++i) {
         EXPECT_EQ(m["cases"][i]["bytes_per_frame"].get<double>() - b["cases"][i]["bytes_per_frame"].get<double>(),
                   px * 4 + 2 * chain);
-        EXPECT_NE(m["cases"][i]["description"].get<std::string>().find("depth MIP samples (5 levels)"),
+        EXPECT_NE(m["cases"][i]["description"].get<std::string>().find("depth MIP samples (5 levels, ratio 7)"),
                   std::string::npos);
     }
+    EXPECT_EQ(m["gtao_mip_ratio"], 7.0);
+    const CliResult mip4 = runCli(small + " --gtao-sampling mip --gtao-mip-ratio 3.5");
+    ASSERT_EQ(mip4.code, 0) << mip4.out;
+    const nlohmann::json m4 = nlohmann::json::parse(mip4.out);
+    EXPECT_EQ(m4["gtao_mip_ratio"], 3.5);
+    EXPECT_NE(m4["cases"][0]["description"].get<std::string>().find("ratio 3.5)"), std::string::npos);
 
     // --ao-radius: the GTAO cases' radius, in the report and the descriptions; the same buffers.
     const CliResult small4 = runCli(small + " --ao-radius 0.25");
@@ -277,6 +283,7 @@ TEST_F(GpuCommands, BenchGpuRejectsBadArguments) {
     expectFailure("bench --gpu --peak-gbps 0", {"--peak-gbps"});
     expectFailure("bench --gpu --gtao-sampling bilinear", {"--gtao-sampling", "planar,nearest,mip"}, 2);
     expectFailure("bench --gpu --ao-radius 0", {"--ao-radius", "(0, 1e4] m"});
+    expectFailure("bench --gpu --gtao-mip-ratio 1", {"--gtao-mip-ratio", "[2, 64]"});
     expectFailure("bench --gpu --gpu-device 99 --sizes 8x8 --frames 1", {"--gpu-device", "99"});
     expectFailure("bench", {"bench", "--gpu"});
 }

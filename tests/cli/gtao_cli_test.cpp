@@ -64,6 +64,7 @@ TEST_F(GtaoCli, BadInputFailsWithOneLine) {
                           {"--ao-output all", "--aov-dir"},
                           {"--gtao-falloff-start 1.5", "--gtao-falloff-start"},
                           {"--gtao-step-power 9", "--gtao-step-power"},
+                          {"--gtao-sampling mip --gtao-mip-ratio 100", "--gtao-mip-ratio"},
                           {"--gtao-half-res --gtao-mode full", "--gtao-half-res"},
                           {"--gtao-packed-history --frames 1", "--gtao-packed-history"},
                           {"--gtao-packed-history --frames 3 --gtao-mode spatial", "--gtao-packed-history"}};

@@ -51,6 +51,7 @@ struct GpuBenchOptions {
     bool packedHistory = false;
     bool keepPreviousDepth = false;
     std::string sampling = "planar";
+    float mipRatio = 7.0f;
     float radius = 1.0f;
     double peakGbps = 3000.0;
     int device = -1;
@@ -88,7 +89,7 @@ void GpuBenchOptions::add(CLI::App& bench) {
     bench.add_flag("--keep-previous-depth", keepPreviousDepth,
                    "--gpu: the temporal cases read the previous frame's depth buffer instead of a copy in the history, "
                    "as an engine that keeps last frame's depth (for TAA, say) can");
-    addGtaoSamplingOption(bench, sampling, "--gpu: how the GTAO cases' horizon samples read depth");
+    addGtaoSamplingOption(bench, sampling, mipRatio, "--gpu: how the GTAO cases' horizon samples read depth");
     bench.add_option("--ao-radius", radius,
                      "--gpu: the GTAO cases' radius, m, (0, 1e4]; a smaller one keeps the horizon samples nearer the "
                      "pixel on screen (fewer cache lines per frame, nearly the same arithmetic)")
@@ -112,6 +113,7 @@ void runGpuBench(const GpuBenchOptions& o) {
     settings.packedHistory = o.packedHistory;
     settings.callerKeepsDepth = o.keepPreviousDepth;
     settings.sampling = gtaoSampling(o.sampling);
+    settings.mipDistanceRatio = o.mipRatio;
     settings.gtaoRadius = o.radius;
     try {
         settings.validate();
@@ -166,6 +168,7 @@ void runGpuBench(const GpuBenchOptions& o) {
     report["packed_history"] = settings.packedHistory;
     report["keep_previous_depth"] = settings.callerKeepsDepth;
     report["gtao_sampling"] = o.sampling;
+    report["gtao_mip_ratio"] = o.mipRatio;
     report["gtao_radius_m"] = o.radius;
     report["validation"] = context.validation();
     if (!o.json) {
@@ -174,7 +177,11 @@ void runGpuBench(const GpuBenchOptions& o) {
         if (o.packedHistory) variants += ", packed history";
         if (o.keepPreviousDepth) variants += ", previous depth kept";
         if (o.sampling == "nearest") variants += ", GTAO nearest-pixel samples";
-        if (o.sampling == "mip") variants += ", GTAO depth MIP samples";
+        if (o.sampling == "mip") {
+            char text[64];
+            std::snprintf(text, sizeof text, ", GTAO depth MIP samples (ratio %g)", double(o.mipRatio));
+            variants += text;
+        }
         if (settings.gtaoRadius != gpu::GpuBenchSettings{}.gtaoRadius) {
             char text[48];
             std::snprintf(text, sizeof text, ", GTAO r %g m", double(o.radius));

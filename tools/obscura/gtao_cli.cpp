@@ -33,13 +33,18 @@ std::string numbered(const std::string& dir, const char* name, int frame) {
 
 } // namespace
 
-void addGtaoSamplingOption(CLI::App& app, std::string& sampling, const std::string& lead) {
+void addGtaoSamplingOption(CLI::App& app, std::string& sampling, float& mipRatio, const std::string& lead) {
     app.add_option("--gtao-sampling", sampling,
                    lead + ": planar (inverse depth interpolated over a planar 2x2 quad, on the slice line; 5 reads), "
                           "nearest (the nearest pixel, 1 read, as XeGTAO; far open ground at grazing angles darkens) or "
                           "mip (nearest, and samples farther than 14 pixels read a coarser level of a 5-level depth "
                           "MIP chain, as XeGTAO)")
         ->check(CLI::IsMember({"planar", "nearest", "mip"}))
+        ->capture_default_str();
+    app.add_option("--gtao-mip-ratio", mipRatio,
+                   "With --gtao-sampling mip: a sample d pixels away reads the coarsest MIP level whose texels are at "
+                   "most d / ratio pixels wide, [2, 64]; smaller reads coarser levels sooner (fewer cache lines, a "
+                   "lower horizon behind thin rims)")
         ->capture_default_str();
 }
 
@@ -90,7 +95,7 @@ void GtaoOptions::add(CLI::App& app) {
                    "that comes within the radius (column), or not at all (drop)")
         ->check(CLI::IsMember({"column", "drop"}))
         ->capture_default_str();
-    addGtaoSamplingOption(app, sampling, "GTAO: how a horizon sample reads depth");
+    addGtaoSamplingOption(app, sampling, mipRatio, "GTAO: how a horizon sample reads depth");
     app.add_option("--gtao-step-power", stepPower,
                    "GTAO: horizon step distribution, distance ~ (k / steps)^power, [1, 4]; > 1 packs steps near the centre")
         ->capture_default_str();
@@ -105,6 +110,7 @@ ssao::GtaoSettings GtaoOptions::settings(float radius) const {
     s.beyondRadius = beyondRadius == "drop" ? ssao::GtaoBeyondRadius::Drop : ssao::GtaoBeyondRadius::Column;
     s.stepPower = stepPower;
     s.sampling = gtaoSampling(sampling);
+    s.mipDistanceRatio = mipRatio;
     s.thickness = thickness == "heuristic" ? ssao::GtaoThickness::Heuristic
                   : thickness == "bitmask" ? ssao::GtaoThickness::Bitmask
                                            : ssao::GtaoThickness::None;

@@ -32,6 +32,7 @@ struct GtaoOptions {
     float falloffStart = 1.0f;
     std::string beyondRadius = "column";
     std::string sampling = "planar";
+    float mipRatio = 7.0f;  // GtaoSettings::mipDistanceRatio
     float stepPower = 1.0f;
 
     void add(CLI::App& app);
@@ -41,9 +42,9 @@ struct GtaoOptions {
     void validate(const std::string& aovDir) const;
 };
 
-// --gtao-sampling (planar, nearest) on `app`, its help starting with `lead` (what the flag sets, for this
-// command), and its value as the setting.
-void addGtaoSamplingOption(CLI::App& app, std::string& sampling, const std::string& lead);
+// --gtao-sampling (planar, nearest, mip) and --gtao-mip-ratio on `app`, the first's help starting with `lead`
+// (what the flag sets, for this command), and the sampling's value as the setting.
+void addGtaoSamplingOption(CLI::App& app, std::string& sampling, float& mipRatio, const std::string& lead);
 ssao::GtaoSampling gtaoSampling(const std::string& sampling);
 
 // Frame k of the built-in camera path: `base` turned k * 0.5 degrees about the vertical through its target.
