@@ -100,6 +100,8 @@ struct GtaoDepthMips {
     int levels = 0;             // coarse levels, [0, GTAO_MAX_MIP_LEVELS]
     std::vector<float> texels;  // inverse depths (0: sky), level 1 first, gtaoMipOffset(width, height, levels + 1)
     float at(int level, int x, int y) const;  // level in 1..levels, no checks
+    // gtaoMipOffset and gtaoMipSize(width, .) of each level, so that at() does not loop over the levels.
+    int offset[GTAO_MAX_MIP_LEVELS + 1] = {}, levelWidth[GTAO_MAX_MIP_LEVELS + 1] = {};
 };
 // The coarse levels the settings' sampling reads: depthMipLevels with GtaoSampling::Mip, else 0.
 int gtaoDepthMipLevels(const GtaoSettings& settings);

@@ -10,8 +10,7 @@
 namespace obscura::ssao {
 
 float GtaoDepthMips::at(int level, int x, int y) const {
-    return texels[std::size_t(gtaoMipOffset(width, height, level)) +
-                  std::size_t(y) * std::size_t(gtaoMipSize(width, level)) + std::size_t(x)];
+    return texels[std::size_t(offset[level]) + std::size_t(y) * std::size_t(levelWidth[level]) + std::size_t(x)];
 }
 
 GtaoDepthMips buildGtaoDepthMips(const Image& depth, int levels) {
@@ -21,6 +20,10 @@ GtaoDepthMips buildGtaoDepthMips(const Image& depth, int levels) {
     m.height = depth.height;
     m.levels = levels;
     m.texels.assign(std::size_t(gtaoMipOffset(m.width, m.height, levels + 1)), 0.0f);
+    for (int level = 1; level <= levels; ++level) {
+        m.offset[level] = gtaoMipOffset(m.width, m.height, level);
+        m.levelWidth[level] = gtaoMipSize(m.width, level);
+    }
     for (int level = 1; level <= levels; ++level) {
         const int childWidth = gtaoMipSize(m.width, level - 1), childHeight = gtaoMipSize(m.height, level - 1);
         const int w = gtaoMipSize(m.width, level), h = gtaoMipSize(m.height, level);
