@@ -269,7 +269,7 @@ int main(int argc, char** argv) try {
     HostBuffer zBuffer(e, pixels), normalIn(e, 3 * pixels), depth(e, pixels), normal(e, 3 * pixels);
     HostBuffer visibility(e, pixels), bent(e, 3 * pixels), spatial(e, blur.logSpatial.size()), scratch(e, pixels),
         ao(e, pixels);
-    // Planar samples read no depth MIP chain, but its binding needs a buffer. With GtaoSampling::Mip it holds
+    // Planar samples read no depth MIP chain, but its binding needs a buffer. With GtaoSampling::Mip or PlanarMip it holds
     // gtaoMipOffset(width, height, mipLevels + 1) floats that gtao_mips.comp writes from `depth` first.
     HostBuffer noChain(e, 4);
     std::memcpy(zBuffer.data, deviceDepth.pixels.data(), zBuffer.bytes);

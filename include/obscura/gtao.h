@@ -37,9 +37,12 @@ enum class GtaoBeyondRadius { Column, Drop };
 // horizon, so far open ground darkens (by up to 0.17 at a plane's far edge against the sky; elsewhere both
 // are within 0.001 of each other against ray tracing: docs/QUALITY.md). Mip reads samples beyond
 // 2 mipDistanceRatio pixels from a coarser level of a depth MIP chain (XeGTAO's depth MIPs; obscura/gtao_mips.h
-// says how it is filtered), so that far samples of neighbouring pixels share texels and cache lines; nearer
-// ones read as Nearest.
-enum class GtaoSampling { Planar, Nearest, Mip };
+// says how it is filtered), so that far samples of neighbouring pixels share texels and cache lines, and
+// nearer ones as Nearest, as XeGTAO does. PlanarMip reads the nearer ones as Planar: that is where a pixel
+// centre's point is farthest off the slice line (by an angle of up to 0.7 / d at d pixels), so it keeps far
+// open ground open (1 - A below 0.008 where Nearest and Mip leave 0.17), at Planar's cost wherever near
+// and far samples mix in one SIMD group.
+enum class GtaoSampling { Planar, Nearest, Mip, PlanarMip };
 
 struct GtaoSettings {
     float radius = 1.0f;            // r: m, (0, 1e4]; occluders farther than r from the point do not count
@@ -54,9 +57,9 @@ struct GtaoSettings {
                                     // every preset but low (docs/QUALITY.md)
     GtaoBeyondRadius beyondRadius = GtaoBeyondRadius::Column;
     GtaoSampling sampling = GtaoSampling::Planar;  // horizon samples' depth reads: Planar (5 reads, on the
-                                                   // slice line), Nearest (1 read, as XeGTAO) or Mip (see above)
-    int depthMipLevels = 4;         // with Mip: coarse levels of the chain, [0, 4] (4: 5 MIPs, as XeGTAO's)
-    float mipDistanceRatio = 7.0f;  // with Mip: a sample d pixels away reads the coarsest level whose texels
+                                                   // slice line), Nearest (1 read, as XeGTAO), Mip or PlanarMip
+    int depthMipLevels = 4;         // with (Planar)Mip: coarse levels of the chain, [0, 4] (4: 5 MIPs, as XeGTAO's)
+    float mipDistanceRatio = 7.0f;  // with (Planar)Mip: a sample d pixels away reads the coarsest level whose texels
                                     // are at most d / ratio pixels wide, [2, 64] (7: XeGTAO's MIP offset 3.3)
     GtaoWeighting weighting = GtaoWeighting::Cosine;  // App. A's uniform weighting is an option
     GtaoThickness thickness = GtaoThickness::None;
@@ -103,13 +106,13 @@ struct GtaoDepthMips {
     // gtaoMipOffset and gtaoMipSize(width, .) of each level, so that at() does not loop over the levels.
     int offset[GTAO_MAX_MIP_LEVELS + 1] = {}, levelWidth[GTAO_MAX_MIP_LEVELS + 1] = {};
 };
-// The coarse levels the settings' sampling reads: depthMipLevels with GtaoSampling::Mip, else 0.
+// The coarse levels the settings' sampling reads: depthMipLevels with GtaoSampling::Mip or PlanarMip, else 0.
 int gtaoDepthMipLevels(const GtaoSettings& settings);
 // Builds `levels` coarse levels from linear depths (+inf or >= 1e30 for sky). Assumes a depth image of at
 // least 1x1 and levels in [0, GTAO_MAX_MIP_LEVELS].
 GtaoDepthMips buildGtaoDepthMips(const Image& depth, int levels);
 
-// The kernel with its depth MIP chain, which the constants' GTAO_SAMPLING_MIP needs (built from the same
+// The kernel with its depth MIP chain, which the constants' GTAO_SAMPLING_(PLANAR_)MIP needs (built from the same
 // depth with constants.mipLevels levels); the overloads without it throw obscura::Error for that mode.
 GtaoPixel gtaoPixel(const GtaoConstants& constants, const GBuffer& gbuffer, const GtaoDepthMips* mips, int x, int y,
                     int interleave);

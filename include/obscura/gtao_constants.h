@@ -26,6 +26,7 @@ using uint = std::uint32_t;
 #define GTAO_SAMPLING_NEAREST 1   // ... or takes the nearest pixel's point: one read instead of five
 #define GTAO_SAMPLING_MIP 2       // ... or, farther out, the point of a coarser level of a depth MIP chain
                                   // (obscura/gtao_mips.h); nearest where no coarser level is fine enough
+#define GTAO_SAMPLING_PLANAR_MIP 3  // the chain farther out, planar samples nearer
 
 struct GtaoConstants {
     int width;                 // image size, pixels
@@ -52,9 +53,23 @@ struct GtaoConstants {
     int frameIndex;            // selects the temporal rotation (of 6) and the jitter
     int beyondRadius;          // GTAO_BEYOND_*: what a sample farther than the full-weight distance stands for
     int sampling;              // GTAO_SAMPLING_*: how a horizon sample reads the depth buffer
-    int mipLevels;             // GTAO_SAMPLING_MIP: coarse levels of the chain, [0, GTAO_MAX_MIP_LEVELS]; else 0
-    float mipTexelScale;       // GTAO_SAMPLING_MIP: widest texel a sample may read per pixel of its distance
+    int mipLevels;             // GTAO_SAMPLING_(PLANAR_)MIP: coarse levels of the chain, [0, GTAO_MAX_MIP_LEVELS]; else 0
+    float mipTexelScale;       // the same: widest texel a sample may read per pixel of its distance
 };
+
+#ifdef __cplusplus
+#define OBSCURA_FN inline
+#else
+#define OBSCURA_FN
+#endif
+// Whether a GTAO_SAMPLING_* mode reads the depth MIP chain, and whether its samples that do not are planar.
+OBSCURA_FN bool gtaoSamplingReadsMips(int sampling) {
+    return sampling == GTAO_SAMPLING_MIP || sampling == GTAO_SAMPLING_PLANAR_MIP;
+}
+OBSCURA_FN bool gtaoSamplingPlanarNear(int sampling) {
+    return sampling == GTAO_SAMPLING_PLANAR || sampling == GTAO_SAMPLING_PLANAR_MIP;
+}
+#undef OBSCURA_FN
 
 #ifdef __cplusplus
 static_assert(sizeof(GtaoConstants) == 26 * 4, "GtaoConstants must stay 26 scalars (std430 layout)");

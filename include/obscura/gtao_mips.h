@@ -1,4 +1,4 @@
-// The depth MIP chain of GtaoSampling::Mip, shared by the C++ reference (src/ssao/gtao_mips.cpp, the
+// The depth MIP chain of GtaoSampling::Mip and PlanarMip, shared by the C++ reference (src/ssao/gtao_mips.cpp, the
 // sampling in src/ssao/gtao.cpp) and the compute passes (src/gpu/shaders/gtao_mips.comp, gtao.comp); the
 // same file is #included by GLSL, so both sides size, filter and place texels with one arithmetic.
 //

@@ -76,9 +76,12 @@ const std::vector<AoMethod>& aoMethods() {
         gtao("gtao-ultra", "GTAO, ultra preset (9 slices x 3 steps per side, r 1 m, binary AO)", ssao::GtaoQuality::Ultra),
         gtao("gtao-nearest", "GTAO high preset with nearest-pixel horizon samples (1 depth read per sample, as XeGTAO)",
              ssao::GtaoQuality::High, ssao::GtaoSampling::Nearest),
-        gtao("gtao-mip", "GTAO high preset with a depth MIP chain: nearest-pixel samples, farther ones from 4 coarser "
-                         "levels (as XeGTAO)",
+        gtao("gtao-mip", "GTAO high preset with a depth MIP chain: far samples from 4 coarser levels, near ones "
+                         "nearest-pixel (as XeGTAO)",
              ssao::GtaoQuality::High, ssao::GtaoSampling::Mip),
+        gtao("gtao-planar-mip", "GTAO high preset with a depth MIP chain: far samples from 4 coarser levels, near "
+                                "ones planar",
+             ssao::GtaoQuality::High, ssao::GtaoSampling::PlanarMip),
     };
     return methods;
 }

@@ -77,9 +77,10 @@ std::string slicesText(const ssao::GtaoSettings& g) {
     return std::to_string(g.sliceCount) + " slice" + (g.sliceCount > 1 ? "s" : "") + " x " +
            std::to_string(g.stepsPerSide) + " steps per side" +
            (g.sampling == ssao::GtaoSampling::Nearest ? ", nearest-pixel samples"
-            : g.sampling == ssao::GtaoSampling::Mip
-                ? ", depth MIP samples (" + std::to_string(g.depthMipLevels + 1) + " levels, ratio " +
-                      ratioText(g.mipDistanceRatio) + ")"
+            : g.sampling == ssao::GtaoSampling::Mip || g.sampling == ssao::GtaoSampling::PlanarMip
+                ? std::string(g.sampling == ssao::GtaoSampling::PlanarMip ? ", planar + depth MIP samples ("
+                                                                          : ", depth MIP samples (") +
+                      std::to_string(g.depthMipLevels + 1) + " levels, ratio " + ratioText(g.mipDistanceRatio) + ")"
                 : "");
 }
 

@@ -17,7 +17,7 @@ struct GtaoBuffers {
     const Buffer& normal;      // width * height * 3 view normals
     const Buffer& visibility;  // gridWidth * gridHeight visibility
     const Buffer& bentNormal;  // gridWidth * gridHeight * 3 view-space bent normals
-    const Buffer& depthMips;   // GTAO_SAMPLING_MIP: the chain recordGtaoDepthMips made from `depth`
+    const Buffer& depthMips;   // GTAO_SAMPLING_(PLANAR_)MIP: the chain recordGtaoDepthMips made from `depth`
 };
 
 // The depth MIP chain of constants with mipLevels coarse levels (0: any other sampling) for a width x height

@@ -130,7 +130,7 @@ private:
     Buffer rawVisibility_[2], rawBent_[2];
     Buffer visibility_, bent_;        // grid: reconstructed (half resolution only)
     Buffer bentView_;
-    Buffer depthMips_;  // GtaoSampling::Mip's chain of the frame's depth (a placeholder otherwise)
+    Buffer depthMips_;  // GtaoSampling::(Planar)Mip's chain of the frame's depth (a placeholder otherwise)
     History history_[2];
     GtaoTemporalVariant variant_;
     // Bound at the bindings a variant leaves untouched (bent normals, length planes, depth copy); never read

@@ -57,8 +57,9 @@ float fract(float v) { return v - std::floor(v); }
 // corner (extrapolating an affine function is exact too): that keeps the interpolation at a surface's
 // edge against the sky, at its corners (where only the diagonal quad lies on the surface) and at the image
 // border. Across an edge or a silhouette, and always with GTAO_SAMPLING_NEAREST, the nearest pixel's own
-// point is used. With GTAO_SAMPLING_MIP and level >= 1 the point is that of the chain's texel holding the
-// nearest pixel (obscura/gtao_mips.h). False for sky or for (sx, sy) in the centre pixel (cx, cy).
+// point is used. With GTAO_SAMPLING_MIP and PLANAR_MIP, from level 1 the point is that of the chain's texel
+// holding the nearest pixel (obscura/gtao_mips.h); below, MIP reads as NEAREST and PLANAR_MIP as PLANAR. False
+// for sky or for (sx, sy) in the centre pixel (cx, cy).
 bool samplePosition(const GtaoConstants& c, const GBuffer& g, const GtaoDepthMips* mips, int level, float sx, float sy,
                     int cx, int cy, Vec3& out) {
     const int ix = int(sx), iy = int(sy);
@@ -73,7 +74,7 @@ bool samplePosition(const GtaoConstants& c, const GBuffer& g, const GtaoDepthMip
     const float nearest = g.depth.at(ix, iy);
     if (!(nearest < 1e30f)) return false;
     const float gx = sx - 0.5f, gy = sy - 0.5f;
-    if (c.sampling == GTAO_SAMPLING_PLANAR && c.width > 1 && c.height > 1) {
+    if (gtaoSamplingPlanarNear(c.sampling) && c.width > 1 && c.height > 1) {
         // The quad around (sx, sy) has the nearest pixel (ix, iy) as a corner; ox, oy pick the other quads.
         const int bx = int(std::floor(gx)), by = int(std::floor(gy));
         const int ox = bx == ix ? ix - 1 : ix, oy = by == iy ? iy - 1 : iy;
@@ -161,7 +162,11 @@ int interleaveIndex(int x, int y) {
     return kBayer[(y & 3) * 4 + (x & 3)];
 }
 
-int gtaoDepthMipLevels(const GtaoSettings& s) { return s.sampling == GtaoSampling::Mip ? s.depthMipLevels : 0; }
+namespace {
+bool readsDepthMips(GtaoSampling s) { return s == GtaoSampling::Mip || s == GtaoSampling::PlanarMip; }
+} // namespace
+
+int gtaoDepthMipLevels(const GtaoSettings& s) { return readsDepthMips(s.sampling) ? s.depthMipLevels : 0; }
 
 GtaoConstants gtaoConstants(const GtaoSettings& s, const Camera& camera, int frameIndex, bool interleaved) {
     GtaoConstants c{};
@@ -194,10 +199,11 @@ GtaoConstants gtaoConstants(const GtaoSettings& s, const Camera& camera, int fra
     c.frameIndex = frameIndex;
     c.beyondRadius = s.beyondRadius == GtaoBeyondRadius::Column ? GTAO_BEYOND_COLUMN : GTAO_BEYOND_DROP;
     c.sampling = s.sampling == GtaoSampling::Nearest ? GTAO_SAMPLING_NEAREST
-                 : s.sampling == GtaoSampling::Mip   ? GTAO_SAMPLING_MIP
-                                                     : GTAO_SAMPLING_PLANAR;
+                 : s.sampling == GtaoSampling::Mip ? GTAO_SAMPLING_MIP
+                 : s.sampling == GtaoSampling::PlanarMip ? GTAO_SAMPLING_PLANAR_MIP
+                                                         : GTAO_SAMPLING_PLANAR;
     c.mipLevels = gtaoDepthMipLevels(s);
-    c.mipTexelScale = s.sampling == GtaoSampling::Mip ? 1.0f / s.mipDistanceRatio : 0.0f;
+    c.mipTexelScale = readsDepthMips(s.sampling) ? 1.0f / s.mipDistanceRatio : 0.0f;
     return c;
 }
 

@@ -1,4 +1,4 @@
-// The depth MIP chain of GtaoSampling::Mip (after XeGTAO's depth prefilter, Intel 2021): coarse levels of
+// The depth MIP chain of GtaoSampling::Mip and PlanarMip (after XeGTAO's depth prefilter, Intel 2021): coarse levels of
 // inverse depth, each texel the mean of four planar children or the farthest of four that are not
 // (obscura/gtao_mips.h holds the filter, the sizes and the layout, shared with gtao_mips.comp).
 #include "obscura/gtao.h"

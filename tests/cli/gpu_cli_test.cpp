@@ -85,7 +85,7 @@ TEST_F(GpuCommands, RenderGtaoMatchesTheCpu) {
         "corner --size 70x40 --ao gtao --frames 3 --gtao-half-res --gtao-packed-history",
         "stairs --size 81x47 --ao gtao --frames 3 --gtao-sampling nearest",  // temporal, nearest samples
         "demo --size 99x57 --ao gtao --gtao-sampling mip",                     // depth MIP chain
-        "stairs --size 81x47 --ao gtao --frames 3 --gtao-sampling mip --gtao-half-res",  // temporal, half, MIP
+        "stairs --size 81x47 --ao gtao --frames 3 --gtao-sampling planar-mip --gtao-half-res",  // temporal, half
     };
     for (const char* c : cases) {
         const Pair d = renderBoth(c);
@@ -281,7 +281,7 @@ TEST_F(GpuCommands, BenchGpuRejectsBadArguments) {
     expectFailure("bench --gpu --sizes 0x10", {"--sizes"});
     expectFailure("bench --gpu --inputs 40", {"--inputs"});
     expectFailure("bench --gpu --peak-gbps 0", {"--peak-gbps"});
-    expectFailure("bench --gpu --gtao-sampling bilinear", {"--gtao-sampling", "planar,nearest,mip"}, 2);
+    expectFailure("bench --gpu --gtao-sampling bilinear", {"--gtao-sampling", "planar,nearest,mip,planar-mip"}, 2);
     expectFailure("bench --gpu --ao-radius 0", {"--ao-radius", "(0, 1e4] m"});
     expectFailure("bench --gpu --gtao-mip-ratio 1", {"--gtao-mip-ratio", "[2, 64]"});
     expectFailure("bench --gpu --gpu-device 99 --sizes 8x8 --frames 1", {"--gpu-device", "99"});

@@ -92,9 +92,9 @@ TEST_F(GtaoCli, CompareMeasuresGtaoAgainstRayTracedAo) {
 }
 
 // --gtao-sampling reaches the kernel: on the open plane planar samples give exactly 1 everywhere and nearest
-// (and mip) ones darken a few far pixels (tests/ssao/gtao_test.cpp, NearestSamplingDarkensAnOpenPlaneSlightly).
+// (and mip, and planar-mip) ones darken a few far pixels (tests/ssao/gtao_test.cpp, NearestSamplingDarkensAnOpenPlaneSlightly).
 TEST_F(GtaoCli, SamplingFlagReachesTheKernel) {
-    for (const char* sampling : {"planar", "nearest", "mip"}) {
+    for (const char* sampling : {"planar", "nearest", "mip", "planar-mip"}) {
         Result r = run("render plane --ao gtao --size 160x90 -q -o " + path("f.png") + " --aov-dir " + path("aov") +
                        " --gtao-sampling " + sampling);
         ASSERT_EQ(r.code, 0) << r.out;

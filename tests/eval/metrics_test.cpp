@@ -60,9 +60,9 @@ TEST(Methods, RegistryFindsAndRejectsNames) {
         EXPECT_NE(std::string(e.what()).find("alchemy"), std::string::npos) << e.what();
     }
     // A flat plane facing the camera: every method gives 1, and its reference names a radius. But
-    // gtao-nearest and gtao-mip: their samples, at pixel (or texel) centres off the slice line, see the plane a
-    // little above the slice's horizon (docs/QUALITY.md), which costs up to 1e-3 here (measured 3.2e-4 at
-    // worst for each, 2026-11-25).
+    // gtao-nearest and gtao-mip: their samples, at pixel centres off the slice line, see the plane a little
+    // above the slice's horizon (docs/QUALITY.md), which costs up to 1e-3 here (measured 3.2e-4 at worst for
+    // each, 2026-11-25). gtao-planar-mip reads near samples as planar ones, and at 16x12 every sample is near.
     GBuffer g = flat(16, 12);
     for (const AoMethod& m : aoMethods()) {
         Image ao = m.compute(g, MethodOptions{});

@@ -95,7 +95,8 @@ TEST(GpuGtao, MatchesTheCpuReferenceOnScenesAndPresets) {
 // 7.4e-5 / 1.1e-4; beyond radius drop 8.2e-5 / 1.5e-4 and 8.5e-5 / 1.1e-4; jitter 1.0e-4 / 1.5e-4 and
 // 8.6e-5 / 1.6e-4; falloff 0.5 with step power 2 (the GPU's pow) 8.8e-5 / 9.9e-5 and 7.4e-5 / 9.7e-5;
 // nearest samples (2026-11-25) 8.5e-5 / 1.0e-4 and 7.4e-5 / 1.1e-4; mip samples (2026-11-25) 8.5e-5 /
-// 1.0e-4 and 7.4e-5 / 1.1e-4, with ratio 2 8.5e-5 / 1.0e-4 and 9.9e-5 / 1.2e-4; interleaved 1.4e-4 / up to
+// 1.0e-4 and 7.4e-5 / 1.1e-4, with ratio 2 8.5e-5 / 1.0e-4 and 9.9e-5 / 1.2e-4, planar-mip 8.2e-5 / 1.5e-4
+// and 7.2e-5 / 1.1e-4; interleaved 1.4e-4 / up to
 // 3.4e-4 on each frame. Bitmask thickness: 2.2e-2 / 2.4e-2 and 5.1e-3 / 6.5e-3 over
 // all pixels from 6 and 2 pixels beyond the bounds (the size of one sector of one slice, see allowedBeyond),
 // and 8.7e-4 / 1.5e-3 and 7.3e-4 / 1.1e-3 on the rest.
@@ -124,11 +125,14 @@ TEST(GpuGtao, MatchesTheCpuReferenceWithEveryOption) {
     mip.sampling = ssao::GtaoSampling::Mip;
     ssao::GtaoSettings mipFine = mip;  // reads every level at these sizes
     mipFine.mipDistanceRatio = 2.0f;
+    ssao::GtaoSettings planarMip = mip;
+    planarMip.sampling = ssao::GtaoSampling::PlanarMip;
     for (const auto& [name, s] :
          {std::pair{"uniform", uniform}, std::pair{"heuristic thickness", heuristic},
           std::pair{"bitmask thickness", bitmask}, std::pair{"beyond radius drop", drop}, std::pair{"jitter", jitter},
           std::pair{"falloff 0.5, step power 2", falloff}, std::pair{"nearest samples", nearest},
-          std::pair{"mip samples", mip}, std::pair{"mip samples, ratio 2", mipFine}}) {
+          std::pair{"mip samples", mip}, std::pair{"mip samples, ratio 2", mipFine},
+          std::pair{"planar-mip samples", planarMip}}) {
         expectMatch(context, g, ssao::gtaoConstants(s, g.camera, 3), std::string("stairs ") + name);
         expectMatch(context, well, ssao::gtaoConstants(s, well.camera, 3), std::string("well ") + name);
     }

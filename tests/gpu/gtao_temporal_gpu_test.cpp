@@ -101,7 +101,10 @@ void expectMatch(Context& context, const Run& run, const ssao::GtaoTemporalSetti
     Image lastVisibility;
     const int pixels = run.width * run.height;
     const std::string name = std::string(run.scene) + " " + ssao::qualityName(run.quality) +
-                             (run.sampling == ssao::GtaoSampling::Mip ? " mip " : " ") + mode;
+                             (run.sampling == ssao::GtaoSampling::Mip         ? " mip "
+                              : run.sampling == ssao::GtaoSampling::PlanarMip ? " planar-mip "
+                                                                              : " ") +
+                             mode;
     for (int f = 0; f < frames; ++f) {
         const ssao::GtaoResult& c = cpu.frame(gbuffers[std::size_t(f)]);
         const ssao::GtaoResult& g = gpu.frame(gbuffers[std::size_t(f)]);
@@ -242,15 +245,15 @@ TEST(GpuGtaoTemporal, TemporalMatchesTheCpuReference) {
     EXPECT_EQ(testing::validationReport(context), "");
 }
 
-// Mip sampling (GtaoSampling::Mip): each frame makes the depth MIP chain of its own depth before the GTAO
-// pass, at both resolutions (the chain is of the full-resolution depth either way).
+// Mip sampling (GtaoSampling::Mip and PlanarMip): each frame makes the depth MIP chain of its own depth
+// before the GTAO pass, at both resolutions (the chain is of the full-resolution depth either way).
 TEST(GpuGtaoTemporal, MipSamplingMatchesTheCpuReference) {
     OBSCURA_GPU_CONTEXT(context);
     for (bool half : {false, true}) {
         const std::string m = half ? "temporal, half resolution" : "temporal";
         expectMatch(context, {"demo", 333, 197, ssao::GtaoQuality::High, ssao::GtaoSampling::Mip}, mode(true, half),
                     3, 0, m);
-        expectMatch(context, {"stairs", 96, 64, ssao::GtaoQuality::Medium, ssao::GtaoSampling::Mip},
+        expectMatch(context, {"stairs", 96, 64, ssao::GtaoQuality::Medium, ssao::GtaoSampling::PlanarMip},
                     mode(true, half), 3, 0, m);
     }
     EXPECT_EQ(testing::validationReport(context), "");

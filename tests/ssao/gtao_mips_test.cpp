@@ -1,6 +1,6 @@
 // The depth MIP chain of GtaoSampling::Mip (obscura/gtao_mips.h, src/ssao/gtao_mips.cpp): its layout, the
 // claim its sampling rests on (a plane's texels lie on the plane at every level, at odd sizes too), its sky
-// rule, the level choice, and that with no coarse level it is nearest-pixel sampling bit for bit.
+// rule, the level choice, and that with no coarse level Mip is Nearest and PlanarMip is Planar bit for bit.
 #include "obscura/builtin_scenes.h"
 #include "obscura/error.h"
 #include "obscura/gtao.h"
@@ -82,20 +82,27 @@ TEST(GtaoMips, LevelGrowsWithTheSampleDistance) {
     EXPECT_EQ(gtaoMipLevel(5000.0f, scale, 0), 0);
 }
 
-TEST(GtaoMips, WithoutCoarseLevelsMipIsNearestBitForBit) {
+TEST(GtaoMips, WithoutCoarseLevelsTheChainModesAreTheirNearSampling) {
     BuiltinScene s = makeBuiltinScene("demo");
     s.camera.width = 97;
     s.camera.height = 61;
     trace::Tracer tracer(s.scene);
     const GBuffer g = trace::renderGBuffer(tracer, s.camera);
+    for (auto [near, chain] : {std::pair{GtaoSampling::Nearest, GtaoSampling::Mip},
+                               std::pair{GtaoSampling::Planar, GtaoSampling::PlanarMip}}) {
+        GtaoSettings a, b;
+        a.sampling = near;
+        b.sampling = chain;
+        b.depthMipLevels = 0;
+        const GtaoResult ra = computeGtao(g, a), rb = computeGtao(g, b);
+        EXPECT_EQ(ra.visibility.pixels, rb.visibility.pixels);
+        EXPECT_EQ(ra.bentNormal.pixels, rb.bentNormal.pixels);
+    }
     GtaoSettings nearest;
     nearest.sampling = GtaoSampling::Nearest;
+    const GtaoResult a = computeGtao(g, nearest);
     GtaoSettings mip;
     mip.sampling = GtaoSampling::Mip;
-    mip.depthMipLevels = 0;
-    const GtaoResult a = computeGtao(g, nearest), b = computeGtao(g, mip);
-    EXPECT_EQ(a.visibility.pixels, b.visibility.pixels);
-    EXPECT_EQ(a.bentNormal.pixels, b.bentNormal.pixels);
     // With the levels the result differs (the chain is read), and stays close on this view.
     mip.depthMipLevels = 4;
     mip.mipDistanceRatio = 2.0f;

@@ -256,6 +256,23 @@ TEST(Gtao, FarEdgeOfAFinitePlaneStaysOpen) {
                 if (!g.isSky(x, y)) worst = std::max(worst, 1.0f - gtaoPixel(c, g, x, y).visibility);
         EXPECT_LT(worst, 1e-5f) << "rotation " << frame;
     }
+    // GtaoSampling::PlanarMip reads the near samples, where a pixel centre's point is farthest off the slice
+    // line (0.7 px at distance d is an angle of 0.7 / d), as planar ones, and the far samples from the depth
+    // MIP chain, whose texel points lie on the plane and off the line by at most 1 / (2 mipDistanceRatio) of d.
+    // Measured: 0.0025-0.0073 over the 6 rotations (2026-11-25); GtaoSampling::Mip, nearest near samples,
+    // 0.08-0.17 like Nearest.
+    settings.sampling = GtaoSampling::PlanarMip;
+    for (int frame = 0; frame < kGtaoRotations; ++frame) {
+        const GtaoConstants c = gtaoConstants(settings, g.camera, frame, true);
+        const GtaoDepthMips mips = buildGtaoDepthMips(g.depth, c.mipLevels);
+        float worst = 0.0f;
+        for (int y = 0; y < g.height(); ++y)
+            for (int x = 0; x < g.width(); ++x)
+                if (!g.isSky(x, y))
+                    worst = std::max(worst, 1.0f - gtaoPixel(c, g, &mips, x, y, interleaveIndex(x, y)).visibility);
+        std::printf("far edge, planar-mip samples, rotation %d: worst 1 - A %.4f\n", frame, double(worst));
+        EXPECT_LT(worst, 0.01f) << "planar-mip, rotation " << frame;
+    }
 }
 
 // Nearest-pixel horizon samples (GtaoSampling::Nearest, one depth read per sample as XeGTAO's) against the
@@ -264,12 +281,13 @@ TEST(Gtao, FarEdgeOfAFinitePlaneStaysOpen) {
 // point is off the slice line by less than a pixel of nearly constant depth. Measured (2026-11-25): wall foot
 // 0.5046-0.5053 (planar 0.5065-0.5072), well floor 0.2015 (planar 0.2000).
 //
-// The same with the depth MIP chain (GtaoSampling::Mip): samples from 14 pixels out read levels 1-4. Its
-// coarse texels stand for planes exactly (mean inverse depth at the mean of their centres), so the wall foot
-// holds; but a texel across the well's rim averages the rim with the wall below it, a point lower than the
-// rim, and the floor sees a lower horizon: its A is too high by 0.013 (0.027 with mipDistanceRatio 2, which
-// reads coarser levels sooner). Measured (2026-11-25): wall foot 0.5002-0.5013, well floor 0.2133. Bounds:
-// 0.01 (nearest), 0.02 (mip, on the well).
+// The same with the depth MIP chain (GtaoSampling::Mip, PlanarMip): samples from 14 pixels out read levels
+// 1-4, nearer ones are nearest or planar. Its coarse texels stand for planes exactly (mean inverse depth at
+// the mean of their centres), so the wall foot holds; but a texel across the well's rim averages the rim with
+// the wall below it, a point lower than the rim, and the floor sees a lower horizon: its A is too high by
+// 0.013 (0.027 with mipDistanceRatio 2, which reads coarser levels sooner). Measured (2026-11-25): wall foot
+// 0.5002-0.5013 (mip) and 0.5014-0.5025 (planar-mip), well floor 0.2133 (both). Bounds: 0.01 (nearest),
+// 0.02 (mip and planar-mip, on the well).
 TEST(Gtao, NearestAndMipSamplingMeetTheClosedForms) {
     struct Variant {
         const char* name;
@@ -277,7 +295,8 @@ TEST(Gtao, NearestAndMipSamplingMeetTheClosedForms) {
         double wellBound;
     };
     for (const Variant& v :
-         {Variant{"nearest", GtaoSampling::Nearest, 0.01}, Variant{"mip", GtaoSampling::Mip, 0.02}}) {
+         {Variant{"nearest", GtaoSampling::Nearest, 0.01}, Variant{"mip", GtaoSampling::Mip, 0.02},
+          Variant{"planar-mip", GtaoSampling::PlanarMip, 0.02}}) {
         {
             GBuffer g = wallFootView();
             GtaoSettings settings = dense(4.0f, 32, 128);
@@ -311,14 +330,16 @@ TEST(Gtao, NearestAndMipSamplingMeetTheClosedForms) {
 // depth changes fast across pixels (far away, at grazing angles) it rises above the slice's horizon and
 // occludes. Planar samples keep the plane at 1 (OpenPlaneIsOneEverywhere); nearest ones darken it a little.
 // Measured at 320x180, r 1 m, high preset (2026-11-25): planar exactly 1; nearest mean 1 - A 3.3e-4, worst
-// 0.004, 4862 of 53440 pixels below 0.999; mip (whose texels lie on the plane, but off the slice line by up
-// to half a texel) 4.2e-4, worst 0.004, 6574 pixels.
+// 0.004, 4862 of 53440 pixels below 0.999; mip (nearest near the pixel; farther, texels that lie on the
+// plane but off the slice line by up to half a texel) 4.2e-4, worst 0.004, 6574 pixels; planar-mip (planar
+// near the pixel) 1.5e-4, worst 0.003, 1534 pixels.
 TEST(Gtao, NearestSamplingDarkensAnOpenPlaneSlightly) {
     BuiltinScene s = makeBuiltinScene("plane");
     GBuffer g = render(s.scene, s.camera, 320, 180);
     GtaoSettings settings;
     settings.radius = 1.0f;
-    for (GtaoSampling sampling : {GtaoSampling::Planar, GtaoSampling::Nearest, GtaoSampling::Mip}) {
+    for (GtaoSampling sampling :
+         {GtaoSampling::Planar, GtaoSampling::Nearest, GtaoSampling::Mip, GtaoSampling::PlanarMip}) {
         settings.sampling = sampling;
         const GtaoResult r = computeGtao(g, settings);
         double sum = 0, worst = 0;
@@ -332,9 +353,10 @@ TEST(Gtao, NearestSamplingDarkensAnOpenPlaneSlightly) {
                 darker += e > 1e-3;
                 ++count;
             }
-        const char* name = sampling == GtaoSampling::Planar ? "planar"
-                           : sampling == GtaoSampling::Mip  ? "mip"
-                                                            : "nearest";
+        const char* name = sampling == GtaoSampling::Planar      ? "planar"
+                           : sampling == GtaoSampling::Mip       ? "mip"
+                           : sampling == GtaoSampling::PlanarMip ? "planar-mip"
+                                                                 : "nearest";
         std::printf("open plane, %s samples: mean 1 - A %.2e, worst %.3f, %d of %d px below 0.999\n", name,
                     sum / count, worst, darker, count);
         if (sampling == GtaoSampling::Planar) {

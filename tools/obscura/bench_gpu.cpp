@@ -177,9 +177,10 @@ void runGpuBench(const GpuBenchOptions& o) {
         if (o.packedHistory) variants += ", packed history";
         if (o.keepPreviousDepth) variants += ", previous depth kept";
         if (o.sampling == "nearest") variants += ", GTAO nearest-pixel samples";
-        if (o.sampling == "mip") {
-            char text[64];
-            std::snprintf(text, sizeof text, ", GTAO depth MIP samples (ratio %g)", double(o.mipRatio));
+        if (o.sampling == "mip" || o.sampling == "planar-mip") {
+            char text[80];
+            std::snprintf(text, sizeof text, ", GTAO %sdepth MIP samples (ratio %g)",
+                          o.sampling == "planar-mip" ? "planar + " : "", double(o.mipRatio));
             variants += text;
         }
         if (settings.gtaoRadius != gpu::GpuBenchSettings{}.gtaoRadius) {

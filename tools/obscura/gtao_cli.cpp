@@ -37,12 +37,13 @@ void addGtaoSamplingOption(CLI::App& app, std::string& sampling, float& mipRatio
     app.add_option("--gtao-sampling", sampling,
                    lead + ": planar (inverse depth interpolated over a planar 2x2 quad, on the slice line; 5 reads), "
                           "nearest (the nearest pixel, 1 read, as XeGTAO; far open ground at grazing angles darkens) or "
-                          "mip (nearest, and samples farther than 14 pixels read a coarser level of a 5-level depth "
-                          "MIP chain, as XeGTAO)")
-        ->check(CLI::IsMember({"planar", "nearest", "mip"}))
+                          "mip (samples farther than 14 pixels read a coarser level of a 5-level depth MIP chain, "
+                          "nearer ones are nearest, as XeGTAO) or planar-mip (the same, nearer ones planar: far open "
+                          "ground stays open)")
+        ->check(CLI::IsMember({"planar", "nearest", "mip", "planar-mip"}))
         ->capture_default_str();
     app.add_option("--gtao-mip-ratio", mipRatio,
-                   "With --gtao-sampling mip: a sample d pixels away reads the coarsest MIP level whose texels are at "
+                   "With --gtao-sampling mip or planar-mip: a sample d pixels away reads the coarsest MIP level whose texels are at "
                    "most d / ratio pixels wide, [2, 64]; smaller reads coarser levels sooner (fewer cache lines, a "
                    "lower horizon behind thin rims)")
         ->capture_default_str();
@@ -51,6 +52,7 @@ void addGtaoSamplingOption(CLI::App& app, std::string& sampling, float& mipRatio
 ssao::GtaoSampling gtaoSampling(const std::string& sampling) {
     return sampling == "nearest" ? ssao::GtaoSampling::Nearest
            : sampling == "mip"     ? ssao::GtaoSampling::Mip
+           : sampling == "planar-mip" ? ssao::GtaoSampling::PlanarMip
                                    : ssao::GtaoSampling::Planar;
 }
 

@@ -115,7 +115,7 @@ bool samplePosition(int level, float sx, float sy, int cx, int cy, out vec3 resu
     result = vec3(0.0);
     const int ix = int(sx), iy = int(sy);
     if (ix == cx && iy == cy) return false;
-    if (kSampling == GTAO_SAMPLING_MIP && level > 0) {
+    if (gtaoSamplingReadsMips(kSampling) && level > 0) {
         const int tx = ix >> level, ty = iy >> level;
         const float w = mipAt(level, tx, ty);
         if (!(w > 0.0)) return false;
@@ -125,7 +125,7 @@ bool samplePosition(int level, float sx, float sy, int cx, int cy, out vec3 resu
     const float nearest = depthAt(ix, iy);
     if (!(nearest < 1e30)) return false;
     const float gx = sx - 0.5, gy = sy - 0.5;
-    if (kSampling == GTAO_SAMPLING_PLANAR && k.width > 1 && k.height > 1) {
+    if (gtaoSamplingPlanarNear(kSampling) && k.width > 1 && k.height > 1) {
         const int bx = int(floor(gx)), by = int(floor(gy));
         const int ox = bx == ix ? ix - 1 : ix, oy = by == iy ? iy - 1 : iy;
         const ivec2 quads[4] = ivec2[4](ivec2(bx, by), ivec2(ox, by), ivec2(bx, oy), ivec2(ox, oy));
@@ -225,7 +225,7 @@ GtaoPixel gtaoPixel(int x, int y, int interleave) {
             const float offset = s * screenRadius;
             // gtaoMipLevel: the largest l <= mipLevels with 2^l <= offset * mipTexelScale, by its highest bit.
             const int level =
-                kSampling == GTAO_SAMPLING_MIP ? clamp(findMSB(int(offset * k.mipTexelScale)), 0, k.mipLevels) : 0;
+                gtaoSamplingReadsMips(kSampling) ? clamp(findMSB(int(offset * k.mipTexelScale)), 0, k.mipLevels) : 0;
             for (int side = 0; side < 2; ++side) {
                 const float sign = side == 0 ? 1.0 : -1.0;
                 const float sx = float(x) + 0.5 + sign * offset * cosPhi;
@@ -309,7 +309,7 @@ void main() {
     const ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     const int gridWidth = (k.width + kGridStep - 1) / kGridStep, gridHeight = (k.height + kGridStep - 1) / kGridStep;
     if (p.x >= gridWidth || p.y >= gridHeight) return;
-    if (kSampling == GTAO_SAMPLING_MIP) {
+    if (gtaoSamplingReadsMips(kSampling)) {
         mipBase2 = uint(gtaoMipOffset(k.width, k.height, 2));
         mipBase3 = uint(gtaoMipOffset(k.width, k.height, 3));
         mipBase4 = uint(gtaoMipOffset(k.width, k.height, 4));

@@ -61,7 +61,7 @@ OBSCURA_CONST int kGtaoBindingDepth = 0;       // width * height linear depths, 
 OBSCURA_CONST int kGtaoBindingNormal = 1;      // width * height * 3 view normals
 OBSCURA_CONST int kGtaoBindingVisibility = 2;  // width * height visibility, the pass's output
 OBSCURA_CONST int kGtaoBindingBentNormal = 3;  // width * height * 3 bent normals, the pass's output
-OBSCURA_CONST int kGtaoBindingDepthMips = 4;   // GTAO_SAMPLING_MIP: the coarse levels (gtao_mips.comp's output);
+OBSCURA_CONST int kGtaoBindingDepthMips = 4;   // GTAO_SAMPLING_(PLANAR_)MIP: the coarse levels (gtao_mips.comp's);
                                                // other modes leave it untouched: bind any storage buffer
 OBSCURA_CONST int kGtaoBindingCount = 5;
 // constant_id of the bent-normal output (the grid step's is kGtaoSpecGridStep, temporal_layouts.h): 1 (the
@@ -87,7 +87,7 @@ OBSCURA_CONST int kGtaoWorkgroupY = 8;
 OBSCURA_CONST int kGtaoRotations = 6;  // ssao::kGtaoRotations, which GLSL cannot include
 
 // ---- gtao_mips.comp (src/gpu/gtao_pass.cpp) ----
-// The coarse levels of GTAO_SAMPLING_MIP's depth MIP chain (obscura/gtao_mips.h: layout, filter) in one
+// The coarse levels of GTAO_SAMPLING_(PLANAR_)MIP's depth MIP chain (obscura/gtao_mips.h: layout, filter) in one
 // dispatch: a workgroup of GTAO_MIP_WORKGROUP^2 invocations makes an 8x8 tile of level 1 from 16x16 depths,
 // then 4x4, 2x2 and 1x1 of levels 2-4 from shared memory, as XeGTAO's prefilter does.
 struct GtaoMipConstants {
