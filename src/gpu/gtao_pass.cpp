@@ -22,6 +22,8 @@ namespace obscura::gpu {
 static_assert(sizeof(ssao::GtaoConstants) == kGtaoPushConstantBytes,
               "the push constants of gtao.comp are one GtaoConstants");
 static_assert(ssao::kGtaoRotations == kGtaoRotations, "gtao.comp rotates the interleave as the CPU kernel does");
+static_assert((GTAO_MIP_WORKGROUP >> (GTAO_MAX_MIP_LEVELS - 1)) >= 1,
+              "gtao_mips.comp makes every level in one workgroup's tile: the top level needs a texel of it");
 
 void recordGtao(Context::Impl& c, VkCommandBuffer cmd, const GtaoBuffers& b, const ssao::GtaoConstants& k,
                 int gridStep, bool bentNormal) {
