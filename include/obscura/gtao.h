@@ -40,8 +40,8 @@ enum class GtaoBeyondRadius { Column, Drop };
 // says how it is filtered), so that far samples of neighbouring pixels share texels and cache lines, and
 // nearer ones as Nearest, as XeGTAO does. PlanarMip reads the nearer ones as Planar: that is where a pixel
 // centre's point is farthest off the slice line (by an angle of up to 0.7 / d at d pixels), so it keeps far
-// open ground open (1 - A below 0.008 where Nearest and Mip leave 0.17), at Planar's cost wherever near
-// and far samples mix in one SIMD group.
+// open ground open (1 - A below 0.008 where Nearest and Mip leave 0.17); on lavapipe it costs what Planar
+// does (docs/PERFORMANCE.md).
 enum class GtaoSampling { Planar, Nearest, Mip, PlanarMip };
 
 struct GtaoSettings {
