@@ -108,6 +108,9 @@ struct GtaoDepthMips {
 };
 // The coarse levels the settings' sampling reads: depthMipLevels with GtaoSampling::Mip or PlanarMip, else 0.
 int gtaoDepthMipLevels(const GtaoSettings& settings);
+// The sampling as reports name it: "nearest-pixel samples", "depth MIP samples (5 levels, ratio 7)",
+// "planar + depth MIP samples (...)", or "" for the default planar samples.
+std::string gtaoSamplingText(const GtaoSettings& settings);
 // Builds `levels` coarse levels from linear depths (+inf or >= 1e30 for sky). Assumes a depth image of at
 // least 1x1 and levels in [0, GTAO_MAX_MIP_LEVELS].
 GtaoDepthMips buildGtaoDepthMips(const Image& depth, int levels);

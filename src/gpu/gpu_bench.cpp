@@ -66,22 +66,10 @@ std::string radiusText(const ssao::GtaoSettings& g) {
     return text;
 }
 
-// "7", "3.5": a MIP ratio as the descriptions give it.
-std::string ratioText(float ratio) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%g", double(ratio));
-    return text;
-}
-
 std::string slicesText(const ssao::GtaoSettings& g) {
     return std::to_string(g.sliceCount) + " slice" + (g.sliceCount > 1 ? "s" : "") + " x " +
            std::to_string(g.stepsPerSide) + " steps per side" +
-           (g.sampling == ssao::GtaoSampling::Nearest ? ", nearest-pixel samples"
-            : g.sampling == ssao::GtaoSampling::Mip || g.sampling == ssao::GtaoSampling::PlanarMip
-                ? std::string(g.sampling == ssao::GtaoSampling::PlanarMip ? ", planar + depth MIP samples ("
-                                                                          : ", depth MIP samples (") +
-                      std::to_string(g.depthMipLevels + 1) + " levels, ratio " + ratioText(g.mipDistanceRatio) + ")"
-                : "");
+           (g.sampling == ssao::GtaoSampling::Planar ? "" : ", " + ssao::gtaoSamplingText(g));
 }
 
 // The constants hold the projection only, which the rotated inputs share (their cameras differ in position).

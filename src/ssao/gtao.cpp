@@ -14,6 +14,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
 
 namespace obscura::ssao {
 
@@ -163,10 +165,31 @@ int interleaveIndex(int x, int y) {
 }
 
 namespace {
-bool readsDepthMips(GtaoSampling s) { return s == GtaoSampling::Mip || s == GtaoSampling::PlanarMip; }
+int samplingCode(GtaoSampling s) {
+    return s == GtaoSampling::Nearest     ? GTAO_SAMPLING_NEAREST
+           : s == GtaoSampling::Mip       ? GTAO_SAMPLING_MIP
+           : s == GtaoSampling::PlanarMip ? GTAO_SAMPLING_PLANAR_MIP
+                                          : GTAO_SAMPLING_PLANAR;
+}
 } // namespace
 
-int gtaoDepthMipLevels(const GtaoSettings& s) { return readsDepthMips(s.sampling) ? s.depthMipLevels : 0; }
+int gtaoDepthMipLevels(const GtaoSettings& s) {
+    return gtaoSamplingReadsMips(samplingCode(s.sampling)) ? s.depthMipLevels : 0;
+}
+
+std::string gtaoSamplingText(const GtaoSettings& s) {
+    char ratio[32];
+    std::snprintf(ratio, sizeof ratio, "%g", double(s.mipDistanceRatio));
+    const std::string mips =
+        "depth MIP samples (" + std::to_string(s.depthMipLevels + 1) + " levels, ratio " + ratio + ")";
+    switch (s.sampling) {
+    case GtaoSampling::Nearest: return "nearest-pixel samples";
+    case GtaoSampling::Mip: return mips;
+    case GtaoSampling::PlanarMip: return "planar + " + mips;
+    case GtaoSampling::Planar: break;
+    }
+    return "";
+}
 
 GtaoConstants gtaoConstants(const GtaoSettings& s, const Camera& camera, int frameIndex, bool interleaved) {
     GtaoConstants c{};
@@ -198,12 +221,9 @@ GtaoConstants gtaoConstants(const GtaoSettings& s, const Camera& camera, int fra
     c.noiseMode = s.jitter ? 1 : 0;
     c.frameIndex = frameIndex;
     c.beyondRadius = s.beyondRadius == GtaoBeyondRadius::Column ? GTAO_BEYOND_COLUMN : GTAO_BEYOND_DROP;
-    c.sampling = s.sampling == GtaoSampling::Nearest ? GTAO_SAMPLING_NEAREST
-                 : s.sampling == GtaoSampling::Mip ? GTAO_SAMPLING_MIP
-                 : s.sampling == GtaoSampling::PlanarMip ? GTAO_SAMPLING_PLANAR_MIP
-                                                         : GTAO_SAMPLING_PLANAR;
+    c.sampling = samplingCode(s.sampling);
     c.mipLevels = gtaoDepthMipLevels(s);
-    c.mipTexelScale = readsDepthMips(s.sampling) ? 1.0f / s.mipDistanceRatio : 0.0f;
+    c.mipTexelScale = gtaoSamplingReadsMips(c.sampling) ? 1.0f / s.mipDistanceRatio : 0.0f;
     return c;
 }
 

@@ -1,6 +1,6 @@
-// The depth MIP chain of GtaoSampling::Mip and PlanarMip (after XeGTAO's depth prefilter, Intel 2021): coarse levels of
-// inverse depth, each texel the mean of four planar children or the farthest of four that are not
-// (obscura/gtao_mips.h holds the filter, the sizes and the layout, shared with gtao_mips.comp).
+// The depth MIP chain of GtaoSampling::Mip and PlanarMip (after XeGTAO's depth prefilter, Intel 2021): coarse
+// levels of inverse depth, each texel the mean of its four children, or sky if any of them is (obscura/gtao_mips.h
+// holds the filter, the sizes and the layout, shared with gtao_mips.comp).
 #include "obscura/gtao.h"
 
 #include <algorithm>
@@ -26,8 +26,8 @@ GtaoDepthMips buildGtaoDepthMips(const Image& depth, int levels) {
     }
     for (int level = 1; level <= levels; ++level) {
         const int childWidth = gtaoMipSize(m.width, level - 1), childHeight = gtaoMipSize(m.height, level - 1);
-        const int w = gtaoMipSize(m.width, level), h = gtaoMipSize(m.height, level);
-        float* out = m.texels.data() + gtaoMipOffset(m.width, m.height, level);
+        const int w = m.levelWidth[level], h = gtaoMipSize(m.height, level);
+        float* out = m.texels.data() + m.offset[level];
         // Level 0 is the depth buffer: its inverse, 0 for sky (1 / +inf is 0; 1e30 and beyond count as sky).
         auto child = [&](int x, int y) {
             if (level > 1) return m.at(level - 1, x, y);

@@ -143,4 +143,12 @@ TEST(GtaoMips, SettingsAndConstantsAreChecked) {
     // Planar and nearest constants read no chain.
     s.sampling = GtaoSampling::Nearest;
     EXPECT_EQ(gtaoConstants(s, camera).mipLevels, 0);
+    // How reports name each sampling.
+    EXPECT_EQ(gtaoSamplingText(s), "nearest-pixel samples");
+    s.sampling = GtaoSampling::PlanarMip;
+    s.mipDistanceRatio = 3.5f;
+    EXPECT_EQ(gtaoSamplingText(s), "planar + depth MIP samples (5 levels, ratio 3.5)");
+    EXPECT_EQ(gtaoConstants(s, camera).sampling, GTAO_SAMPLING_PLANAR_MIP);
+    s.sampling = GtaoSampling::Planar;
+    EXPECT_EQ(gtaoSamplingText(s), "");
 }

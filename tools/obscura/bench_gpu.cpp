@@ -176,13 +176,10 @@ void runGpuBench(const GpuBenchOptions& o) {
         if (o.visibilityOnly) variants += ", GTAO visibility only";
         if (o.packedHistory) variants += ", packed history";
         if (o.keepPreviousDepth) variants += ", previous depth kept";
-        if (o.sampling == "nearest") variants += ", GTAO nearest-pixel samples";
-        if (o.sampling == "mip" || o.sampling == "planar-mip") {
-            char text[80];
-            std::snprintf(text, sizeof text, ", GTAO %sdepth MIP samples (ratio %g)",
-                          o.sampling == "planar-mip" ? "planar + " : "", double(o.mipRatio));
-            variants += text;
-        }
+        ssao::GtaoSettings sampling;
+        sampling.sampling = settings.sampling;
+        sampling.mipDistanceRatio = settings.mipDistanceRatio;
+        if (settings.sampling != ssao::GtaoSampling::Planar) variants += ", GTAO " + ssao::gtaoSamplingText(sampling);
         if (settings.gtaoRadius != gpu::GpuBenchSettings{}.gtaoRadius) {
             char text[48];
             std::snprintf(text, sizeof text, ", GTAO r %g m", double(o.radius));
