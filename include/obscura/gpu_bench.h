@@ -2,9 +2,12 @@
 // buffers that stay on the device, so what is timed is the dispatches alone (no uploads, no host work).
 // `obscura bench --gpu` prints these; docs/PERFORMANCE.md records them per device.
 //
-// Each timed frame is one submission: a timestamp at its start, one after each pass (the GPU has finished
-// every earlier command when it is written) and one at its end. The frames rotate through the input
-// G-buffers, so a frame's inputs are not the ones the previous frame left in the caches.
+// The frames go to the GPU in submissions of GpuBenchSettings::framesPerSubmit, back to back with a full
+// barrier between them, as an engine's frames follow each other: a GPU left idle between frames lowers its
+// clocks. Each submission has a timestamp at its start and one after each pass (the GPU has finished every
+// earlier command when it is written); a pass's time runs from the previous timestamp to its own. The
+// frames rotate through the input G-buffers, so a frame's inputs are not the ones the previous frame left
+// in the caches.
 //
 // Errors: GpuBenchSettings::validate() and benchGpuCase() throw obscura::Error naming the bad setting, case
 // or buffer; Vulkan errors as in obscura/gpu.h. A device without timestamp queries fails with a message.
@@ -23,6 +26,8 @@ namespace obscura::gpu {
 struct GpuBenchSettings {
     int frames = 200;       // timed frames per case and size, [1, 100000]; medians over them are reported
     int warmup = 20;        // untimed frames before them (pipelines, clocks, caches), [0, 10000]
+    int framesPerSubmit = 1;  // frames recorded into one submission, back to back, [1, 64]; 1 waits for each
+                              // frame before recording the next, and leaves the GPU idle in between
     int alchemySamples = 12;                          // the `alchemy` case's samples per pixel, [1, 1024]
     ssao::GtaoQuality quality = ssao::GtaoQuality::High;  // the GTAO cases' preset (slices x steps)
     int temporalSlices = 1;  // slices of the `gtao-temporal` cases, [1, 64]: the paper's 1, times the 16

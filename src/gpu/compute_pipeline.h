@@ -51,7 +51,9 @@ public:
     // Called by Context::Impl::submit before recording: the descriptor sets are free again.
     void beginCommands() { used_ = 0; }
 
-    static constexpr int kSetsPerSubmit = 4;
+    // A frame dispatches one shader at most 4 times, and `obscura bench --gpu` records up to 64 frames in
+    // one submission (GpuBenchSettings::framesPerSubmit).
+    static constexpr int kSetsPerSubmit = 256;
 
 private:
     Context::Impl& context_;

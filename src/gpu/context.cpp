@@ -8,6 +8,9 @@
 
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 
 namespace obscura::gpu {
 
@@ -134,6 +137,10 @@ Context::Context(const ContextSettings& settings) : impl_(std::make_unique<Impl>
     std::string why;
     if (!loadVulkan(&why)) fail("Vulkan", why);
     c.validation = settings.validation || envFlag("OBSCURA_VALIDATION");
+    if (const char* dir = std::getenv("OBSCURA_SHADER_DIR"); dir && *dir) {
+        if (!std::filesystem::is_directory(dir)) fail(std::string("OBSCURA_SHADER_DIR ") + dir, "is not a folder");
+        c.shaderDir = dir;
+    }
     if (c.validation && !hasLayer(kValidationLayer))
         fail("Vulkan", "validation asked for but VK_LAYER_KHRONOS_validation is not installed "
                        "(on Debian: vulkan-validationlayers)");
@@ -300,10 +307,31 @@ void Context::Impl::mark(VkCommandBuffer cmd, const std::string& name) {
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, timestamps, std::uint32_t(markNames.size()));
 }
 
+Spirv Context::Impl::shaderCode(const std::string& name, const Spirv& embedded) {
+    if (shaderDir.empty()) return embedded;
+    const std::filesystem::path file = std::filesystem::path(shaderDir) / (name + ".spv");
+    auto known = shaderFiles.find(name);
+    if (known == shaderFiles.end()) {
+        if (!std::filesystem::exists(file)) return embedded;
+        std::ifstream in(file, std::ios::binary);
+        const std::vector<char> bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+        if (!in.good() && !in.eof()) fail(file.string(), "cannot be read");
+        if (bytes.size() < 20 || bytes.size() % 4 != 0)
+            fail(file.string(), "is not SPIR-V (" + std::to_string(bytes.size()) + " bytes, not a whole number of words)");
+        std::vector<std::uint32_t> words(bytes.size() / 4);
+        std::memcpy(words.data(), bytes.data(), bytes.size());
+        if (words[0] != 0x07230203u) fail(file.string(), "is not SPIR-V (no magic number)");
+        known = shaderFiles.emplace(name, std::move(words)).first;
+    }
+    return Spirv{known->second.data(), known->second.size()};
+}
+
 ComputePipeline& Context::Impl::pipeline(const std::string& name, const Spirv& code, int bindings,
                                          std::uint32_t pushConstantBytes, int workgroupX, int workgroupY) {
     std::unique_ptr<ComputePipeline>& p = pipelines[name];
-    if (!p) p = std::make_unique<ComputePipeline>(*this, code, name, bindings, pushConstantBytes, workgroupX, workgroupY);
+    if (!p)
+        p = std::make_unique<ComputePipeline>(*this, shaderCode(name, code), name, bindings, pushConstantBytes,
+                                              workgroupX, workgroupY);
     return *p;
 }
 
@@ -318,8 +346,8 @@ ComputePipeline& Context::Impl::pipeline(const std::string& name, const Spirv& c
     if (!specialization.empty()) key.push_back('>');
     std::unique_ptr<ComputePipeline>& p = pipelines[key];
     if (!p)
-        p = std::make_unique<ComputePipeline>(*this, code, key, bindings, pushConstantBytes, workgroupX, workgroupY,
-                                              specialization);
+        p = std::make_unique<ComputePipeline>(*this, shaderCode(name, code), key, bindings, pushConstantBytes,
+                                              workgroupX, workgroupY, specialization);
     return *p;
 }
 

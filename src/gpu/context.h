@@ -38,7 +38,7 @@ struct Context::Impl {
     std::unique_ptr<Allocator> allocator;
     double lastPassMs = -1.0;
     // Timestamps of the submission being recorded: slot 0 at its start, one per mark(), one at its end.
-    static constexpr std::uint32_t kMaxTimestamps = 64;
+    static constexpr std::uint32_t kMaxTimestamps = 512;
     bool timing = false;                  // the submission being recorded is timed
     std::vector<std::string> markNames;   // mark() names of that submission, in order
     // The last timed submission's marks: each name with the GPU ms since the previous mark (or the start).
@@ -46,6 +46,10 @@ struct Context::Impl {
 
     // Made once per context: creating a pipeline compiles its shader to the device's machine code.
     std::map<std::string, std::unique_ptr<ComputePipeline>> pipelines;
+    // OBSCURA_SHADER_DIR: a folder whose NAME.spv replaces the embedded shader NAME (for timing a changed
+    // shader without a rebuild); the words of the files read from it, by shader name.
+    std::string shaderDir;
+    std::map<std::string, std::vector<std::uint32_t>> shaderFiles;
 
     mutable std::mutex messagesMutex;  // the layer may call back from any thread
     std::vector<std::string> messages;
@@ -63,6 +67,9 @@ struct Context::Impl {
     // In a timed submission, a timestamp after every command recorded so far has finished, named `name`;
     // submit() then sets lastMarks. Ignored in an untimed one, and past kMaxTimestamps - 2 marks.
     void mark(VkCommandBuffer cmd, const std::string& name);
+    // The code of shader `name`: `embedded`, unless shaderDir holds NAME.spv (read once; a file that is not
+    // SPIR-V fails naming it).
+    Spirv shaderCode(const std::string& name, const Spirv& embedded);
     // The pipeline of shader `name`, made on first use (see ComputePipeline for the checks).
     ComputePipeline& pipeline(const std::string& name, const Spirv& code, int bindings,
                               std::uint32_t pushConstantBytes, int workgroupX, int workgroupY);

@@ -1,5 +1,5 @@
 // GPU timing of the screen-space passes (include/obscura/gpu_bench.h): the record functions the public
-// passes use, on resident buffers, one timed submission per frame with a timestamp after each pass.
+// passes use, on resident buffers, timed submissions of one or more frames with a timestamp after each pass.
 #include "obscura/gpu_bench.h"
 
 #include "gpu/alchemy_pass.h"
@@ -174,6 +174,7 @@ void GpuBenchSettings::validate() const {
     };
     check(frames >= 1 && frames <= 100000, "frames", "[1, 100000]");
     check(warmup >= 0 && warmup <= 10000, "warmup", "[0, 10000]");
+    check(framesPerSubmit >= 1 && framesPerSubmit <= 64, "frames-per-submit", "[1, 64]");
     check(alchemySamples >= 1 && alchemySamples <= 1024, "alchemy-samples", "[1, 1024]");
     check(temporalSlices >= 1 && temporalSlices <= 64, "temporal-slices", "[1, 64]");
     check(gtaoRadius > 0.0f && gtaoRadius <= 1e4f, "ao-radius", "(0, 1e4] m");
@@ -229,16 +230,43 @@ GpuBenchCase benchGpuCase(Context& context, const std::string& name, const std::
     std::vector<double> frameMs;
     std::map<std::string, std::vector<double>> passMs;
     std::vector<std::string> order;
-    for (int i = 0; i < settings.warmup + settings.frames; ++i) {
-        const ResidentInput& in = resident[std::size_t(i) % resident.size()];
-        c.submit([&](VkCommandBuffer cmd) { setup.record(cmd, in, i, [&](const char* pass) { c.mark(cmd, pass); }); },
-                 true);
-        if (progress) progress(double(i + 1) / double(settings.warmup + settings.frames));
-        if (i < settings.warmup) continue;
-        frameMs.push_back(c.lastPassMs);
-        for (const auto& [pass, ms] : c.lastMarks) {
-            if (!passMs.count(pass)) order.push_back(pass);
-            passMs[pass].push_back(ms);
+    const int total = settings.warmup + settings.frames;
+    for (int first = 0; first < total; first += settings.framesPerSubmit) {
+        const int count = std::min(settings.framesPerSubmit, total - first);
+        std::vector<int> marksAfterFrame;  // marks recorded once frame first + k is recorded
+        c.submit(
+            [&](VkCommandBuffer cmd) {
+                int marks = 0;
+                for (int k = 0; k < count; ++k) {
+                    // The frames follow each other as an engine's do: nothing of one overlaps the next.
+                    if (k > 0) computeBarrier(cmd);
+                    const int i = first + k;
+                    setup.record(cmd, resident[std::size_t(i) % resident.size()], i, [&](const char* pass) {
+                        c.mark(cmd, pass);
+                        ++marks;
+                    });
+                    marksAfterFrame.push_back(marks);
+                }
+                if (std::uint32_t(marks) + 2 > Context::Impl::kMaxTimestamps)
+                    fail("gpu bench", std::to_string(count) + " frames of case '" + name + "' need " +
+                                          std::to_string(marks + 2) + " timestamps, more than the " +
+                                          std::to_string(Context::Impl::kMaxTimestamps) +
+                                          " a submission has: lower --frames-per-submit");
+            },
+            true);
+        if (progress) progress(double(first + count) / double(total));
+        for (int k = 0; k < count; ++k) {
+            if (first + k < settings.warmup) continue;
+            const std::size_t from = k == 0 ? 0 : std::size_t(marksAfterFrame[std::size_t(k) - 1]);
+            const std::size_t to = std::size_t(marksAfterFrame[std::size_t(k)]);
+            double frame = 0;
+            for (std::size_t m = from; m < to; ++m) {
+                const auto& [pass, ms] = c.lastMarks[m];
+                if (!passMs.count(pass)) order.push_back(pass);
+                passMs[pass].push_back(ms);
+                frame += ms;
+            }
+            frameMs.push_back(frame);
         }
     }
     for (const std::string& pass : order) {

@@ -5,6 +5,7 @@
 #include "cli/cli_harness.h"
 
 #include "obscura/gpu.h"
+#include "obscura/gpu_shaders.h"
 #include "obscura/gtao_mips.h"
 #include "obscura/image_io.h"
 
@@ -12,7 +13,9 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <map>
 #include <set>
 #include <string>
@@ -191,6 +194,32 @@ TEST_F(GpuCommands, BenchGpuReportsEveryCase) {
         EXPECT_GE(c["bytes_per_frame"].get<double>(), px * 20) << name;
         EXPECT_NEAR(c["fraction_of_peak"].get<double>(), c["gbytes_per_s"].get<double>() / 3000.0, 1e-9) << name;
     }
+    // --frames-per-submit: frames recorded back to back in one submission, here 3 per submission over 2
+    // warm-up and 5 timed frames (so one submission holds both); the same passes per case, with validation
+    // on (the barriers between the frames of a submission included).
+    setenv("OBSCURA_VALIDATION", "1", 1);
+    const CliResult batched =
+        runCli("bench --gpu --sizes 24x16 --frames 5 --warmup 2 --inputs 2 --frames-per-submit 3 --json");
+    unsetenv("OBSCURA_VALIDATION");
+    ASSERT_EQ(batched.code, 0) << batched.out;
+    EXPECT_EQ(batched.out.find("warning"), std::string::npos) << batched.out;
+    const nlohmann::json bj = nlohmann::json::parse(batched.out.substr(batched.out.find('{')));
+    EXPECT_EQ(j["frames_per_submit"], 1);
+    EXPECT_EQ(bj["frames_per_submit"], 3);
+    EXPECT_EQ(bj["validation"], true);
+    ASSERT_EQ(bj["cases"].size(), 5u);
+    for (const auto& c : bj["cases"]) {
+        std::set<std::string> seen;
+        double sumOfMins = 0;
+        for (const auto& p : c["passes"]) {
+            seen.insert(p["name"].get<std::string>());
+            EXPECT_GT(p["min_ms"].get<double>(), 0.0);
+            sumOfMins += p["min_ms"].get<double>();
+        }
+        EXPECT_EQ(seen, passes.at(c["case"].get<std::string>())) << c["case"];
+        EXPECT_LE(sumOfMins, c["min_ms"].get<double>() * (1 + 1e-9)) << c["case"];
+    }
+
     const CliResult table = runCli("bench --gpu --sizes 32x20 --cases gtao --frames 2 --warmup 0 --inputs 1");
     ASSERT_EQ(table.code, 0) << table.out;
     for (const char* needle : {"Mpixel/s", "%peak", "gtao", "32x20", "median of 2 frames"})
@@ -284,8 +313,46 @@ TEST_F(GpuCommands, BenchGpuRejectsBadArguments) {
     expectFailure("bench --gpu --gtao-sampling bilinear", {"--gtao-sampling", "planar,nearest,mip,planar-mip"}, 2);
     expectFailure("bench --gpu --ao-radius 0", {"--ao-radius", "(0, 1e4] m"});
     expectFailure("bench --gpu --gtao-mip-ratio 1", {"--gtao-mip-ratio", "[2, 64]"});
+    expectFailure("bench --gpu --frames-per-submit 0", {"--frames-per-submit", "[1, 64]"});
+    expectFailure("bench --gpu --frames-per-submit 65", {"--frames-per-submit", "[1, 64]"});
     expectFailure("bench --gpu --gpu-device 99 --sizes 8x8 --frames 1", {"--gpu-device", "99"});
     expectFailure("bench", {"bench", "--gpu"});
+}
+
+// OBSCURA_SHADER_DIR: NAME.spv there replaces the embedded shader NAME, for timing a changed shader without a
+// rebuild. A copy of the embedded gtao module runs; a file that is not SPIR-V, a module whose layout is not
+// the host's, and a folder that does not exist each fail in one line naming what is wrong.
+TEST_F(GpuCommands, ShaderDirReplacesEmbeddedShaders) {
+    const auto writeWords = [](const std::string& file, const std::uint32_t* words, std::size_t count) {
+        std::FILE* f = std::fopen(file.c_str(), "wb");
+        ASSERT_NE(f, nullptr) << file;
+        EXPECT_EQ(std::fwrite(words, sizeof(std::uint32_t), count, f), count);
+        std::fclose(f);
+    };
+    const std::string bench = "bench --gpu --sizes 24x16 --cases gtao --frames 2 --warmup 0 --inputs 1 --json";
+    std::filesystem::create_directories(path("same"));
+    const obscura::gpu::ShaderCode gtao = obscura::gpu::shaderCode("gtao");
+    writeWords(path("same/gtao.spv"), gtao.words, gtao.wordCount);
+    setenv("OBSCURA_SHADER_DIR", path("same").c_str(), 1);
+    const CliResult same = runCli(bench);
+    EXPECT_EQ(same.code, 0) << same.out;
+
+    // The blur's module where the GTAO pass's belongs: the host's binding and push-constant check names it.
+    std::filesystem::create_directories(path("swapped"));
+    const obscura::gpu::ShaderCode blur = obscura::gpu::shaderCode("bilateral_separable");
+    writeWords(path("swapped/gtao.spv"), blur.words, blur.wordCount);
+    setenv("OBSCURA_SHADER_DIR", path("swapped").c_str(), 1);
+    expectFailure(bench, {"shader gtao", "the host binds"});
+
+    std::filesystem::create_directories(path("bad"));
+    const std::uint32_t junk[6] = {1, 2, 3, 4, 5, 6};
+    writeWords(path("bad/gtao.spv"), junk, 6);
+    setenv("OBSCURA_SHADER_DIR", path("bad").c_str(), 1);
+    expectFailure(bench, {path("bad/gtao.spv"), "is not SPIR-V"});
+
+    setenv("OBSCURA_SHADER_DIR", path("nowhere").c_str(), 1);
+    expectFailure(bench, {"OBSCURA_SHADER_DIR", "nowhere", "is not a folder"});
+    unsetenv("OBSCURA_SHADER_DIR");
 }
 
 TEST_F(GpuCommands, RenderRejectsABadDevice) {

@@ -43,6 +43,7 @@ struct GpuBenchOptions {
     std::string cases = "alchemy,gtao,gtao-spatial,gtao-temporal,gtao-temporal-half";
     int frames = 200;
     int warmup = 20;
+    int framesPerSubmit = 1;
     int inputs = 4;
     std::string scene = "demo";
     std::string quality = "high";
@@ -70,6 +71,11 @@ void GpuBenchOptions::add(CLI::App& bench) {
         ->capture_default_str();
     bench.add_option("--frames", frames, "--gpu: timed frames per case and size, [1, 100000]")->capture_default_str();
     bench.add_option("--warmup", warmup, "--gpu: untimed frames before them, [0, 10000]")->capture_default_str();
+    bench.add_option("--frames-per-submit", framesPerSubmit,
+                     "--gpu: frames recorded into one submission, back to back with a barrier between them, as an "
+                     "engine's frames follow each other, [1, 64]; with 1 the GPU idles between frames, and may "
+                     "lower its clocks")
+        ->capture_default_str();
     bench.add_option("--inputs", inputs,
                      "--gpu: G-buffers the frames rotate through (the camera path's first frames), so no frame reads "
                      "its inputs from the caches the last one left, [1, 16]")
@@ -107,6 +113,7 @@ void runGpuBench(const GpuBenchOptions& o) {
     gpu::GpuBenchSettings settings;
     settings.frames = o.frames;
     settings.warmup = o.warmup;
+    settings.framesPerSubmit = o.framesPerSubmit;
     settings.quality = ssao::parseQuality(o.quality);
     settings.temporalSlices = o.temporalSlices;
     settings.bentNormals = !o.visibilityOnly;
@@ -162,6 +169,7 @@ void runGpuBench(const GpuBenchOptions& o) {
     report["scene"] = loaded.name;
     report["frames"] = o.frames;
     report["warmup"] = o.warmup;
+    report["frames_per_submit"] = o.framesPerSubmit;
     report["inputs"] = o.inputs;
     report["peak_gbps"] = o.peakGbps;
     report["bent_normals"] = settings.bentNormals;
@@ -187,10 +195,11 @@ void runGpuBench(const GpuBenchOptions& o) {
         }
         std::printf("obscura bench --gpu: %s (%s, Vulkan %s), %s\n", info.name.c_str(), info.driver.c_str(),
                     apiText(info.apiVersion).c_str(), date);
-        std::printf("scene %s%s; GPU ms from timestamps, median of %d frames after %d warm-up, rotating %d inputs;\n"
+        std::printf("scene %s%s; GPU ms from timestamps, median of %d frames after %d warm-up, %d per submission, "
+                    "rotating %d inputs;\n"
                     "MB = compulsory traffic per frame (each buffer a dispatch reads or writes, once); %% = its rate "
                     "over %.0f GB/s%s\n",
-                    loaded.name.c_str(), variants.c_str(), o.frames, o.warmup,
+                    loaded.name.c_str(), variants.c_str(), o.frames, o.warmup, o.framesPerSubmit,
                     o.inputs, o.peakGbps,
                     context.validation() ? "; VALIDATION ON (timings are not representative)" : "");
     }
