@@ -14,12 +14,17 @@
 #include "obscura/error.h"
 #include "obscura/gpu.h"
 
+#include <string>
 #include <vector>
 
 namespace obscura::gpu {
 
 SeparableBilateral separableBilateral(const ssao::BilateralSettings& s, int width, int height) {
     s.validate();
+    // validate() allows radii up to 32; the shader's shared-memory lines hold that many taps on each side.
+    if (s.radius > kBilateralMaxRadius)
+        fail("blur-radius", "must be at most " + std::to_string(kBilateralMaxRadius) + " taps on the GPU, is " +
+                                std::to_string(s.radius));
     const ssao::detail::SeparableWeights weights = ssao::detail::separableWeights(s);
     SeparableBilateral f;
     f.logSpatial = weights.logSpatial;

@@ -30,7 +30,7 @@ OBSCURA_CONST int kAlchemyPushConstantBytes = 96;
 struct BilateralConstants {
     int width;         // px
     int height;        // px
-    int radius;        // taps on each side, [1, 32]
+    int radius;        // taps on each side, [1, kBilateralMaxRadius]
     int axis;          // 0: horizontal (x), 1: vertical (y)
 
     int useNormal;     // 0 or 1
@@ -49,6 +49,8 @@ OBSCURA_CONST int kBilateralBindingCount = 5;
 OBSCURA_CONST int kBilateralPushConstantBytes = 32;
 OBSCURA_CONST int kBilateralWorkgroupX = 8;
 OBSCURA_CONST int kBilateralWorkgroupY = 8;
+// The largest radius: the shader's shared-memory lines hold this many taps on each side.
+OBSCURA_CONST int kBilateralMaxRadius = 32;
 // constant_id of the normal weight in both blurs (bilateral_separable, bilateral_2d): BilateralConstants::
 // useNormal, which the host sets from the constants it pushes. A specialization constant so that the variant
 // without it (the separable default) holds no normal reads: as with gtao.comp's modes, a branch on the push
