@@ -1,0 +1,57 @@
+// The grid that temporal_filters.glsl's reconstructInterleaved reads, staged in shared memory: each
+// workgroup copies the grid pixels its 5x5 gathers reach (its own 8x8 and 2 around) into shared memory once,
+// and the 25 taps of each pixel read them there instead of 25 x (depth, normal, values) global loads. The
+// values are the same floats, so the filter's result is unchanged.
+//
+// reconstruct_interleaved.comp uses it. gtao_temporal.comp, which runs the same reconstruction inside the
+// accumulation, does not: on an H100 (2026-11-25, visibility only) the tile made its full-resolution pass
+// 3% faster at 1920x1080 and 3% slower at 3840x2160, and the shared memory alone, declared in the
+// half-resolution variant that never fills it, made that variant 1.8x slower (fewer workgroups per SM).
+//
+// The including shader declares, before the #include, the grid in global memory:
+//   kGridChannels, float gridDepthAt(int x, int y), vec3 gridNormalAt(int x, int y),
+//   float gridValueAt(int x, int y, int c)
+// and calls loadGridTile(width, height) from every invocation of the workgroup (it holds a barrier), before
+// any invocation returns. Then gridDepth, gridNormal and gridValue read the tile; they may be asked only for
+// pixels within 2 of the workgroup's own (all that the reconstruction reads) and inside the grid.
+#ifndef OBSCURA_GPU_GRID_TILE_GLSL
+#define OBSCURA_GPU_GRID_TILE_GLSL
+
+const int kGridTileReach = 2;  // the reconstruction's 5x5 gather
+const int kGridTileWidth = kTemporalWorkgroupX + 2 * kGridTileReach;
+const int kGridTileHeight = kTemporalWorkgroupY + 2 * kGridTileReach;
+// Rows packed: 24 floats apart, which puts a warp's 4 rows of 8 reads in 32 different banks, was no faster
+// on an H100 (2026-11-25) and takes twice the shared memory.
+const int kGridTileStride = kGridTileWidth;
+shared float tileDepth[kGridTileHeight * kGridTileStride];
+shared float tileNormal[3][kGridTileHeight * kGridTileStride];
+shared float tileValue[4][kGridTileHeight * kGridTileStride];
+ivec2 tileOrigin;  // the grid pixel at tile (0, 0)
+
+void loadGridTile(int width, int height) {
+    tileOrigin = ivec2(gl_WorkGroupID.xy) * ivec2(kTemporalWorkgroupX, kTemporalWorkgroupY) - kGridTileReach;
+    const int first = int(gl_LocalInvocationID.y) * kTemporalWorkgroupX + int(gl_LocalInvocationID.x);
+    for (int t = first; t < kGridTileWidth * kGridTileHeight; t += kTemporalWorkgroupX * kTemporalWorkgroupY) {
+        const int tx = t % kGridTileWidth, ty = t / kGridTileWidth;
+        // Pixels outside the grid are never read; they repeat the edge so that every read is in bounds.
+        const int x = clamp(tileOrigin.x + tx, 0, width - 1), y = clamp(tileOrigin.y + ty, 0, height - 1);
+        const int s = ty * kGridTileStride + tx;
+        tileDepth[s] = gridDepthAt(x, y);
+        const vec3 n = gridNormalAt(x, y);
+        tileNormal[0][s] = n.x;
+        tileNormal[1][s] = n.y;
+        tileNormal[2][s] = n.z;
+        for (int c = 0; c < kGridChannels; ++c) tileValue[c][s] = gridValueAt(x, y, c);
+    }
+    barrier();
+}
+
+int tileIndex(int x, int y) { return (y - tileOrigin.y) * kGridTileStride + (x - tileOrigin.x); }
+float gridDepth(int x, int y) { return tileDepth[tileIndex(x, y)]; }
+vec3 gridNormal(int x, int y) {
+    const int s = tileIndex(x, y);
+    return vec3(tileNormal[0][s], tileNormal[1][s], tileNormal[2][s]);
+}
+float gridValue(int x, int y, int c) { return tileValue[c][tileIndex(x, y)]; }
+
+#endif
