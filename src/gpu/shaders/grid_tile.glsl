@@ -3,10 +3,10 @@
 // and the 25 taps of each pixel read them there instead of 25 x (depth, normal, values) global loads. The
 // values are the same floats, so the filter's result is unchanged.
 //
-// reconstruct_interleaved.comp uses it. gtao_temporal.comp, which runs the same reconstruction inside the
-// accumulation, does not: on an H100 (2026-11-25, visibility only) the tile made its full-resolution pass
-// 3% faster at 1920x1080 and 3% slower at 3840x2160, and the shared memory alone, declared in the
-// half-resolution variant that never fills it, made that variant 1.8x slower (fewer workgroups per SM).
+// reconstruct_interleaved.comp uses it, and gtao_temporal.comp at full resolution, where it runs the same
+// reconstruction inside the accumulation. The half-resolution accumulation reads 4 grid pixels and declares
+// a tile of 1 slot: on an H100 (2026-11-25) the full tile's shared memory alone, never filled, made that
+// variant 1.8x slower (fewer workgroups per SM).
 //
 // The including shader declares, before the #include, the grid in global memory:
 //   kGridChannels, float gridDepthAt(int x, int y), vec3 gridNormalAt(int x, int y),
@@ -23,9 +23,15 @@ const int kGridTileHeight = kTemporalWorkgroupY + 2 * kGridTileReach;
 // Rows packed: 24 floats apart, which puts a warp's 4 rows of 8 reads in 32 different banks, was no faster
 // on an H100 (2026-11-25) and takes twice the shared memory.
 const int kGridTileStride = kGridTileWidth;
-shared float tileDepth[kGridTileHeight * kGridTileStride];
-shared float tileNormal[3][kGridTileHeight * kGridTileStride];
-shared float tileValue[4][kGridTileHeight * kGridTileStride];
+// An including shader that fills the tile only in some variants defines GRID_TILE_SLOTS as an expression of
+// its specialization constants that is 1 in the others: shared memory that is declared costs occupancy
+// whether or not it is used.
+#ifndef GRID_TILE_SLOTS
+#define GRID_TILE_SLOTS (kGridTileHeight * kGridTileStride)
+#endif
+shared float tileDepth[GRID_TILE_SLOTS];
+shared float tileNormal[3][GRID_TILE_SLOTS];
+shared float tileValue[4][GRID_TILE_SLOTS];
 ivec2 tileOrigin;  // the grid pixel at tile (0, 0)
 
 void loadGridTile(int width, int height) {
