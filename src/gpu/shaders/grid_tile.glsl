@@ -1,5 +1,5 @@
 // The grid that temporal_filters.glsl's reconstructInterleaved reads, staged in shared memory: each
-// workgroup copies the grid pixels its 5x5 gathers reach (its own 8x8 and 2 around) into shared memory once,
+// workgroup copies the grid pixels its 5x5 gathers reach (its own and 2 around) into shared memory once,
 // and the 25 taps of each pixel read them there instead of 25 x (depth, normal, values) global loads. The
 // values are the same floats, so the filter's result is unchanged.
 //
@@ -20,8 +20,8 @@
 const int kGridTileReach = 2;  // the reconstruction's 5x5 gather
 const int kGridTileWidth = kTemporalWorkgroupX + 2 * kGridTileReach;
 const int kGridTileHeight = kTemporalWorkgroupY + 2 * kGridTileReach;
-// Rows packed: 24 floats apart, which puts a warp's 4 rows of 8 reads in 32 different banks, was no faster
-// on an H100 (2026-11-25) and takes twice the shared memory.
+// Rows packed. With 8x8 workgroups, rows 24 floats apart (a warp's 4 rows of 8 reads in 32 different banks)
+// were no faster on an H100 (2026-11-25) and took twice the shared memory.
 const int kGridTileStride = kGridTileWidth;
 // An including shader that fills the tile only in some variants defines GRID_TILE_SLOTS as an expression of
 // its specialization constants that is 1 in the others: shared memory that is declared costs occupancy
