@@ -309,12 +309,13 @@ int main(int argc, char** argv) try {
     barrier(cmd);
     BilateralConstants k = blur.constants;
     k.axis = 0;
-    bilateral.record(cmd, 0, {&depth, &normal, &spatial, &visibility, &scratch}, &k, width, height, kBilateralWorkgroupX,
-                     kBilateralWorkgroupY);
+    // Each pass covers its own tile per workgroup (layouts.h): a row of pixels, then columns.
+    bilateral.record(cmd, 0, {&depth, &normal, &spatial, &visibility, &scratch}, &k, width, height,
+                     kBilateralHorizontalTileX, kBilateralHorizontalTileY);
     barrier(cmd);
     k.axis = 1;
-    bilateral.record(cmd, 1, {&depth, &normal, &spatial, &scratch, &ao}, &k, width, height, kBilateralWorkgroupX,
-                     kBilateralWorkgroupY);
+    bilateral.record(cmd, 1, {&depth, &normal, &spatial, &scratch, &ao}, &k, width, height, kBilateralVerticalTileX,
+                     kBilateralVerticalTileY);
     barrier(cmd, VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);  // the host reads the result
     check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
     VkSubmitInfo submit{};

@@ -14,6 +14,7 @@
 #include "obscura/error.h"
 #include "obscura/gpu.h"
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -46,12 +47,12 @@ void recordSeparableBilateral(Context::Impl& c, VkCommandBuffer cmd, const Separ
     BilateralConstants k = f.constants;
     // In binding order: kBilateralBindingDepth, Normal, LogSpatial, Input, Output.
     k.axis = 0;
-    pipeline.dispatchGrid(cmd, {&b.depth, &b.normal, &b.logSpatial, &b.input, &b.scratch}, &k, sizeof k, k.width,
-                          k.height);
+    pipeline.dispatch(cmd, {&b.depth, &b.normal, &b.logSpatial, &b.input, &b.scratch}, &k, sizeof k,
+                      std::uint32_t(bilateralGroupsX(0, k.width)), std::uint32_t(bilateralGroupsY(0, k.height)));
     computeBarrier(cmd);  // the vertical pass reads what the horizontal one wrote
     k.axis = 1;
-    pipeline.dispatchGrid(cmd, {&b.depth, &b.normal, &b.logSpatial, &b.scratch, &b.output}, &k, sizeof k, k.width,
-                          k.height);
+    pipeline.dispatch(cmd, {&b.depth, &b.normal, &b.logSpatial, &b.scratch, &b.output}, &k, sizeof k,
+                      std::uint32_t(bilateralGroupsX(1, k.width)), std::uint32_t(bilateralGroupsY(1, k.height)));
 }
 
 Image bilateralFilter(Context& context, const Image& ao, const GBuffer& g, const ssao::BilateralSettings& s) {

@@ -12,7 +12,7 @@
 #include "layouts.h"
 #include "lighting_layouts.h"
 
-layout(local_size_x = kBilateralWorkgroupX, local_size_y = kBilateralWorkgroupY, local_size_z = 1) in;
+layout(local_size_x = kBilateral2DWorkgroupX, local_size_y = kBilateral2DWorkgroupY, local_size_z = 1) in;
 
 layout(constant_id = kBilateralSpecUseNormal) const int kUseNormal = 1;  // = k.useNormal (layouts.h)
 

@@ -47,8 +47,18 @@ OBSCURA_CONST int kBilateralBindingInput = 3;       // width * height AO, the pa
 OBSCURA_CONST int kBilateralBindingOutput = 4;      // width * height AO, the pass's output
 OBSCURA_CONST int kBilateralBindingCount = 5;
 OBSCURA_CONST int kBilateralPushConstantBytes = 32;
-OBSCURA_CONST int kBilateralWorkgroupX = 8;
-OBSCURA_CONST int kBilateralWorkgroupY = 8;
+// The shader's workgroup is 256 invocations in a row; what they cover depends on the axis: the horizontal
+// pass, 1 line of 256 pixels; the vertical pass, 8 columns of 32 pixels. Dispatch ceil(width / TileX) x
+// ceil(height / TileY) workgroups for each (bilateralGroups).
+OBSCURA_CONST int kBilateralWorkgroupX = 256;
+OBSCURA_CONST int kBilateralWorkgroupY = 1;
+OBSCURA_CONST int kBilateralHorizontalTileX = 256;
+OBSCURA_CONST int kBilateralHorizontalTileY = 1;
+OBSCURA_CONST int kBilateralVerticalTileX = 8;
+OBSCURA_CONST int kBilateralVerticalTileY = 32;
+// bilateral_2d.comp: one invocation per pixel, dispatched over width x height.
+OBSCURA_CONST int kBilateral2DWorkgroupX = 8;
+OBSCURA_CONST int kBilateral2DWorkgroupY = 8;
 // The largest radius: the shader's shared-memory lines hold this many taps on each side.
 OBSCURA_CONST int kBilateralMaxRadius = 32;
 // constant_id of the normal weight in both blurs (bilateral_separable, bilateral_2d): BilateralConstants::
@@ -109,6 +119,19 @@ OBSCURA_CONST int kGtaoMipsBindingCount = 2;
 OBSCURA_CONST int kGtaoMipsPushConstantBytes = 16;
 
 #ifdef __cplusplus
+// bilateral_separable.comp's workgroups along x and y for a width x height image and pass `axis`.
+inline constexpr int bilateralGroupsX(int axis, int width) {
+    const int tile = axis == 0 ? kBilateralHorizontalTileX : kBilateralVerticalTileX;
+    return (width + tile - 1) / tile;
+}
+inline constexpr int bilateralGroupsY(int axis, int height) {
+    const int tile = axis == 0 ? kBilateralHorizontalTileY : kBilateralVerticalTileY;
+    return (height + tile - 1) / tile;
+}
+static_assert(kBilateralHorizontalTileX * kBilateralHorizontalTileY == kBilateralWorkgroupX * kBilateralWorkgroupY &&
+                  kBilateralVerticalTileX * kBilateralVerticalTileY == kBilateralWorkgroupX * kBilateralWorkgroupY &&
+                  kBilateralWorkgroupY == 1 && kBilateralWorkgroupX >= 2 * kBilateralMaxRadius + 1,
+              "each pass's tile has one pixel per invocation, and one row of invocations loads the weights");
 static_assert(sizeof(GtaoMipConstants) == kGtaoMipsPushConstantBytes, "GtaoMipConstants keeps its std430 layout");
 static_assert(sizeof(BilateralConstants) == kBilateralPushConstantBytes &&
                   offsetof(BilateralConstants, useNormal) == 16 && offsetof(BilateralConstants, depthScale) == 20,
