@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# scripts/gpu-verify --small on this build and whatever Vulkan device there is (lavapipe in CI): every case
+# renders both ways and agrees; and scripts/exrdiff.py, which it relies on, reports a difference it is given
+# and refuses files it cannot compare. Exit 77 (skipped) without a Vulkan device or python3.
+# Arguments: source dir, build dir, scratch dir.
+set -euo pipefail
+src=$1 build=$2 work=$3
+rm -rf "$work"
+mkdir -p "$work"
+fail() { echo "gpu_verify_check: $*" >&2; exit 1; }
+tool=$build/obscura
+command -v python3 >/dev/null || { echo "gpu_verify_check: no python3"; exit 77; }
+if ! "$tool" bench --gpu --sizes 8x8 --cases gtao --frames 1 --warmup 0 --inputs 1 >/dev/null 2>"$work/probe"; then
+  echo "gpu_verify_check: no Vulkan device: $(cat "$work/probe")"
+  exit 77
+fi
+
+"$src/scripts/gpu-verify" "$tool" --small >"$work/out" 2>&1 || fail "gpu-verify failed: $(cat "$work/out")"
+[ "$(grep -c 'values > 2e-3: 0 of' "$work/out")" -eq 14 ] || fail "expected 14 planes within 2e-3: $(cat "$work/out")"
+
+# exrdiff: a known difference between two AO planes of different scenes, then two refusals.
+"$tool" render plane --size 16x8 --ao gtao -q -o "$work/a.png" --aov-dir "$work/a" >/dev/null
+"$tool" render corner --size 16x8 --ao gtao -q -o "$work/b.png" --aov-dir "$work/b" >/dev/null
+line=$(python3 "$src/scripts/exrdiff.py" "$work/a/ao.exr" "$work/b/ao.exr" planes)
+case "$line" in planes*"values > 2e-3: "[1-9]*" of 128") ;; *) fail "plane against corner: $line" ;; esac
+line=$(python3 "$src/scripts/exrdiff.py" "$work/a/ao.exr" "$work/a/ao.exr" same)
+case "$line" in same*"max 0.00e+00"*"values > 2e-3: 0 of 128") ;; *) fail "a plane against itself: $line" ;; esac
+if python3 "$src/scripts/exrdiff.py" "$work/a/ao.exr" "$work/a/normal.exr" 2>"$work/err"; then fail "ao against normals compared"; fi
+grep -q "differ in channels or size" "$work/err" || fail "$(cat "$work/err")"
+head -c 100 "$work/a/ao.exr" >"$work/cut.exr"
+if python3 "$src/scripts/exrdiff.py" "$work/a/ao.exr" "$work/cut.exr" 2>"$work/err"; then fail "a cut file compared"; fi
+grep -q "cut.exr" "$work/err" || fail "the error does not name the file: $(cat "$work/err")"
+echo "gpu_verify_check: ok"
