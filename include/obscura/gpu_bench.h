@@ -48,7 +48,7 @@ struct GpuPassTime {
     std::string name;       // "alchemy", "blur", "gtao", "denoise", "temporal", "resolve" (the stages of
                             // gpu::GtaoTemporalPasses::record say which dispatches each one times)
     double medianMs = 0;    // median over the timed frames of this pass's GPU time
-    double minMs = 0;       // its fastest frame (the passes of one frame add up to at most its time)
+    double minMs = 0;       // its fastest frame (the passes of one frame add up to its time)
 };
 
 struct GpuBenchCase {
@@ -57,7 +57,8 @@ struct GpuBenchCase {
     int width = 0, height = 0;
     int frames = 0;           // timed frames
     std::vector<GpuPassTime> passes;  // in dispatch order
-    double medianMs = 0;      // median over the frames of the frame's GPU time, first to last timestamp
+    double medianMs = 0;      // median over the frames of the frame's GPU time: its passes' times added up,
+                              // from the timestamp before its first pass to the one after its last
     double minMs = 0;         // fastest frame
     double bytes = 0;         // compulsory memory traffic per frame: every buffer element each dispatch
                               // reads or writes, counted once per dispatch (cache reuse between neighbours
