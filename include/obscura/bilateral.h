@@ -35,9 +35,14 @@ enum class BlurMode {
 
 enum class NormalWeight { Auto, On, Off };
 
+// The largest blur radius the filters accept (BilateralSettings::radius); the GPU blur's shared-memory lines
+// are sized for it (gpu::kBilateralMaxRadius, which static_asserts that it holds this many).
+inline constexpr int kMaxBlurRadius = 32;
+
 struct BilateralSettings {
     BlurMode mode = BlurMode::Separable;
-    // Taps on each side of the centre: 2 radius + 1 taps per axis; [1, 32]. 6 gives the paper's 13 taps.
+    // Taps on each side of the centre: 2 radius + 1 taps per axis; [1, kMaxBlurRadius]. 6 gives the paper's
+    // 13 taps.
     int radius = 6;
     // sigma_d / centre depth: unitless, (0, 10]. 0.05 lets a 5% depth change through at weight 0.6 and
     // stops a 20% step (weight 3e-4), so surfaces at a silhouette do not bleed into each other.
@@ -56,7 +61,7 @@ struct BilateralSettings {
 // The half kernel w[0..radius] of a Gaussian with sigma = radius / 2 (the kernel edge sits at exp(-2)),
 // normalised so that the full symmetric kernel w[0] + 2 (w[1] + ... + w[radius]) is 1: the centre tap
 // counts once and every other tap twice (the chapter's off-by-one). Computed in double; the float sum of
-// the full kernel is 1 within a few ulps. radius in [1, 32] (asserted).
+// the full kernel is 1 within a few ulps. radius in [1, kMaxBlurRadius] (asserted).
 std::vector<float> gaussianHalfKernel(int radius);
 
 // Weight of a tap (the definition; the filter's vectorised loops evaluate the same expression with a

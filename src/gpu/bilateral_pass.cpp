@@ -15,17 +15,15 @@
 #include "obscura/gpu.h"
 
 #include <cstdint>
-#include <string>
 #include <vector>
 
 namespace obscura::gpu {
 
+// validate() accepts radii up to ssao::kMaxBlurRadius; the shader's shared-memory lines must hold as many.
+static_assert(kBilateralMaxRadius >= ssao::kMaxBlurRadius, "bilateral_separable.comp's tile holds every radius");
+
 SeparableBilateral separableBilateral(const ssao::BilateralSettings& s, int width, int height) {
     s.validate();
-    // validate() allows radii up to 32; the shader's shared-memory lines hold that many taps on each side.
-    if (s.radius > kBilateralMaxRadius)
-        fail("blur-radius", "must be at most " + std::to_string(kBilateralMaxRadius) + " taps on the GPU, is " +
-                                std::to_string(s.radius));
     const ssao::detail::SeparableWeights weights = ssao::detail::separableWeights(s);
     SeparableBilateral f;
     f.logSpatial = weights.logSpatial;

@@ -259,13 +259,21 @@ GpuBenchCase benchGpuCase(Context& context, const std::string& name, const std::
             if (first + k < settings.warmup) continue;
             const std::size_t from = k == 0 ? 0 : std::size_t(marksAfterFrame[std::size_t(k) - 1]);
             const std::size_t to = std::size_t(marksAfterFrame[std::size_t(k)]);
+            // Every frame runs the same passes: a frame whose marks are not the first frame's would mean they
+            // were split between frames wrongly, and its times would be another frame's.
+            std::vector<std::string> passes;
             double frame = 0;
             for (std::size_t m = from; m < to; ++m) {
                 const auto& [pass, ms] = c.lastMarks[m];
-                if (!passMs.count(pass)) order.push_back(pass);
+                if (frameMs.empty()) order.push_back(pass);
+                passes.push_back(pass);
                 passMs[pass].push_back(ms);
                 frame += ms;
             }
+            if (passes != order)
+                fail("gpu bench", "frame " + std::to_string(first + k) + " of case '" + name + "' timed " +
+                                      std::to_string(passes.size()) + " passes, the first timed frame " +
+                                      std::to_string(order.size()));
             frameMs.push_back(frame);
         }
     }

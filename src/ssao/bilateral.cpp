@@ -16,13 +16,14 @@
 namespace obscura::ssao {
 
 void BilateralSettings::validate() const {
-    if (radius < 1 || radius > 32) fail("blur-radius", "must be in [1, 32] taps, is " + std::to_string(radius));
+    if (radius < 1 || radius > kMaxBlurRadius)
+        fail("blur-radius", "must be in [1, " + std::to_string(kMaxBlurRadius) + "] taps, is " + std::to_string(radius));
     if (!(depthSigma > 0.0f && depthSigma <= 10.0f))
         fail("blur-depth-sigma", "must be in (0, 10] (relative to depth), is " + std::to_string(depthSigma));
 }
 
 std::vector<float> gaussianHalfKernel(int radius) {
-    assert(radius >= 1 && radius <= 32);
+    assert(radius >= 1 && radius <= kMaxBlurRadius);
     const double s = radius / 2.0;
     std::vector<double> w(std::size_t(radius) + 1);
     for (int i = 0; i <= radius; ++i) w[std::size_t(i)] = std::exp(-0.5 * (i / s) * (i / s));

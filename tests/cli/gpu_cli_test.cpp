@@ -172,22 +172,19 @@ TEST_F(GpuCommands, BenchGpuReportsEveryCase) {
     for (const auto& c : j["cases"]) {
         const std::string name = c["case"];
         ASSERT_TRUE(passes.count(name)) << name;
+        // A frame's time is its passes' added up (gpu_bench.h), so the passes are named, in order, and
+        // timed; the frames' split into passes is checked by benchGpuCase itself (each frame must time the
+        // first frame's passes), which the batched run below exercises.
         std::set<std::string> seen;
-        double sumOfMins = 0;
         for (const auto& p : c["passes"]) {
             seen.insert(p["name"].get<std::string>());
             EXPECT_GE(p["min_ms"].get<double>(), 0.0);
             EXPECT_LE(p["min_ms"].get<double>(), p["median_ms"].get<double>());
-            sumOfMins += p["min_ms"].get<double>();
         }
         EXPECT_EQ(seen, passes.at(name)) << name;
         const double ms = c["median_ms"].get<double>();
         EXPECT_GT(ms, 0.0) << name;
         EXPECT_LE(c["min_ms"].get<double>(), ms) << name;
-        // A frame's passes are consecutive spans of it, so they add up to at most its time, in the fastest
-        // frame too: the passes' minimums add up to at most the fastest frame's time, however noisy the
-        // device (the medians of parts, taken from different frames, have no such bound).
-        EXPECT_LE(sumOfMins, c["min_ms"].get<double>() * (1 + 1e-9)) << name;
         const double px = c["width"].get<double>() * c["height"].get<double>();
         EXPECT_NEAR(c["mpixels_per_s"].get<double>(), px / (ms * 1e3), 1e-6 * px / (ms * 1e3)) << name;
         // At least the depth and normals read and one float per pixel written.
@@ -195,8 +192,9 @@ TEST_F(GpuCommands, BenchGpuReportsEveryCase) {
         EXPECT_NEAR(c["fraction_of_peak"].get<double>(), c["gbytes_per_s"].get<double>() / 3000.0, 1e-9) << name;
     }
     // --frames-per-submit: frames recorded back to back in one submission, here 3 per submission over 2
-    // warm-up and 5 timed frames (so one submission holds both); the same passes per case, with validation
-    // on (the barriers between the frames of a submission included).
+    // warm-up and 5 timed frames (so one submission holds both, and the last holds 1); the same passes per
+    // case, each frame's split checked as it is read (above), with validation on (the barriers between the
+    // frames of a submission included).
     setenv("OBSCURA_VALIDATION", "1", 1);
     const CliResult batched =
         runCli("bench --gpu --sizes 24x16 --frames 5 --warmup 2 --inputs 2 --frames-per-submit 3 --json");
@@ -210,14 +208,11 @@ TEST_F(GpuCommands, BenchGpuReportsEveryCase) {
     ASSERT_EQ(bj["cases"].size(), 5u);
     for (const auto& c : bj["cases"]) {
         std::set<std::string> seen;
-        double sumOfMins = 0;
         for (const auto& p : c["passes"]) {
             seen.insert(p["name"].get<std::string>());
             EXPECT_GT(p["min_ms"].get<double>(), 0.0);
-            sumOfMins += p["min_ms"].get<double>();
         }
         EXPECT_EQ(seen, passes.at(c["case"].get<std::string>())) << c["case"];
-        EXPECT_LE(sumOfMins, c["min_ms"].get<double>() * (1 + 1e-9)) << c["case"];
     }
 
     const CliResult table = runCli("bench --gpu --sizes 32x20 --cases gtao --frames 2 --warmup 0 --inputs 1");

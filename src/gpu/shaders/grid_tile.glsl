@@ -12,8 +12,9 @@
 //   kGridChannels, float gridDepthAt(int x, int y), vec3 gridNormalAt(int x, int y),
 //   float gridValueAt(int x, int y, int c)
 // and calls loadGridTile(width, height) from every invocation of the workgroup (it holds a barrier), before
-// any invocation returns. Then gridDepth, gridNormal and gridValue read the tile; they may be asked only for
-// pixels within 2 of the workgroup's own (all that the reconstruction reads) and inside the grid.
+// any invocation returns. Then gridTileDepth, gridTileNormal and gridTileValue read the tile; they may be
+// asked only for pixels within 2 of the workgroup's own (all that the reconstruction reads) and inside the
+// grid. The includer's gridDepth, gridNormal and gridValue (temporal_filters.glsl's grid) call them.
 #ifndef OBSCURA_GPU_GRID_TILE_GLSL
 #define OBSCURA_GPU_GRID_TILE_GLSL
 
@@ -53,11 +54,11 @@ void loadGridTile(int width, int height) {
 }
 
 int tileIndex(int x, int y) { return (y - tileOrigin.y) * kGridTileStride + (x - tileOrigin.x); }
-float gridDepth(int x, int y) { return tileDepth[tileIndex(x, y)]; }
-vec3 gridNormal(int x, int y) {
+float gridTileDepth(int x, int y) { return tileDepth[tileIndex(x, y)]; }
+vec3 gridTileNormal(int x, int y) {
     const int s = tileIndex(x, y);
     return vec3(tileNormal[0][s], tileNormal[1][s], tileNormal[2][s]);
 }
-float gridValue(int x, int y, int c) { return tileValue[c][tileIndex(x, y)]; }
+float gridTileValue(int x, int y, int c) { return tileValue[c][tileIndex(x, y)]; }
 
 #endif

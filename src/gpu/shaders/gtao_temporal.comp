@@ -75,13 +75,7 @@ float gridValueAt(int x, int y, int c) {
 // spatial variant) and 0.115 instead of 0.159 with it. The half-resolution upsampling reads 4 grid pixels
 // straight from memory, with a tile of one slot.
 #define GRID_TILE_SLOTS (kGridStep == 1 ? kGridTileHeight * kGridTileStride : 1)
-#define gridDepth gridTileDepth
-#define gridNormal gridTileNormal
-#define gridValue gridTileValue
 #include "grid_tile.glsl"
-#undef gridDepth
-#undef gridNormal
-#undef gridValue
 float gridDepth(int x, int y) { return kGridStep == 1 ? gridTileDepth(x, y) : gridDepthAt(x, y); }
 vec3 gridNormal(int x, int y) { return kGridStep == 1 ? gridTileNormal(x, y) : gridNormalAt(x, y); }
 float gridValue(int x, int y, int c) { return kGridStep == 1 ? gridTileValue(x, y, c) : gridValueAt(x, y, c); }

@@ -32,6 +32,10 @@ float gridValueAt(int x, int y, int c) {
 }
 
 #include "grid_tile.glsl"
+float gridDepth(int x, int y) { return gridTileDepth(x, y); }
+vec3 gridNormal(int x, int y) { return gridTileNormal(x, y); }
+float gridValue(int x, int y, int c) { return gridTileValue(x, y, c); }
+
 #include "temporal_filters.glsl"
 
 void main() {
