@@ -3,17 +3,9 @@
 # the seven JSON files, each with its variant's flags; FLAGS after -- reach every run; a failing run stops
 # the suite with a non-zero exit and leaves no JSON of its own. Exit 77 (skipped) without a Vulkan device.
 # Arguments: source dir, build dir, scratch dir.
-set -euo pipefail
-src=$1 build=$2 work=$3
-rm -rf "$work"
-mkdir -p "$work"
-fail() { echo "bench_suite_check: $*" >&2; exit 1; }
-tool=$build/obscura
-
-if ! "$tool" bench --gpu --sizes 8x8 --cases gtao --frames 1 --warmup 0 --inputs 1 >/dev/null 2>"$work/probe"; then
-  echo "bench_suite_check: no Vulkan device: $(cat "$work/probe")"
-  exit 77
-fi
+source "$(dirname "$0")/check_common.sh"
+check_setup bench_suite_check "$@"
+skip_without_vulkan
 
 tiny=(--sizes 24x16 --frames 2 --warmup 0 --inputs 1)
 "$src/scripts/bench-gpu-suite" "$tool" "$work/out" -- "${tiny[@]}" 2>"$work/log" || fail "the suite failed: $(cat "$work/log")"

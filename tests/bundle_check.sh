@@ -2,11 +2,8 @@
 # scripts/bundle on this build: the archive unpacks to a tool that runs and loads its libraries from the
 # bundle (LD_DEBUG names each library as it is initialised), and a bad build folder fails with one line
 # and no archive. Arguments: source dir, build dir, scratch dir.
-set -euo pipefail
-src=$1 build=$2 work=$3
-rm -rf "$work"
-mkdir -p "$work"
-fail() { echo "bundle_check: $*" >&2; exit 1; }
+source "$(dirname "$0")/check_common.sh"
+check_setup bundle_check "$@"
 
 "$src/scripts/bundle" "$build" "$work/bundle.tar.gz"
 tar -C "$work" -xzf "$work/bundle.tar.gz"

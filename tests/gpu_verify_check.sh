@@ -3,17 +3,10 @@
 # renders both ways and agrees; and scripts/exrdiff.py, which it relies on, reports a difference it is given
 # and refuses files it cannot compare. Exit 77 (skipped) without a Vulkan device or python3.
 # Arguments: source dir, build dir, scratch dir.
-set -euo pipefail
-src=$1 build=$2 work=$3
-rm -rf "$work"
-mkdir -p "$work"
-fail() { echo "gpu_verify_check: $*" >&2; exit 1; }
-tool=$build/obscura
+source "$(dirname "$0")/check_common.sh"
+check_setup gpu_verify_check "$@"
 command -v python3 >/dev/null || { echo "gpu_verify_check: no python3"; exit 77; }
-if ! "$tool" bench --gpu --sizes 8x8 --cases gtao --frames 1 --warmup 0 --inputs 1 >/dev/null 2>"$work/probe"; then
-  echo "gpu_verify_check: no Vulkan device: $(cat "$work/probe")"
-  exit 77
-fi
+skip_without_vulkan
 
 "$src/scripts/gpu-verify" "$tool" --small >"$work/out" 2>&1 || fail "gpu-verify failed: $(cat "$work/out")"
 [ "$(grep -c 'values > 2e-3: 0 of' "$work/out")" -eq 14 ] || fail "expected 14 planes within 2e-3: $(cat "$work/out")"

@@ -1,0 +1,64 @@
+#!/usr/bin/env bash
+# The shader candidates of bench/gpu-candidates and the scripts that time them (scripts/gpu-candidates,
+# scripts/gpu-ab), on this build and whatever Vulkan device there is (lavapipe in CI):
+# - every patch applies to this checkout and compiles, and changes the shader it says it changes;
+# - each candidate agrees with the CPU path (scripts/gpu-verify --small), and with the embedded shader: to
+#   the bit where its header says "the same bits", else within 1e-5;
+# - gpu-ab times two variants against each other and writes its JSON; it refuses a missing folder.
+# Exit 77 (skipped) without a Vulkan device, python3 or glslc. Arguments: source dir, build dir, scratch dir.
+source "$(dirname "$0")/check_common.sh"
+check_setup gpu_candidates_check "$@"
+command -v python3 >/dev/null || { echo "gpu_candidates_check: no python3"; exit 77; }
+command -v glslc >/dev/null || { echo "gpu_candidates_check: no glslc"; exit 77; }
+skip_without_vulkan
+
+"$src/scripts/gpu-candidates" "$work/spv" >"$work/built" 2>&1 || fail "gpu-candidates failed: $(cat "$work/built")"
+count=0
+for patch in "$src"/bench/gpu-candidates/*.patch; do
+  name=$(basename "$patch" .patch)
+  dir=$work/spv/$name
+  [ -d "$dir" ] || fail "$name: no folder built: $(cat "$work/built")"
+  # Every shader the patch names was compiled into the folder, and nothing else.
+  expected=$(grep '^+++ b/src/gpu/shaders/.*\.comp' "$patch" | sed 's|.*/||; s|\.comp.*||' | sort | tr '\n' ' ')
+  got=$(cd "$dir" && ls ./*.spv | sed 's|^\./||; s|\.spv$||' | sort | tr '\n' ' ')
+  [ "$expected" = "$got" ] || fail "$name: built '$got', the patch changes '$expected'"
+
+  OBSCURA_SHADER_DIR=$dir "$src/scripts/gpu-verify" "$tool" --small >"$work/verify" 2>&1 ||
+    fail "$name: gpu-verify failed: $(cat "$work/verify")"
+
+  limit=1e-5
+  grep -q '^Results: the same bits' "$patch" && limit=0
+  for args in "demo --size 133x77 --ao alchemy" "demo --size 133x77 --ao gtao" \
+              "stairs --size 120x70 --ao alchemy --blur-radius 32"; do
+    # shellcheck disable=SC2086  # the list's words are separate arguments
+    "$tool" render $args -q --gpu -o "$work/e.png" --aov-dir "$work/e" >/dev/null
+    # shellcheck disable=SC2086
+    OBSCURA_SHADER_DIR=$dir "$tool" render $args -q --gpu -o "$work/c.png" --aov-dir "$work/c" >/dev/null
+    line=$(python3 "$src/scripts/exrdiff.py" "$work/e/ao.exr" "$work/c/ao.exr" "$name")
+    max=$(echo "$line" | sed 's/.*max \([^ ]*\).*/\1/')
+    python3 -c "import sys; sys.exit(0 if float('$max') <= $limit else 1)" ||
+      fail "$name: $args: against the embedded shader, max $max > $limit: $line"
+  done
+  count=$((count + 1))
+done
+[ $count -gt 0 ] || fail "no candidate in $src/bench/gpu-candidates"
+
+# gpu-ab: the embedded shaders against the first candidate, one round, at a tiny size.
+first=$(ls "$work/spv" | head -1)
+"$src/scripts/gpu-ab" --obscura "$tool" --rounds 1 --json "$work/ab.json" embedded "cand=$work/spv/$first" \
+  -- --sizes 64x32 --cases alchemy --frames 3 --warmup 0 --inputs 1 >"$work/ab" 2>"$work/ab.err" ||
+  fail "gpu-ab failed: $(cat "$work/ab.err")"
+grep -Eq '^alchemy +64x32 +frame +[0-9.]+ +[0-9.]+ +[0-9.]+$' "$work/ab" || fail "no frame row: $(cat "$work/ab")"
+grep -Eq '^alchemy +64x32 +blur +[0-9.]+ +[0-9.]+ +[0-9.]+$' "$work/ab" || fail "no blur row: $(cat "$work/ab")"
+python3 - "$work/ab.json" <<'EOF' || fail "gpu-ab's JSON: $(cat "$work/ab.json")"
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert [v["name"] for v in d["variants"]] == ["embedded", "cand"]
+assert all(len(v["rounds_ms"]) == 1 and v["median_ms"] for v in d["variants"])
+assert all(m["ms"] > 0 for v in d["variants"] for m in v["median_ms"])
+EOF
+if "$src/scripts/gpu-ab" --obscura "$tool" embedded "gone=$work/missing" >"$work/ab" 2>"$work/ab.err"; then
+  fail "gpu-ab ran with a missing folder"
+fi
+grep -q "gone: $work/missing is not a folder" "$work/ab.err" || fail "$(cat "$work/ab.err")"
+echo "gpu_candidates_check: ok ($count candidates)"
