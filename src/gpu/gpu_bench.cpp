@@ -53,6 +53,9 @@ struct CaseSetup {
 ssao::GtaoSettings gtaoSettings(const GpuBenchSettings& s) {
     ssao::GtaoSettings g;
     ssao::applyQuality(g, s.quality);
+    if (s.gtaoSlices > 0) g.sliceCount = s.gtaoSlices;
+    if (s.gtaoSteps > 0) g.stepsPerSide = s.gtaoSteps;
+    g.jitter = s.gtaoJitter;
     g.sampling = s.sampling;
     g.mipDistanceRatio = s.mipDistanceRatio;
     g.radius = s.gtaoRadius;
@@ -66,9 +69,14 @@ std::string radiusText(const ssao::GtaoSettings& g) {
     return text;
 }
 
+// "GTAO high" for the preset's counts, "GTAO" where --gtao-slices or --gtao-steps changed them.
+std::string presetText(const GpuBenchSettings& s) {
+    return s.gtaoSlices > 0 || s.gtaoSteps > 0 ? "GTAO" : "GTAO " + std::string(ssao::qualityName(s.quality));
+}
+
 std::string slicesText(const ssao::GtaoSettings& g) {
     return std::to_string(g.sliceCount) + " slice" + (g.sliceCount > 1 ? "s" : "") + " x " +
-           std::to_string(g.stepsPerSide) + " steps per side" +
+           std::to_string(g.stepsPerSide) + " steps per side" + (g.jitter ? ", jittered" : "") +
            (g.sampling == ssao::GtaoSampling::Planar ? "" : ", " + ssao::gtaoSamplingText(g));
 }
 
@@ -114,7 +122,7 @@ CaseSetup gtaoCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s, co
     auto scratch = std::make_shared<Buffer>(c, px * sizeof(float), MemoryUse::Device);
     auto out = std::make_shared<Buffer>(c, px * sizeof(float), MemoryUse::Device);
     CaseSetup setup;
-    setup.description = "GTAO " + std::string(ssao::qualityName(s.quality)) + " (" + slicesText(settings) +
+    setup.description = presetText(s) + " (" + slicesText(settings) +
                         radiusText(settings) + "), visibility" + (s.bentNormals ? " + bent normal" : " only") +
                         ", + separable bilateral, 13 taps per axis";
     // GTAO: depth + normal in, visibility (+ bent normal) out; blur axes as in the alchemy case.
@@ -141,6 +149,7 @@ CaseSetup gtaoCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s, co
 CaseSetup temporalCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s, bool temporal, bool half) {
     ssao::GtaoSettings settings = gtaoSettings(s);
     if (temporal) settings.sliceCount = s.temporalSlices;
+    settings.jitter = false;  // the interleave rotates the slices instead
     ssao::GtaoTemporalSettings t;
     t.temporal = temporal;
     t.halfResolution = half;
@@ -177,6 +186,8 @@ void GpuBenchSettings::validate() const {
     check(framesPerSubmit >= 1 && framesPerSubmit <= 64, "frames-per-submit", "[1, 64]");
     check(alchemySamples >= 1 && alchemySamples <= 1024, "alchemy-samples", "[1, 1024]");
     check(temporalSlices >= 1 && temporalSlices <= 64, "temporal-slices", "[1, 64]");
+    check(gtaoSlices >= 0 && gtaoSlices <= 64, "gtao-slices", "[0, 64] (0: the preset's)");
+    check(gtaoSteps >= 0 && gtaoSteps <= 256, "gtao-steps", "[0, 256] (0: the preset's)");
     check(gtaoRadius > 0.0f && gtaoRadius <= 1e4f, "ao-radius", "(0, 1e4] m");
     check(mipDistanceRatio >= 2.0f && mipDistanceRatio <= 64.0f, "gtao-mip-ratio", "[2, 64]");
 }

@@ -286,6 +286,23 @@ TEST_F(GpuCommands, BenchGpuReportsEveryCase) {
     EXPECT_EQ(m4["gtao_mip_ratio"], 3.5);
     EXPECT_NE(m4["cases"][0]["description"].get<std::string>().find("ratio 3.5)"), std::string::npos);
 
+    // --gtao-slices, --gtao-steps, --gtao-jitter: the counts in the report and the descriptions (the temporal
+    // cases keep --temporal-slices, and only the gtao case is jittered); the same buffers.
+    const CliResult counts = runCli(small + " --gtao-slices 2 --gtao-steps 4 --gtao-jitter");
+    ASSERT_EQ(counts.code, 0) << counts.out;
+    const nlohmann::json c = nlohmann::json::parse(counts.out);
+    EXPECT_EQ(b["gtao_slices"], 0);
+    EXPECT_EQ(c["gtao_slices"], 2);
+    EXPECT_EQ(c["gtao_steps"], 4);
+    EXPECT_EQ(c["gtao_jitter"], true);
+    EXPECT_NE(b["cases"][0]["description"].get<std::string>().find("GTAO high (3 slices x 3 steps per side, r"),
+              std::string::npos);
+    EXPECT_NE(c["cases"][0]["description"].get<std::string>().find("GTAO (2 slices x 4 steps per side, jittered, r"),
+              std::string::npos);
+    EXPECT_NE(c["cases"][1]["description"].get<std::string>().find("(1 slice x 4 steps per side, 4x4 interleave"),
+              std::string::npos);
+    for (int i = 0; i < 2; ++i) EXPECT_EQ(b["cases"][i]["bytes_per_frame"], c["cases"][i]["bytes_per_frame"]);
+
     // --ao-radius: the GTAO cases' radius, in the report and the descriptions; the same buffers.
     const CliResult small4 = runCli(small + " --ao-radius 0.25");
     ASSERT_EQ(small4.code, 0) << small4.out;
@@ -308,6 +325,8 @@ TEST_F(GpuCommands, BenchGpuRejectsBadArguments) {
     expectFailure("bench --gpu --gtao-sampling bilinear", {"--gtao-sampling", "planar,nearest,mip,planar-mip"}, 2);
     expectFailure("bench --gpu --ao-radius 0", {"--ao-radius", "(0, 1e4] m"});
     expectFailure("bench --gpu --gtao-mip-ratio 1", {"--gtao-mip-ratio", "[2, 64]"});
+    expectFailure("bench --gpu --gtao-slices 65", {"--gtao-slices", "[0, 64]"});
+    expectFailure("bench --gpu --gtao-steps -1", {"--gtao-steps", "[0, 256]"});
     expectFailure("bench --gpu --frames-per-submit 0", {"--frames-per-submit", "[1, 64]"});
     expectFailure("bench --gpu --frames-per-submit 65", {"--frames-per-submit", "[1, 64]"});
     expectFailure("bench --gpu --gpu-device 99 --sizes 8x8 --frames 1", {"--gpu-device", "99"});

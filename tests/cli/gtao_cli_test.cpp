@@ -8,9 +8,11 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace fs = std::filesystem;
 
@@ -67,7 +69,11 @@ TEST_F(GtaoCli, BadInputFailsWithOneLine) {
                           {"--gtao-sampling mip --gtao-mip-ratio 100", "--gtao-mip-ratio"},
                           {"--gtao-half-res --gtao-mode full", "--gtao-half-res"},
                           {"--gtao-packed-history --frames 1", "--gtao-packed-history"},
-                          {"--gtao-packed-history --frames 3 --gtao-mode spatial", "--gtao-packed-history"}};
+                          {"--gtao-packed-history --frames 3 --gtao-mode spatial", "--gtao-packed-history"},
+                          {"--gtao-slices 65", "--gtao-slices"},
+                          {"--gtao-steps 257", "--gtao-steps"},
+                          {"--gtao-jitter --frames 3", "--gtao-jitter"},
+                          {"--gtao-jitter --gtao-mode spatial", "--gtao-jitter"}};
     for (const Case& c : cases) {
         Result r = run("render plane --ao gtao --size 32x32 -q -o " + path("f.png") + " " + c.args);
         EXPECT_EQ(r.code, 1) << c.args << ": " << r.out;
@@ -122,4 +128,43 @@ TEST_F(GtaoCli, CompareMeasuresNearestSampling) {
     const double planar = j["methods"][0]["mae"], nearest = j["methods"][1]["mae"];
     EXPECT_GT(nearest, 0.0);
     EXPECT_NEAR(nearest, planar, 0.005);
+}
+
+// --gtao-slices, --gtao-steps and --gtao-jitter reach the kernel in render, ao and compare: the preset's own
+// counts change nothing, other counts and the jitter change the AO, and `render` and `ao` agree bit for bit
+// on the same buffers; compare refuses --samples with --gtao-slices (both set the slices), and `ao` the flags
+// with an Alchemy method.
+TEST_F(GtaoCli, SliceFlagsReachTheKernel) {
+    auto render = [&](const std::string& flags) {
+        const Result r = run("render corner --ao gtao --size 48x32 -q -o " + path("f.png") + " --aov-dir " +
+                             path("aov") + " " + flags);
+        EXPECT_EQ(r.code, 0) << flags << ": " << r.out;
+        return obscura::readExr(path("aov/ao.exr")).pixels;
+    };
+    const std::vector<float> high = render("");
+    EXPECT_EQ(render("--gtao-slices 3 --gtao-steps 3"), high);
+    EXPECT_NE(render("--gtao-slices 1"), high);
+    EXPECT_NE(render("--gtao-steps 5"), high);
+    const std::vector<float> jittered = render("--gtao-slices 2 --gtao-steps 4 --gtao-jitter");
+    EXPECT_NE(render("--gtao-slices 2 --gtao-steps 4"), jittered);
+
+    const std::string buffers = "ao --method gtao --depth " + path("aov/depth.exr") + " --normal " +
+                                path("aov/normal.exr") + " --camera " + path("aov/camera.json") + " -o " + path("ao.exr");
+    Result r = run(buffers + " --blur none --gtao-slices 2 --gtao-steps 4 --gtao-jitter");
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_EQ(obscura::readExr(path("ao.exr")).pixels, render("--blur none --gtao-slices 2 --gtao-steps 4 --gtao-jitter"));
+    expectFailure("ao --method alchemy --depth " + path("aov/depth.exr") + " --camera " + path("aov/camera.json") +
+                      " -o " + path("a.exr") + " --gtao-steps 4",
+                  {"--gtao-steps", "alchemy"});
+
+    const std::string compare = "compare corner --methods gtao --size 48x32 --rays 16 -q --json -o " + path("c.png");
+    auto mae = [&](const std::string& flags) {
+        const Result c = run(compare + " " + flags);
+        EXPECT_EQ(c.code, 0) << flags << ": " << c.out;
+        return nlohmann::json::parse(c.out)["methods"][0]["mae"].get<double>();
+    };
+    EXPECT_EQ(mae("--gtao-slices 3 --gtao-steps 3"), mae(""));
+    EXPECT_NE(mae("--gtao-slices 2 --gtao-steps 4 --gtao-jitter"), mae(""));
+    expectFailure(compare + " --samples 12 --gtao-slices 2", {"--gtao-slices", "--samples"});
+    EXPECT_FALSE(fs::exists(path("a.exr")));
 }

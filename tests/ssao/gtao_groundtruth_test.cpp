@@ -39,10 +39,7 @@ TEST(GtaoGroundTruth, MatchesRayTracedFromAbove) {
         GBuffer g = trace::renderGBuffer(tracer, view.camera);
         const double seen = test::maskFraction(g, test::occludersSeen(tracer, g, view.radius));
         EXPECT_GE(seen, std::string(name) == "stairs" ? 0.9 : 0.999) << name << ": the camera misses occluders";
-        trace::ObscuranceSettings rt;
-        rt.radius = view.radius;
-        rt.rays = 1024;
-        Image reference = trace::ambientObscurance(tracer, g, rt);
+        const Image reference = test::rayTracedReference(tracer, g, view.radius, 1024);
 
         GtaoSettings settings;
         applyQuality(settings, GtaoQuality::Ultra);

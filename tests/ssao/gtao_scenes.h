@@ -42,6 +42,15 @@ inline TopDownView topDownView(const std::string& name, int width, int height) {
     return v;
 }
 
+// The integral GTAO estimates for the view: binary visibility within `radius`, cosine-weighted, by ray
+// tracing with `rays` stratified rays per pixel.
+inline Image rayTracedReference(const trace::Tracer& tracer, const GBuffer& g, float radius, int rays) {
+    trace::ObscuranceSettings settings;
+    settings.radius = radius;
+    settings.rays = rays;
+    return trace::ambientObscurance(tracer, g, settings);
+}
+
 // Mean of |a - b| over the G-buffer's surface pixels: the MAE that `obscura compare` reports.
 inline double meanAbsoluteError(const GBuffer& g, const Image& a, const Image& b) {
     return eval::errorStats(a, b, g).mae;

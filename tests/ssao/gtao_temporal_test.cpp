@@ -116,10 +116,7 @@ TEST(GtaoTemporal, AccumulatedMatchesRayTraced) {
         test::TopDownView view = test::topDownView(name, 96, 96);
         trace::Tracer tracer(view.scene);
         GBuffer g = trace::renderGBuffer(tracer, view.camera);
-        trace::ObscuranceSettings rt;
-        rt.radius = view.radius;
-        rt.rays = 1024;
-        Image reference = trace::ambientObscurance(tracer, g, rt);
+        const Image reference = test::rayTracedReference(tracer, g, view.radius, 1024);
         for (int steps : {3, 6})
             for (bool half : {false, true}) {
                 if (steps == 3 && half) continue;  // not worth the test's time
@@ -149,10 +146,7 @@ TEST(GtaoTemporal, PackedHistoryKeepsTheAccuracy) {
         test::TopDownView view = test::topDownView(name, 64, 64);
         trace::Tracer tracer(view.scene);
         const GBuffer g = trace::renderGBuffer(tracer, view.camera);
-        trace::ObscuranceSettings rt;
-        rt.radius = view.radius;
-        rt.rays = 512;
-        const Image reference = trace::ambientObscurance(tracer, g, rt);
+        const Image reference = test::rayTracedReference(tracer, g, view.radius, 512);
         GtaoTemporalSettings packed;
         packed.packedHistory = true;
         GtaoTemporal a(oneSlice(view.radius, 3), GtaoTemporalSettings{}), b(oneSlice(view.radius, 3), packed);

@@ -54,6 +54,7 @@ struct GpuBenchOptions {
     std::string sampling = "planar";
     float mipRatio = 7.0f;
     float radius = 1.0f;
+    GtaoSliceFlags gtao;
     double peakGbps = 3000.0;
     int device = -1;
     bool json = false;
@@ -96,6 +97,8 @@ void GpuBenchOptions::add(CLI::App& bench) {
                    "--gpu: the temporal cases read the previous frame's depth buffer instead of a copy in the history, "
                    "as an engine that keeps last frame's depth (for TAA, say) can");
     addGtaoSamplingOption(bench, sampling, mipRatio, "--gpu: how the GTAO cases' horizon samples read depth");
+    gtao.add(bench, "--gpu, the GTAO cases", "; the temporal cases take --temporal-slices",
+             "; the gtao case only: the others rotate by their 4x4 interleave");
     bench.add_option("--ao-radius", radius,
                      "--gpu: the GTAO cases' radius, m, (0, 1e4]; a smaller one keeps the horizon samples nearer the "
                      "pixel on screen (fewer cache lines per frame, nearly the same arithmetic)")
@@ -116,6 +119,9 @@ void runGpuBench(const GpuBenchOptions& o) {
     settings.framesPerSubmit = o.framesPerSubmit;
     settings.quality = ssao::parseQuality(o.quality);
     settings.temporalSlices = o.temporalSlices;
+    settings.gtaoSlices = o.gtao.slices;
+    settings.gtaoSteps = o.gtao.steps;
+    settings.gtaoJitter = o.gtao.jitter;
     settings.bentNormals = !o.visibilityOnly;
     settings.packedHistory = o.packedHistory;
     settings.callerKeepsDepth = o.keepPreviousDepth;
@@ -178,6 +184,9 @@ void runGpuBench(const GpuBenchOptions& o) {
     report["gtao_sampling"] = o.sampling;
     report["gtao_mip_ratio"] = o.mipRatio;
     report["gtao_radius_m"] = o.radius;
+    report["gtao_slices"] = o.gtao.slices;  // 0: the preset's (the descriptions give the counts each case ran)
+    report["gtao_steps"] = o.gtao.steps;
+    report["gtao_jitter"] = o.gtao.jitter;
     report["validation"] = context.validation();
     if (!o.json) {
         std::string variants;  // the flags that change what the GTAO cases run
@@ -188,6 +197,9 @@ void runGpuBench(const GpuBenchOptions& o) {
         sampling.sampling = settings.sampling;
         sampling.mipDistanceRatio = settings.mipDistanceRatio;
         if (settings.sampling != ssao::GtaoSampling::Planar) variants += ", GTAO " + ssao::gtaoSamplingText(sampling);
+        if (o.gtao.slices > 0) variants += ", GTAO " + std::to_string(o.gtao.slices) + " slices";
+        if (o.gtao.steps > 0) variants += ", GTAO " + std::to_string(o.gtao.steps) + " steps per side";
+        if (o.gtao.jitter) variants += ", GTAO jittered";
         if (settings.gtaoRadius != gpu::GpuBenchSettings{}.gtaoRadius) {
             char text[48];
             std::snprintf(text, sizeof text, ", GTAO r %g m", double(o.radius));

@@ -4,6 +4,7 @@
 #include "cli_common.h"
 #include "commands.h"
 #include "gpu_flags.h"
+#include "gtao_cli.h"
 
 #include "obscura/alchemy.h"
 #include "obscura/ao_methods.h"
@@ -31,6 +32,7 @@ struct AoOptions {
     GpuFlags gpu;
     AlchemyFlags alchemy;
     BlurFlags blur;
+    GtaoSliceFlags gtao;
 };
 
 // The whole image when it has exactly names.size() channels, or the channels `names` of a combined
@@ -75,6 +77,10 @@ void run(const AoOptions& o) {
     if (!o.method.starts_with("alchemy") && o.normal.empty())
         fail("--normal", "method " + o.method + " needs a normal buffer");
     o.gpu.validate();
+    o.gtao.validate();
+    if ((o.gtao.changesCounts() || o.gtao.jitter) && o.method.starts_with("alchemy"))
+        fail(o.gtao.slices > 0 ? "--gtao-slices" : o.gtao.steps > 0 ? "--gtao-steps" : "--gtao-jitter",
+             "applies to the gtao methods, not " + o.method);
     ThreadLimit limit(o.threads);
 
     GBuffer g;
@@ -112,6 +118,9 @@ void run(const AoOptions& o) {
     } else {
         eval::MethodOptions mo;
         mo.blur = blur;
+        mo.gtaoSlices = o.gtao.slices;
+        mo.gtaoSteps = o.gtao.steps;
+        mo.gtaoJitter = o.gtao.jitter;
         mo.gpu = context.get();
         ao = method.compute(g, mo);
     }
@@ -140,6 +149,7 @@ void addAoCommand(CLI::App& app) {
     o->gpu.add(*cmd, "the AO method and the blur");
     o->alchemy.add(*cmd, true);
     o->blur.add(*cmd);
+    o->gtao.add(*cmd, "GTAO methods");
     cmd->callback([o] { run(*o); });
 }
 

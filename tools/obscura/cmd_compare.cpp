@@ -4,6 +4,7 @@
 #include "cli_common.h"
 #include "commands.h"
 #include "gpu_flags.h"
+#include "gtao_cli.h"
 
 #include "obscura/ao_methods.h"
 #include "obscura/error.h"
@@ -42,6 +43,7 @@ struct CompareOptions {
     bool quiet = false;
     CameraOptions camera;
     GpuFlags gpu;
+    GtaoSliceFlags gtao;
 };
 
 // 3 x 5 glyphs of the legend's labels, one row of 3 bits per line, top first.
@@ -91,8 +93,13 @@ void run(const CompareOptions& o) {
     if (o.samples < 0 || o.samples > 1024) fail("--samples", "must be in [0, 1024] (0: the method's default)");
     if (!(o.radius >= 0.0f && o.radius <= 1e4f)) fail("--radius", "must be in [0, 1e4] m (0: the method's default)");
     if (!(o.range > 0.0f && o.range <= 1.0f)) fail("--range", "must be in (0, 1]");
+    o.gtao.validate();
+    if (o.samples > 0 && o.gtao.slices > 0) fail("--gtao-slices", "sets what --samples sets for GTAO: give one of them");
     eval::MethodOptions mo;
     mo.samples = o.samples;
+    mo.gtaoSlices = o.gtao.slices;
+    mo.gtaoSteps = o.gtao.steps;
+    mo.gtaoJitter = o.gtao.jitter;
     mo.radius = o.radius;
     mo.seed = o.seed;
     mo.blur.mode = o.blur == "none" ? ssao::BlurMode::None : o.blur == "2d" ? ssao::BlurMode::TwoD : ssao::BlurMode::Separable;
@@ -232,6 +239,7 @@ void addCompareCommand(CLI::App& app) {
     cmd->add_option("--threads", o->threads, "Worker threads (0 = all cores)")->capture_default_str();
     cmd->add_flag("--json", o->json, "Print JSON instead of a table");
     cmd->add_flag("-q,--quiet", o->quiet, "No progress bars");
+    o->gtao.add(*cmd, "GTAO methods");
     o->camera.add(*cmd);
     o->gpu.add(*cmd, "the methods (estimators and blur)", "The reference stays ray traced on the CPU.");
     cmd->callback([o] { run(*o); });
