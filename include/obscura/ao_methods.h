@@ -22,9 +22,7 @@ namespace obscura::eval {
 // Knobs every method understands; 0 keeps the method's own default.
 struct MethodOptions {
     int samples = 0;                      // samples (or directions x steps) per pixel
-    int gtaoSlices = 0;                   // GTAO methods: slices per pixel, [0, 64]; 0: the preset's (or samples')
-    int gtaoSteps = 0;                    // GTAO methods: horizon steps per side, [0, 256]; 0: the preset's
-    bool gtaoJitter = false;              // GTAO methods: per-pixel hashed slices (GtaoSettings::jitter)
+    ssao::GtaoSliceOverride gtao;         // GTAO methods: slice and step counts, jitter; slices over samples'
     float radius = 0.0f;                  // world-space radius, m
     ssao::BilateralSettings blur{ssao::BlurMode::None};  // filter applied after the raw estimate
     std::uint32_t seed = 0;

@@ -30,11 +30,10 @@ struct GpuBenchSettings {
                               // frame before recording the next, and leaves the GPU idle in between
     int alchemySamples = 12;                          // the `alchemy` case's samples per pixel, [1, 1024]
     ssao::GtaoQuality quality = ssao::GtaoQuality::High;  // the GTAO cases' preset (slices x steps)
-    int gtaoSlices = 0;   // slices per pixel of the gtao and gtao-spatial cases, [0, 64]; 0: the preset's
-    int gtaoSteps = 0;    // horizon steps per side of every GTAO case, [0, 256]; 0: the preset's
-    bool gtaoJitter = false;  // the gtao case rotates each pixel's slices and offsets its steps by a hash
-                              // (GtaoSettings::jitter), noise that its blur averages; the interleaved cases
-                              // rotate by the 4x4 pattern instead
+    // Counts over the preset's: slices of the gtao and gtao-spatial cases (the temporal ones take
+    // temporalSlices), steps of every GTAO case; jitter rotates the gtao case's slices per pixel, noise its
+    // blur averages (the interleaved cases rotate by their 4x4 pattern instead).
+    ssao::GtaoSliceOverride gtao;
     int temporalSlices = 1;  // slices of the `gtao-temporal` cases, [1, 64]: the paper's 1, times the 16
                              // interleave directions and 6 rotations of the history
     bool packedHistory = false;  // the temporal cases keep their history in packed words (obscura/history_packing.h)

@@ -73,6 +73,16 @@ struct GtaoSettings {
 
 // Slices x steps per side of each preset: low 1x2, medium 2x2, high 3x3, ultra 9x3 (as XeGTAO's).
 void applyQuality(GtaoSettings& settings, GtaoQuality quality);
+
+// Slice and step counts that replace a preset's, and per-pixel jitter: what `--gtao-slices`, `--gtao-steps`
+// and `--gtao-jitter` set. Fewer slices, jittered, can match a preset's error once blurred (docs/QUALITY.md).
+struct GtaoSliceOverride {
+    int slices = 0;       // replaces sliceCount unless 0; GtaoSettings::validate checks what results
+    int steps = 0;        // replaces stepsPerSide unless 0; the same
+    bool jitter = false;  // sets GtaoSettings::jitter
+    bool empty() const { return slices == 0 && steps == 0 && !jitter; }
+    void apply(GtaoSettings& settings) const;
+};
 // "low", "medium", "high", "ultra"; throws obscura::Error for another name.
 GtaoQuality parseQuality(const std::string& name);
 const char* qualityName(GtaoQuality quality);

@@ -31,18 +31,16 @@ AoMethod alchemy(const char* name, const char* description, ssao::AlchemyFormula
             [f](const MethodOptions& o, int rays) { return ssao::rayTracedEquivalent(alchemySettings(f, o), rays); }};
 }
 
-// GTAO with a preset; gtaoSteps > 0 sets the steps per side, then `samples` > 0 the slice count to samples /
-// (2 x steps per side), the horizon samples per pixel being 2 x slices x steps, or gtaoSlices > 0 the slice
-// count itself. Its integral is binary AO of the same radius (default 1 m).
+// GTAO with a preset and the override's counts; `samples` > 0 sets the slice count to samples / (2 x steps
+// per side), the horizon samples per pixel being 2 x slices x steps, unless the override sets it. Its
+// integral is binary AO of the same radius (default 1 m).
 ssao::GtaoSettings gtaoSettings(ssao::GtaoQuality quality, ssao::GtaoSampling sampling, const MethodOptions& o) {
     ssao::GtaoSettings s;
     ssao::applyQuality(s, quality);
     s.sampling = sampling;
     if (o.radius > 0.0f) s.radius = o.radius;
-    if (o.gtaoSteps > 0) s.stepsPerSide = o.gtaoSteps;
-    if (o.samples > 0) s.sliceCount = std::clamp(o.samples / (2 * s.stepsPerSide), 1, 64);
-    if (o.gtaoSlices > 0) s.sliceCount = o.gtaoSlices;
-    s.jitter = o.gtaoJitter;
+    o.gtao.apply(s);
+    if (o.samples > 0 && o.gtao.slices == 0) s.sliceCount = std::clamp(o.samples / (2 * s.stepsPerSide), 1, 64);
     return s;
 }
 

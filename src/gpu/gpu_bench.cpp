@@ -53,9 +53,7 @@ struct CaseSetup {
 ssao::GtaoSettings gtaoSettings(const GpuBenchSettings& s) {
     ssao::GtaoSettings g;
     ssao::applyQuality(g, s.quality);
-    if (s.gtaoSlices > 0) g.sliceCount = s.gtaoSlices;
-    if (s.gtaoSteps > 0) g.stepsPerSide = s.gtaoSteps;
-    g.jitter = s.gtaoJitter;
+    s.gtao.apply(g);
     g.sampling = s.sampling;
     g.mipDistanceRatio = s.mipDistanceRatio;
     g.radius = s.gtaoRadius;
@@ -71,7 +69,7 @@ std::string radiusText(const ssao::GtaoSettings& g) {
 
 // "GTAO high" for the preset's counts, "GTAO" where --gtao-slices or --gtao-steps changed them.
 std::string presetText(const GpuBenchSettings& s) {
-    return s.gtaoSlices > 0 || s.gtaoSteps > 0 ? "GTAO" : "GTAO " + std::string(ssao::qualityName(s.quality));
+    return s.gtao.slices != 0 || s.gtao.steps != 0 ? "GTAO" : "GTAO " + std::string(ssao::qualityName(s.quality));
 }
 
 std::string slicesText(const ssao::GtaoSettings& g) {
@@ -186,10 +184,14 @@ void GpuBenchSettings::validate() const {
     check(framesPerSubmit >= 1 && framesPerSubmit <= 64, "frames-per-submit", "[1, 64]");
     check(alchemySamples >= 1 && alchemySamples <= 1024, "alchemy-samples", "[1, 1024]");
     check(temporalSlices >= 1 && temporalSlices <= 64, "temporal-slices", "[1, 64]");
-    check(gtaoSlices >= 0 && gtaoSlices <= 64, "gtao-slices", "[0, 64] (0: the preset's)");
-    check(gtaoSteps >= 0 && gtaoSteps <= 256, "gtao-steps", "[0, 256] (0: the preset's)");
     check(gtaoRadius > 0.0f && gtaoRadius <= 1e4f, "ao-radius", "(0, 1e4] m");
     check(mipDistanceRatio >= 2.0f && mipDistanceRatio <= 64.0f, "gtao-mip-ratio", "[2, 64]");
+    // What is left to check is the counts the override sets.
+    try {
+        gtaoSettings(*this).validate();
+    } catch (const Error& e) {
+        throw Error("gpu-bench-" + std::string(e.what()));  // "gpu-bench-gtao-slices: ..."
+    }
 }
 
 std::vector<GpuBenchCaseInfo> gpuBenchCases() {

@@ -145,6 +145,12 @@ void applyQuality(GtaoSettings& settings, GtaoQuality quality) {
     settings.stepsPerSide = kTable[int(quality)][1];
 }
 
+void GtaoSliceOverride::apply(GtaoSettings& settings) const {
+    if (slices != 0) settings.sliceCount = slices;
+    if (steps != 0) settings.stepsPerSide = steps;
+    settings.jitter = jitter;
+}
+
 GtaoQuality parseQuality(const std::string& name) {
     if (name == "low") return GtaoQuality::Low;
     if (name == "medium") return GtaoQuality::Medium;

@@ -325,8 +325,8 @@ TEST_F(GpuCommands, BenchGpuRejectsBadArguments) {
     expectFailure("bench --gpu --gtao-sampling bilinear", {"--gtao-sampling", "planar,nearest,mip,planar-mip"}, 2);
     expectFailure("bench --gpu --ao-radius 0", {"--ao-radius", "(0, 1e4] m"});
     expectFailure("bench --gpu --gtao-mip-ratio 1", {"--gtao-mip-ratio", "[2, 64]"});
-    expectFailure("bench --gpu --gtao-slices 65", {"--gtao-slices", "[0, 64]"});
-    expectFailure("bench --gpu --gtao-steps -1", {"--gtao-steps", "[0, 256]"});
+    expectFailure("bench --gpu --gtao-slices 65", {"--gtao-slices", "[1, 64]"});
+    expectFailure("bench --gpu --gtao-steps -1", {"--gtao-steps", "[1, 256]"});
     expectFailure("bench --gpu --frames-per-submit 0", {"--frames-per-submit", "[1, 64]"});
     expectFailure("bench --gpu --frames-per-submit 65", {"--frames-per-submit", "[1, 64]"});
     expectFailure("bench --gpu --gpu-device 99 --sizes 8x8 --frames 1", {"--gpu-device", "99"});

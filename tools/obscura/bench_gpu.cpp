@@ -119,9 +119,7 @@ void runGpuBench(const GpuBenchOptions& o) {
     settings.framesPerSubmit = o.framesPerSubmit;
     settings.quality = ssao::parseQuality(o.quality);
     settings.temporalSlices = o.temporalSlices;
-    settings.gtaoSlices = o.gtao.slices;
-    settings.gtaoSteps = o.gtao.steps;
-    settings.gtaoJitter = o.gtao.jitter;
+    settings.gtao = o.gtao.value;
     settings.bentNormals = !o.visibilityOnly;
     settings.packedHistory = o.packedHistory;
     settings.callerKeepsDepth = o.keepPreviousDepth;
@@ -184,9 +182,9 @@ void runGpuBench(const GpuBenchOptions& o) {
     report["gtao_sampling"] = o.sampling;
     report["gtao_mip_ratio"] = o.mipRatio;
     report["gtao_radius_m"] = o.radius;
-    report["gtao_slices"] = o.gtao.slices;  // 0: the preset's (the descriptions give the counts each case ran)
-    report["gtao_steps"] = o.gtao.steps;
-    report["gtao_jitter"] = o.gtao.jitter;
+    report["gtao_slices"] = o.gtao.value.slices;  // 0: the preset's (the descriptions give each case's counts)
+    report["gtao_steps"] = o.gtao.value.steps;
+    report["gtao_jitter"] = o.gtao.value.jitter;
     report["validation"] = context.validation();
     if (!o.json) {
         std::string variants;  // the flags that change what the GTAO cases run
@@ -197,9 +195,9 @@ void runGpuBench(const GpuBenchOptions& o) {
         sampling.sampling = settings.sampling;
         sampling.mipDistanceRatio = settings.mipDistanceRatio;
         if (settings.sampling != ssao::GtaoSampling::Planar) variants += ", GTAO " + ssao::gtaoSamplingText(sampling);
-        if (o.gtao.slices > 0) variants += ", GTAO " + std::to_string(o.gtao.slices) + " slices";
-        if (o.gtao.steps > 0) variants += ", GTAO " + std::to_string(o.gtao.steps) + " steps per side";
-        if (o.gtao.jitter) variants += ", GTAO jittered";
+        if (o.gtao.value.slices != 0) variants += ", GTAO " + std::to_string(o.gtao.value.slices) + " slices";
+        if (o.gtao.value.steps != 0) variants += ", GTAO " + std::to_string(o.gtao.value.steps) + " steps per side";
+        if (o.gtao.value.jitter) variants += ", GTAO jittered";
         if (settings.gtaoRadius != gpu::GpuBenchSettings{}.gtaoRadius) {
             char text[48];
             std::snprintf(text, sizeof text, ", GTAO r %g m", double(o.radius));

@@ -78,8 +78,8 @@ void run(const AoOptions& o) {
         fail("--normal", "method " + o.method + " needs a normal buffer");
     o.gpu.validate();
     o.gtao.validate();
-    if ((o.gtao.changesCounts() || o.gtao.jitter) && o.method.starts_with("alchemy"))
-        fail(o.gtao.slices > 0 ? "--gtao-slices" : o.gtao.steps > 0 ? "--gtao-steps" : "--gtao-jitter",
+    if (!o.gtao.value.empty() && o.method.starts_with("alchemy"))
+        fail(o.gtao.value.slices != 0 ? "--gtao-slices" : o.gtao.value.steps != 0 ? "--gtao-steps" : "--gtao-jitter",
              "applies to the gtao methods, not " + o.method);
     ThreadLimit limit(o.threads);
 
@@ -118,9 +118,7 @@ void run(const AoOptions& o) {
     } else {
         eval::MethodOptions mo;
         mo.blur = blur;
-        mo.gtaoSlices = o.gtao.slices;
-        mo.gtaoSteps = o.gtao.steps;
-        mo.gtaoJitter = o.gtao.jitter;
+        mo.gtao = o.gtao.value;
         mo.gpu = context.get();
         ao = method.compute(g, mo);
     }

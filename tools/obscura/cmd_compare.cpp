@@ -94,12 +94,11 @@ void run(const CompareOptions& o) {
     if (!(o.radius >= 0.0f && o.radius <= 1e4f)) fail("--radius", "must be in [0, 1e4] m (0: the method's default)");
     if (!(o.range > 0.0f && o.range <= 1.0f)) fail("--range", "must be in (0, 1]");
     o.gtao.validate();
-    if (o.samples > 0 && o.gtao.slices > 0) fail("--gtao-slices", "sets what --samples sets for GTAO: give one of them");
+    if (o.samples > 0 && o.gtao.value.slices != 0)
+        fail("--gtao-slices", "sets what --samples sets for GTAO: give one of them");
     eval::MethodOptions mo;
     mo.samples = o.samples;
-    mo.gtaoSlices = o.gtao.slices;
-    mo.gtaoSteps = o.gtao.steps;
-    mo.gtaoJitter = o.gtao.jitter;
+    mo.gtao = o.gtao.value;
     mo.radius = o.radius;
     mo.seed = o.seed;
     mo.blur.mode = o.blur == "none" ? ssao::BlurMode::None : o.blur == "2d" ? ssao::BlurMode::TwoD : ssao::BlurMode::Separable;

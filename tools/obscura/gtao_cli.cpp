@@ -51,24 +51,23 @@ void addGtaoSamplingOption(CLI::App& app, std::string& sampling, float& mipRatio
 
 void GtaoSliceFlags::add(CLI::App& app, const std::string& lead, const std::string& slicesNote,
                          const std::string& jitterNote) {
-    app.add_option("--gtao-slices", slices, lead + ": slice directions per pixel, [0, 64] (0: the preset's)" + slicesNote)
+    app.add_option("--gtao-slices", value.slices, lead + ": slice directions per pixel, [1, 64] (0: the preset's)" + slicesNote)
         ->capture_default_str();
-    app.add_option("--gtao-steps", steps, lead + ": horizon samples on each side of a slice, [0, 256] (0: the preset's)")
+    app.add_option("--gtao-steps", value.steps, lead + ": horizon samples on each side of a slice, [1, 256] (0: the preset's)")
         ->capture_default_str();
-    app.add_flag("--gtao-jitter", jitter,
+    app.add_flag("--gtao-jitter", value.jitter,
                  lead + ": rotate each pixel's slices and offset its steps by a hash of the pixel (and frame), noise "
                         "that a blur averages; without it every pixel has the same regular slices" + jitterNote);
 }
 
 void GtaoSliceFlags::validate() const {
-    if (slices < 0 || slices > 64) fail("--gtao-slices", "must be in [0, 64] (0: the preset's), is " + std::to_string(slices));
-    if (steps < 0 || steps > 256) fail("--gtao-steps", "must be in [0, 256] (0: the preset's), is " + std::to_string(steps));
-}
-
-void GtaoSliceFlags::apply(ssao::GtaoSettings& settings) const {
-    if (slices > 0) settings.sliceCount = slices;
-    if (steps > 0) settings.stepsPerSide = steps;
-    settings.jitter = jitter;
+    ssao::GtaoSettings s;
+    value.apply(s);
+    try {
+        s.validate();  // the defaults are valid, so a failure names one of these flags
+    } catch (const Error& e) {
+        throw Error("--" + std::string(e.what()));
+    }
 }
 
 ssao::GtaoSampling gtaoSampling(const std::string& sampling) {
@@ -123,7 +122,7 @@ void GtaoOptions::add(CLI::App& app) {
     app.add_option("--gtao-step-power", stepPower,
                    "GTAO: horizon step distribution, distance ~ (k / steps)^power, [1, 4]; > 1 packs steps near the centre")
         ->capture_default_str();
-    slices.add(app, "GTAO");
+    sliceFlags.add(app, "GTAO");
 }
 
 ssao::GtaoSettings GtaoOptions::settings(float radius) const {
@@ -134,8 +133,7 @@ ssao::GtaoSettings GtaoOptions::settings(float radius) const {
     s.falloffStart = falloffStart;
     s.beyondRadius = beyondRadius == "drop" ? ssao::GtaoBeyondRadius::Drop : ssao::GtaoBeyondRadius::Column;
     s.stepPower = stepPower;
-    slices.validate();
-    slices.apply(s);
+    sliceFlags.value.apply(s);  // checked with the rest below
     s.sampling = gtaoSampling(sampling);
     s.mipDistanceRatio = mipRatio;
     s.thickness = thickness == "heuristic" ? ssao::GtaoThickness::Heuristic
@@ -158,7 +156,7 @@ void GtaoOptions::validate(const std::string& aovDir) const {
     const bool temporal = mode == "temporal" || (mode == "auto" && frames > 1);
     if (packedHistory && !temporal)
         fail("--gtao-packed-history", "needs a history: --gtao-mode temporal, or auto with --frames > 1");
-    if (slices.jitter && (mode == "spatial" || temporal))
+    if (sliceFlags.value.jitter && (mode == "spatial" || temporal))
         fail("--gtao-jitter", "needs --gtao-mode full (or auto with one frame): the interleave rotates the slices of the "
                               "spatial and temporal modes");
 }

@@ -18,22 +18,16 @@ class App;
 
 namespace obscura::cli {
 
-// --gtao-slices, --gtao-steps and --gtao-jitter: a GTAO preset's slice and step counts changed, and per-pixel
-// hashed slice rotation (GtaoSettings::sliceCount, stepsPerSide, jitter), for the commands that run GTAO.
+// --gtao-slices, --gtao-steps and --gtao-jitter (ssao::GtaoSliceOverride), for the commands that run GTAO.
 struct GtaoSliceFlags {
-    int slices = 0;  // [0, 64]; 0 keeps the preset's
-    int steps = 0;   // [0, 256]; 0 keeps the preset's
-    bool jitter = false;
+    ssao::GtaoSliceOverride value;
 
     // `lead` starts each flag's help: what it applies to, for this command; a note ends the help of
     // --gtao-slices or --gtao-jitter where they apply to less than that.
     void add(CLI::App& app, const std::string& lead, const std::string& slicesNote = "",
              const std::string& jitterNote = "");
-    // Throws obscura::Error naming the flag for a value out of range.
+    // Throws obscura::Error naming the flag for a count out of range.
     void validate() const;
-    // The flags' values over the settings' (0 keeps the count there).
-    void apply(ssao::GtaoSettings& settings) const;
-    bool changesCounts() const { return slices > 0 || steps > 0; }
 };
 
 struct GtaoOptions {
@@ -52,7 +46,7 @@ struct GtaoOptions {
     std::string sampling = "planar";
     float mipRatio = 7.0f;  // GtaoSettings::mipDistanceRatio
     float stepPower = 1.0f;
-    GtaoSliceFlags slices;
+    GtaoSliceFlags sliceFlags;
 
     void add(CLI::App& app);
     // The settings for radius r; throws obscura::Error naming the flag for a bad value.
