@@ -81,6 +81,14 @@ private:
 // Normals rebuilt from depth (settings.normalsFromDepth) come from the GPU mirror of ssao::normalsFromDepth.
 Image alchemyAO(Context& context, const GBuffer& gbuffer, const ssao::AlchemySettings& settings);
 
+// bilateralFilter(alchemyAO(gbuffer, settings), the guard band's inner G-buffer, blur) in two dispatches
+// instead of three: the estimator evaluates rows of pixels into shared memory and blurs them there, so its raw
+// AO never goes through memory (src/gpu/shaders/alchemy_blur_row.comp). The blur must be BlurMode::Separable
+// without the normal weight (obscura::Error otherwise). The same bits as the three dispatches where the device
+// rounds both alike (lavapipe); `obscura bench --gpu` times both (cases alchemy and alchemy-fused).
+Image alchemyAOBlurred(Context& context, const GBuffer& gbuffer, const ssao::AlchemySettings& settings,
+                       const ssao::BilateralSettings& blur);
+
 // ssao::bilateralFilter on the GPU: BlurMode::Separable as two 1-D passes, BlurMode::TwoD as one square pass
 // (src/gpu/bilateral_2d_pass.cpp), BlurMode::None returns a copy; the same settings, validation and errors;
 // equal to the CPU filter to within 2e-3 (tests/gpu measure it).

@@ -49,8 +49,9 @@ struct GpuBenchSettings {
 };
 
 struct GpuPassTime {
-    std::string name;       // "alchemy", "blur", "gtao", "denoise", "temporal", "resolve" (the stages of
-                            // gpu::GtaoTemporalPasses::record say which dispatches each one times)
+    std::string name;       // "alchemy", "blur", "alchemy-rows" (the estimator with the horizontal blur),
+                            // "blur-columns" (the vertical blur), "gtao", "mips", "denoise", "temporal",
+                            // "resolve" (gpu::GtaoTemporalPasses::record says which dispatches those time)
     double medianMs = 0;    // median over the timed frames of this pass's GPU time
     double minMs = 0;       // its fastest frame (the passes of one frame add up to its time)
 };

@@ -3,6 +3,7 @@
 // validation, the same constants (ssao::alchemyConstants) and the same spiral table, so CPU and GPU differ
 // only in the kernel. Contract in include/obscura/gpu.h.
 #include "gpu/alchemy_pass.h"
+#include "gpu/bilateral_pass.h"
 #include "gpu/buffer.h"
 #include "gpu/compute_pipeline.h"
 #include "gpu/context.h"
@@ -13,6 +14,8 @@
 #include "obscura/error.h"
 #include "obscura/gpu.h"
 
+#include <cassert>
+#include <cstdint>
 #include <vector>
 
 namespace obscura::gpu {
@@ -32,6 +35,65 @@ void recordAlchemy(Context::Impl& c, VkCommandBuffer cmd, const AlchemyBuffers& 
     // In binding order: kAlchemyBindingDepth, Normal, Spiral, Output.
     pipeline.dispatchGrid(cmd, {&b.depth, &b.normal, &b.spiral, &b.output}, &k, sizeof k, k.width - 2 * k.guardBand,
                           k.height - 2 * k.guardBand);
+}
+
+void recordAlchemyRows(Context::Impl& c, VkCommandBuffer cmd, const AlchemyBlurredBuffers& b,
+                       const ssao::AlchemyConstants& k, const SeparableBilateral& f) {
+    assert(f.constants.useNormal == 0 && f.constants.width == k.width - 2 * k.guardBand &&
+           f.constants.height == k.height - 2 * k.guardBand);
+    ComputePipeline& pipeline = c.pipeline("alchemy_blur_row", shaders::alchemy_blur_row, kAlchemyBlurBindingCount,
+                                           kAlchemyBlurPushConstantBytes, kBilateralHorizontalTileX, 1);
+    struct {
+        ssao::AlchemyConstants alchemy;
+        BilateralConstants blur;
+    } constants{k, f.constants};
+    static_assert(sizeof constants == kAlchemyBlurPushConstantBytes, "the two blocks back to back, as the shader has them");
+    constants.blur.axis = 0;
+    // In binding order: kAlchemyBindingDepth, Normal, Spiral, kAlchemyBlurBindingLogSpatial, Output.
+    pipeline.dispatch(cmd, {&b.depth, &b.normal, &b.spiral, &b.logSpatial, &b.scratch}, &constants, sizeof constants,
+                      std::uint32_t(bilateralGroupsX(0, f.constants.width)), std::uint32_t(f.constants.height));
+}
+
+void recordAlchemyBlurred(Context::Impl& c, VkCommandBuffer cmd, const AlchemyBlurredBuffers& b,
+                          const ssao::AlchemyConstants& k, const SeparableBilateral& f) {
+    recordAlchemyRows(c, cmd, b, k, f);
+    computeBarrier(cmd);  // the vertical pass reads the rows
+    // Its normal binding is unread without the normal weight; the depth buffer stands in for it.
+    recordSeparableBilateralAxis(c, cmd, {b.blurDepth, b.blurDepth, b.logSpatial, b.scratch, b.scratch, b.output}, f, 1);
+}
+
+Image alchemyAOBlurred(Context& context, const GBuffer& g, const ssao::AlchemySettings& s,
+                       const ssao::BilateralSettings& blur) {
+    const ssao::AlchemyConstants k = ssao::alchemyConstants(s, g.camera);
+    ssao::validateAlchemyGBuffer(g, s);
+    if (blur.mode != ssao::BlurMode::Separable || blur.usesNormals())
+        fail("alchemy blur", "the fused pass blurs separably by depth alone (BlurMode::Separable, no normal weight)");
+    const GBuffer cropped = ssao::cropGuardBand(g, ssao::guardBandCamera(g.camera, -k.guardBand), k.guardBand);
+    const SeparableBilateral f = separableBilateral(blur, cropped.width(), cropped.height());
+    const std::vector<float> offsets = alchemySpiralOffsets(k);
+
+    Context::Impl& c = context.impl();
+    const std::size_t pixels = std::size_t(k.width) * std::size_t(k.height), out = cropped.depth.pixelCount();
+    const Buffer depth = upload(c, g.depth.pixels.data(), pixels * sizeof(float));
+    const Buffer normal = s.normalsFromDepth ? Buffer(c, 3 * pixels * sizeof(float), MemoryUse::Device)
+                                             : upload(c, g.normal.pixels.data(), 3 * pixels * sizeof(float));
+    const Buffer table = upload(c, offsets.data(), offsets.size() * sizeof(float));
+    const Buffer blurDepth = upload(c, cropped.depth.pixels.data(), out * sizeof(float));
+    const Buffer spatial = upload(c, f.logSpatial.data(), f.logSpatial.size() * sizeof(float));
+    const Buffer rows(c, out * sizeof(float), MemoryUse::Device);
+    const Buffer result(c, out * sizeof(float), MemoryUse::Device);
+    c.submit(
+        [&](VkCommandBuffer cmd) {
+            if (s.normalsFromDepth) {
+                recordNormalsFromDepth(c, cmd, depth, normal, ssao::depthPrepConstants({}, g.camera));
+                computeBarrier(cmd);
+            }
+            recordAlchemyBlurred(c, cmd, {depth, normal, table, blurDepth, spatial, rows, result}, k, f);
+        },
+        true);
+    Image image(cropped.width(), cropped.height(), 1);
+    download(c, result, image.pixels.data(), out * sizeof(float));
+    return image;
 }
 
 Image alchemyAO(Context& context, const GBuffer& g, const ssao::AlchemySettings& s) {

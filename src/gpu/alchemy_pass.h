@@ -6,6 +6,7 @@
 #include "gpu/context.h"
 
 #include "obscura/alchemy.h"
+#include "obscura/gpu_shaders.h"  // SeparableBilateral
 
 #include <vector>
 
@@ -26,5 +27,26 @@ std::vector<float> alchemySpiralOffsets(const ssao::AlchemyConstants& k);
 // ssao::alchemyConstants and the G-buffer was checked by ssao::validateAlchemyGBuffer.
 void recordAlchemy(Context::Impl& context, VkCommandBuffer cmd, const AlchemyBuffers& buffers,
                    const ssao::AlchemyConstants& k);
+
+// Storage buffers of alchemy_blur_row.comp and of the vertical blur pass after it.
+struct AlchemyBlurredBuffers {
+    const Buffer& depth;       // as AlchemyBuffers: the guard-banded G-buffer's
+    const Buffer& normal;
+    const Buffer& spiral;
+    const Buffer& blurDepth;   // out width * out height linear depths: the output grid's (depth itself when
+                               // there is no guard band)
+    const Buffer& logSpatial;  // SeparableBilateral::logSpatial
+    const Buffer& scratch;     // out width * out height floats: the rows' result
+    const Buffer& output;      // out width * out height AO, blurred both ways
+};
+
+// Records the estimator fused with the blur's horizontal pass, a barrier, and the vertical pass: what
+// recordAlchemy and recordSeparableBilateral record, in two dispatches instead of three. The filter is
+// separableBilateral(settings, out width, out height) without the normal weight (asserted).
+void recordAlchemyBlurred(Context::Impl& context, VkCommandBuffer cmd, const AlchemyBlurredBuffers& buffers,
+                          const ssao::AlchemyConstants& k, const SeparableBilateral& filter);
+// Its first dispatch alone: the estimator and the horizontal pass, into buffers.scratch.
+void recordAlchemyRows(Context::Impl& context, VkCommandBuffer cmd, const AlchemyBlurredBuffers& buffers,
+                       const ssao::AlchemyConstants& k, const SeparableBilateral& filter);
 
 } // namespace obscura::gpu

@@ -35,22 +35,25 @@ SeparableBilateral separableBilateral(const ssao::BilateralSettings& s, int widt
     return f;
 }
 
-void recordSeparableBilateral(Context::Impl& c, VkCommandBuffer cmd, const SeparableBilateralBuffers& b,
-                              const SeparableBilateral& f) {
+void recordSeparableBilateralAxis(Context::Impl& c, VkCommandBuffer cmd, const SeparableBilateralBuffers& b,
+                                  const SeparableBilateral& f, int axis) {
     ComputePipeline& pipeline =
         c.pipeline("bilateral_separable", shaders::bilateral_separable,
                    std::vector<BindingKind>(kBilateralBindingCount, BindingKind::StorageBuffer),
                    kBilateralPushConstantBytes, kBilateralWorkgroupX, kBilateralWorkgroupY,
                    {f.constants.useNormal});  // kBilateralSpecUseNormal
     BilateralConstants k = f.constants;
+    k.axis = axis;
     // In binding order: kBilateralBindingDepth, Normal, LogSpatial, Input, Output.
-    k.axis = 0;
-    pipeline.dispatch(cmd, {&b.depth, &b.normal, &b.logSpatial, &b.input, &b.scratch}, &k, sizeof k,
-                      std::uint32_t(bilateralGroupsX(0, k.width)), std::uint32_t(bilateralGroupsY(0, k.height)));
+    pipeline.dispatch(cmd, {&b.depth, &b.normal, &b.logSpatial, &b.input, &b.output}, &k, sizeof k,
+                      std::uint32_t(bilateralGroupsX(axis, k.width)), std::uint32_t(bilateralGroupsY(axis, k.height)));
+}
+
+void recordSeparableBilateral(Context::Impl& c, VkCommandBuffer cmd, const SeparableBilateralBuffers& b,
+                              const SeparableBilateral& f) {
+    recordSeparableBilateralAxis(c, cmd, {b.depth, b.normal, b.logSpatial, b.input, b.scratch, b.scratch}, f, 0);
     computeBarrier(cmd);  // the vertical pass reads what the horizontal one wrote
-    k.axis = 1;
-    pipeline.dispatch(cmd, {&b.depth, &b.normal, &b.logSpatial, &b.scratch, &b.output}, &k, sizeof k,
-                      std::uint32_t(bilateralGroupsX(1, k.width)), std::uint32_t(bilateralGroupsY(1, k.height)));
+    recordSeparableBilateralAxis(c, cmd, {b.depth, b.normal, b.logSpatial, b.scratch, b.scratch, b.output}, f, 1);
 }
 
 Image bilateralFilter(Context& context, const Image& ao, const GBuffer& g, const ssao::BilateralSettings& s) {

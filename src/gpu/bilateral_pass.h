@@ -27,5 +27,8 @@ struct SeparableBilateralBuffers {
 // to compute shaders (the caller's barrier); the settings were checked by ssao::checkBilateralInputs.
 void recordSeparableBilateral(Context::Impl& context, VkCommandBuffer cmd, const SeparableBilateralBuffers& buffers,
                               const SeparableBilateral& filter);
+// One of them: axis 0 (horizontal) or 1 (vertical), from `input` to `output` (buffers.scratch unused).
+void recordSeparableBilateralAxis(Context::Impl& context, VkCommandBuffer cmd, const SeparableBilateralBuffers& buffers,
+                                  const SeparableBilateral& filter, int axis);
 
 } // namespace obscura::gpu

@@ -79,7 +79,9 @@ std::string slicesText(const ssao::GtaoSettings& g) {
 }
 
 // The constants hold the projection only, which the rotated inputs share (their cameras differ in position).
-CaseSetup alchemyCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s, const Camera& camera) {
+// fused: the estimator and the blur's horizontal pass in one dispatch (alchemy_blur_row.comp), then the
+// vertical pass; otherwise three dispatches.
+CaseSetup alchemyCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s, const Camera& camera, bool fused) {
     ssao::AlchemySettings settings;
     settings.samples = s.alchemySamples;
     const ssao::AlchemyConstants k = ssao::alchemyConstants(settings, camera);
@@ -93,10 +95,24 @@ CaseSetup alchemyCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s,
     auto out = std::make_shared<Buffer>(c, px * sizeof(float), MemoryUse::Device);
     CaseSetup setup;
     setup.description = "Alchemy AO, " + std::to_string(s.alchemySamples) +
-                        " samples/px (paper defaults, r 0.5 m) + separable bilateral, 13 taps per axis, depth only";
+                        " samples/px (paper defaults, r 0.5 m) + separable bilateral, 13 taps per axis, depth only" +
+                        (fused ? ", its horizontal pass fused into the estimator's dispatch" : "");
+    setup.keepAlive = {spiral, logSpatial, raw, scratch, out};
+    if (fused) {
+        // Estimator + rows: depth + normal in, rows out; columns: depth + rows in, AO out.
+        setup.bytes = double(px) * (4 + 12 + 4) + double(px) * (4 + 4 + 4);
+        setup.record = [&c, k, blur, spiral, logSpatial, scratch, out](
+                           VkCommandBuffer cmd, const ResidentInput& in, int, const std::function<void(const char*)>& mark) {
+            recordAlchemyRows(c, cmd, {in.depth, in.normal, *spiral, in.depth, *logSpatial, *scratch, *out}, k, blur);
+            mark("alchemy-rows");
+            computeBarrier(cmd);  // the vertical pass reads the rows
+            recordSeparableBilateralAxis(c, cmd, {in.depth, in.normal, *logSpatial, *scratch, *scratch, *out}, blur, 1);
+            mark("blur-columns");
+        };
+        return setup;
+    }
     // Estimator: depth + normal in, AO out; each blur axis: depth + AO in, AO out (normals unused).
     setup.bytes = double(px) * (4 + 12 + 4) + 2 * double(px) * (4 + 4 + 4);
-    setup.keepAlive = {spiral, logSpatial, raw, scratch, out};
     setup.record = [&c, k, blur, spiral, logSpatial, raw, scratch, out](
                        VkCommandBuffer cmd, const ResidentInput& in, int, const std::function<void(const char*)>& mark) {
         recordAlchemy(c, cmd, {in.depth, in.normal, *spiral, *raw}, k);
@@ -196,6 +212,7 @@ void GpuBenchSettings::validate() const {
 
 std::vector<GpuBenchCaseInfo> gpuBenchCases() {
     return {{"alchemy", "Alchemy AO + separable bilateral blur"},
+            {"alchemy-fused", "the same, the blur's horizontal pass in the estimator's dispatch"},
             {"gtao", "GTAO (every slice each frame) + separable bilateral blur"},
             {"gtao-spatial", "GTAO with the 4x4 interleave + its depth- and normal-aware reconstruction"},
             {"gtao-temporal", "interleaved GTAO + reconstruction + reprojected exponential history"},
@@ -228,8 +245,9 @@ GpuBenchCase benchGpuCase(Context& context, const std::string& name, const std::
         resident.push_back({upload(c, g.depth.pixels.data(), px * sizeof(float)),
                             upload(c, g.normal.pixels.data(), 3 * px * sizeof(float)), g.camera});
     }
-    const CaseSetup setup = name == "alchemy" ? alchemyCase(c, w, h, settings, inputs[0].camera)
-                            : name == "gtao"  ? gtaoCase(c, w, h, settings, inputs[0].camera)
+    const CaseSetup setup = name == "alchemy" || name == "alchemy-fused"
+                                ? alchemyCase(c, w, h, settings, inputs[0].camera, name == "alchemy-fused")
+                            : name == "gtao" ? gtaoCase(c, w, h, settings, inputs[0].camera)
                                               : temporalCase(c, w, h, settings, name != "gtao-spatial",
                                                              name == "gtao-temporal-half");
 

@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -73,6 +74,31 @@ protected:
                 difference(obscura::readExr(path("cpu/ao.exr")), obscura::readExr(path("gpu/ao.exr")))};
     }
 };
+
+// --gpu-fused-blur: the estimator and the blur's horizontal pass in one dispatch give the frame and the AO of
+// the three dispatches (the same bits on lavapipe; 1e-6 elsewhere), with and without a guard band, and say so
+// in the summary; without --gpu or with another blur it fails in one line, writing nothing.
+TEST_F(GpuCommands, RenderAlchemyFusedBlurMatchesTheSeparatePasses) {
+    for (const char* band : {"0", "12"}) {
+        const std::string base = std::string("render stairs --size 97x61 --ao alchemy --ao-guard-band ") + band + " -q";
+        runGpu(base + " -o " + path("a.exr") + " --aov-dir " + path("a"));
+        const CliResult fused = runGpu(base + " --gpu-fused-blur -o " + path("b.exr") + " --aov-dir " + path("b"));
+        EXPECT_NE(fused.out.find("rows fused into the estimator"), std::string::npos) << fused.out;
+        const bool lavapipe = fused.out.find("llvmpipe") != std::string::npos;
+        for (const char* name : {"a.exr", "a/ao.exr"}) {
+            const std::string other = std::string(name) == "a.exr" ? "b.exr" : "b/ao.exr";
+            const obscura::Image x = obscura::readExr(path(name)), y = obscura::readExr(path(other));
+            ASSERT_EQ(x.pixels.size(), y.pixels.size());
+            float worst = 0.0f;
+            for (std::size_t i = 0; i < x.pixels.size(); ++i) worst = std::max(worst, std::fabs(x.pixels[i] - y.pixels[i]));
+            EXPECT_LE(worst, lavapipe ? 0.0f : 1e-6f) << name << ", guard band " << band;
+        }
+    }
+    expectFailure("render --ao alchemy --gpu-fused-blur -o " + path("c.png"), {"--gpu-fused-blur", "--gpu"});
+    expectFailure("render --ao alchemy --gpu --gpu-fused-blur --blur 2d -o " + path("c.png"), {"--gpu-fused-blur"});
+    expectFailure("render --ao gtao --gpu --gpu-fused-blur -o " + path("c.png"), {"--gpu-fused-blur", "alchemy"});
+    EXPECT_FALSE(std::filesystem::exists(path("c.png")));
+}
 
 // The bound: `render --gpu --ao gtao` and the CPU path give frames whose mean absolute difference is
 // at most 1e-3 (linear radiance, which is about 0.1-1 on these views). Measured on lavapipe (Mesa 22.3.6,
@@ -161,9 +187,10 @@ TEST_F(GpuCommands, BenchGpuReportsEveryCase) {
     EXPECT_FALSE(j["device"].get<std::string>().empty());
     EXPECT_FALSE(j["driver"].get<std::string>().empty());
     EXPECT_EQ(j["frames"], 3);
-    ASSERT_EQ(j["cases"].size(), 10u);  // 5 cases x 2 sizes
+    ASSERT_EQ(j["cases"].size(), 12u);  // 6 cases x 2 sizes
     const std::map<std::string, std::set<std::string>> passes = {
         {"alchemy", {"alchemy", "blur"}},
+        {"alchemy-fused", {"alchemy-rows", "blur-columns"}},
         {"gtao", {"gtao", "blur"}},
         // At full resolution the last pass reconstructs its own pixel; at half it upsamples its own pixel.
         {"gtao-spatial", {"gtao", "resolve"}},
@@ -191,6 +218,15 @@ TEST_F(GpuCommands, BenchGpuReportsEveryCase) {
         EXPECT_GE(c["bytes_per_frame"].get<double>(), px * 20) << name;
         EXPECT_NEAR(c["fraction_of_peak"].get<double>(), c["gbytes_per_s"].get<double>() / 3000.0, 1e-9) << name;
     }
+    // The fused Alchemy case neither writes nor reads back the raw AO, nor reads depth a third time.
+    for (std::size_t i = 0; i + 1 < j["cases"].size(); ++i)
+        if (j["cases"][i]["case"] == "alchemy") {
+            const auto& a = j["cases"][i];
+            const auto& f = j["cases"][i + 1];
+            ASSERT_EQ(f["case"], "alchemy-fused");
+            EXPECT_EQ(a["bytes_per_frame"].get<double>() - f["bytes_per_frame"].get<double>(),
+                      12.0 * a["width"].get<double>() * a["height"].get<double>());
+        }
     // --frames-per-submit: frames recorded back to back in one submission, here 3 per submission over 2
     // warm-up and 5 timed frames (so one submission holds both, and the last holds 1); the same passes per
     // case, each frame's split checked as it is read (above), with validation on (the barriers between the
@@ -205,7 +241,7 @@ TEST_F(GpuCommands, BenchGpuReportsEveryCase) {
     EXPECT_EQ(j["frames_per_submit"], 1);
     EXPECT_EQ(bj["frames_per_submit"], 3);
     EXPECT_EQ(bj["validation"], true);
-    ASSERT_EQ(bj["cases"].size(), 5u);
+    ASSERT_EQ(bj["cases"].size(), 6u);
     for (const auto& c : bj["cases"]) {
         std::set<std::string> seen;
         for (const auto& p : c["passes"]) {

@@ -172,4 +172,62 @@ TEST(GpuAlchemy, RejectsBadInputAsTheCpuPassDoes) {
     EXPECT_EQ(testing::validationReport(context), "");
 }
 
+// alchemyAOBlurred: the estimator and the blur's horizontal pass in one dispatch, then the vertical pass,
+// against the three dispatches it replaces (alchemyAO, then bilateralFilter on the guard band's inner
+// G-buffer) and against the CPU path. The two GPU paths compute the same values in the same order, so on
+// lavapipe they agree to the bit (held to 0 there; 1e-6 elsewhere, where a compiler may round the two
+// modules differently); the CPU bound is bilateralFilter's own, 2e-3 (tests/gpu/bilateral_gpu_test.cpp).
+// Sizes: odd in both axes, narrower than a 256-pixel row, several rows wide; radius 6 (the default), 1 and
+// 32 (the tile's largest), a guard band, normals rebuilt from depth.
+TEST(GpuAlchemy, FusedRowBlurMatchesTheSeparatePasses) {
+    OBSCURA_GPU_CONTEXT(context);
+    const bool lavapipe = context.device().name.rfind("llvmpipe", 0) == 0;
+    ssao::AlchemySettings band = chapter();
+    band.guardBand = 9;
+    ssao::AlchemySettings rebuilt;
+    rebuilt.normalsFromDepth = true;
+    ssao::BilateralSettings narrow, wide;
+    narrow.radius = 1;
+    wide.radius = 32;
+    struct Case {
+        const char* scene;
+        int w, h;
+        ssao::AlchemySettings alchemy;
+        ssao::BilateralSettings blur;
+    };
+    const Case cases[] = {{"demo", 333, 197, {}, {}},      {"stairs", 181, 123, band, {}},
+                          {"corner", 600, 40, {}, wide},    {"cabinet", 97, 61, rebuilt, narrow},
+                          {"demo", 257, 33, contrastCurve(), {}}};
+    for (const Case& c : cases) {
+        const GBuffer g = testing::render(c.scene, c.w, c.h);
+        const GBuffer inner = ssao::cropGuardBand(g, ssao::guardBandCamera(g.camera, -c.alchemy.guardBand),
+                                                  c.alchemy.guardBand);
+        const Image fused = alchemyAOBlurred(context, g, c.alchemy, c.blur);
+        const Image separate = bilateralFilter(context, alchemyAO(context, g, c.alchemy), inner, c.blur);
+        const Image cpu = ssao::bilateralFilter(ssao::alchemyAO(g, c.alchemy), inner, c.blur);
+        ASSERT_EQ(fused.width, separate.width);
+        ASSERT_EQ(fused.height, separate.height);
+        const Difference d = compare(fused, separate, 0.0);
+        const Difference toCpu = compare(fused, cpu, 2e-3);
+        std::printf("[ measured ] %s %dx%d, radius %d: fused against separate passes max %.3g, against the CPU "
+                    "max %.3g, %d occluded\n",
+                    c.scene, c.w, c.h, c.blur.radius, d.max, toCpu.max, toCpu.occluded);
+        EXPECT_LE(d.max, lavapipe ? 0.0 : 1e-6) << c.scene << " " << c.w << "x" << c.h;
+        EXPECT_LE(toCpu.beyond, c.w * c.h / 1000) << c.scene;
+        EXPECT_GT(toCpu.occluded, fused.width * fused.height / 50) << c.scene;  // not a vacuous comparison
+    }
+    // The fused pass blurs separably by depth alone; other blurs fail in one message.
+    const GBuffer g = testing::render("plane", 16, 16);
+    ssao::BilateralSettings twoD{ssao::BlurMode::TwoD}, normals;
+    normals.normalWeight = ssao::NormalWeight::On;
+    for (const ssao::BilateralSettings& blur : {twoD, normals})
+        EXPECT_NE(testing::errorMessage([&] { alchemyAOBlurred(context, g, {}, blur); }).find("no normal weight"),
+                  std::string::npos);
+    ssao::AlchemySettings bad;
+    bad.radius = -1;
+    EXPECT_EQ(testing::errorMessage([&] { alchemyAOBlurred(context, g, bad, {}); }),
+              testing::errorMessage([&] { ssao::alchemyAO(g, bad); }));
+    EXPECT_EQ(testing::validationReport(context), "");
+}
+
 } // namespace obscura::gpu

@@ -48,6 +48,7 @@ struct RenderOptions {
     CLI::Option* radiusOption = nullptr;
     GtaoOptions gtao;
     GpuFlags gpu;
+    bool fusedBlur = false;  // --gpu-fused-blur
 };
 
 const std::map<std::string, trace::Falloff> kFalloffs = {
@@ -86,6 +87,9 @@ void run(const RenderOptions& o) {
     }
 
     o.gpu.validate();
+    if (o.fusedBlur && !(o.gpu.gpu && o.ao == "alchemy" && blur.mode == ssao::BlurMode::Separable && !blur.usesNormals()))
+        fail("--gpu-fused-blur", "needs --gpu, --ao alchemy and the separable blur by depth alone (--blur separable, "
+                                 "no normal weight)");
 
     ThreadLimit limit(o.threads);
     const std::unique_ptr<gpu::Context> context = o.gpu.open();
@@ -121,6 +125,9 @@ void run(const RenderOptions& o) {
     if (o.ao == "raytraced") {
         Progress p("ambient occlusion", showProgress);
         ao = trace::ambientObscurance(*tracer, gbuffer, aoSettings, [&](double f) { p(f); });
+    } else if (o.ao == "alchemy" && o.fusedBlur) {
+        ao = gpu::alchemyAOBlurred(*context, gbuffer, alchemy, blur);
+        gbuffer = ssao::cropGuardBand(gbuffer, camera, alchemy.guardBand);
     } else if (o.ao == "alchemy") {
         Image raw = context ? gpu::alchemyAO(*context, gbuffer, alchemy) : ssao::alchemyAO(gbuffer, alchemy);
         gbuffer = ssao::cropGuardBand(gbuffer, camera, alchemy.guardBand);
@@ -163,9 +170,10 @@ void run(const RenderOptions& o) {
                 o.ao.c_str());
     if (o.ao == "raytraced") std::printf(" (%s, r = %s m, %d rays)", o.falloff.c_str(), o.radius.c_str(), o.rays);
     if (o.ao == "alchemy")
-        std::printf(" (%s, r = %g m, intensity %g, contrast %g, %d samples, blur %s)",
+        std::printf(" (%s, r = %g m, intensity %g, contrast %g, %d samples, blur %s%s)",
                     alchemy.formulation == ssao::AlchemyFormulation::Paper ? "paper" : "chapter", double(alchemy.radius),
-                    double(alchemy.intensity), double(alchemy.contrast), alchemy.samples, o.blur.mode.c_str());
+                    double(alchemy.intensity), double(alchemy.contrast), alchemy.samples, o.blur.mode.c_str(),
+                    o.fusedBlur ? ", rows fused into the estimator" : "");
     if (o.ao == "gtao") std::printf(" (%s, r = %s m, %d frame(s))", o.gtao.quality.c_str(), o.radius.c_str(), o.gtao.frames);
     if (context) std::printf(", on %s", context->device().name.c_str());
     std::printf(", %.2f s\n", secondsSince(start));
@@ -213,6 +221,10 @@ void addRenderCommand(CLI::App& app) {
     o->blur.add(*cmd);
     o->gtao.add(*cmd);
     o->gpu.add(*cmd, "the screen-space AO (alchemy, gtao: every pass) and the composite", "Ray-traced AO stays on the CPU.");
+    cmd->add_flag("--gpu-fused-blur", o->fusedBlur,
+                  "With --gpu --ao alchemy and the separable blur by depth alone: evaluate the estimator and the "
+                  "blur's horizontal pass in one dispatch, so the raw AO never goes through memory (the same "
+                  "result; `bench --gpu --cases alchemy,alchemy-fused` times both)");
     cmd->callback([o] { run(*o); });
 }
 

@@ -1,8 +1,8 @@
 // One 1-D pass of the separable cross-bilateral blur: McGuire et al. 2011, "The Alchemy Screen-Space Ambient
 // Obscurance Algorithm", Fig. 6 (horizontal, then vertical), as a compute pass; one invocation per pixel.
 //
-// The CPU reference is src/ssao/bilateral_separable.cpp; the tap loop below is its beginCentres, addTap and
-// finishCentres for one centre instead of eight. The differences: exp2 is the GPU's instead of a degree-3
+// The CPU reference is src/ssao/bilateral_separable.cpp; the tap loop (bilateral_taps.glsl) is its
+// beginCentres, addTap and finishCentres for one centre instead of eight. The differences: exp2 is the GPU's instead of a degree-3
 // polynomial (relative error 7.5e-5), and taps outside the image are skipped instead of read as sky padding
 // that weighs 2^-125.
 //
@@ -42,6 +42,8 @@ shared float tileLogSpatial[2 * kBilateralMaxRadius + 1];
 // Position i along line `line`: the horizontal line as it lies; the columns interleaved, so that a warp's
 // 8 columns x 4 rows read 32 consecutive slots.
 int tileIndex(int line, int i) { return k.axis == 0 ? i : i * kBilateralVerticalTileX + line; }
+
+#include "bilateral_taps.glsl"
 
 void main() {
     const int invocation = int(gl_LocalInvocationID.x);
@@ -84,19 +86,5 @@ void main() {
     const int stride = k.axis == 0 ? 1 : k.width;
     // Taps inside the image along the axis: t in [tFirst, tLast].
     const int tFirst = max(-k.radius, -along), tLast = min(k.radius, length - 1 - along);
-    float sum = 0.0, wsum = 0.0;
-    for (int t = tFirst; t <= tLast; ++t) {
-        const int i = tileIndex(line, centre + t);
-        const float dd = tileDepth[i] - d;
-        float w = exp2(tileLogSpatial[t + k.radius] - dd * dd * c);
-        if (kUseNormal != 0) {
-            const uint o = uint(int(x) + t * stride);
-            w *= max(0.0, dot(n, vec3(normal[3 * o], normal[3 * o + 1], normal[3 * o + 2])));
-        }
-        sum += w * tileInput[i];
-        wsum += w;
-    }
-    // A centre on sky or with no weight (impossible for a surface: its own tap counts) keeps its input.
-    const bool keep = d < 1e30 && wsum > 0.0;
-    aoOut[x] = keep ? sum / wsum : tileInput[tileIndex(line, centre)];
+    aoOut[x] = bilateralTaps(line, centre, k.radius, tFirst, tLast, d, c, n, x, stride);
 }

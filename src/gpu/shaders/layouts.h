@@ -67,6 +67,17 @@ OBSCURA_CONST int kBilateralMaxRadius = 32;
 // constant leaves the compiler both paths.
 OBSCURA_CONST int kBilateralSpecUseNormal = 0;
 
+// ---- alchemy_blur_row.comp (src/gpu/alchemy_pass.cpp) ----
+// Alchemy AO and the horizontal pass of its separable blur in one dispatch: a workgroup evaluates a row of
+// kBilateralHorizontalTileX output pixels and radius more on each side into shared memory and blurs them
+// there, so the raw AO never goes through memory; bilateral_separable.comp's vertical pass follows. The
+// push constants are an AlchemyConstants, then a BilateralConstants for the output grid (axis 0, no normal
+// weight); bindings 0-2 are alchemy.comp's.
+OBSCURA_CONST int kAlchemyBlurBindingLogSpatial = 3;  // 2 radius + 1 log2 spatial weights, as the blur's
+OBSCURA_CONST int kAlchemyBlurBindingOutput = 4;      // out width * out height AO, blurred along rows
+OBSCURA_CONST int kAlchemyBlurBindingCount = 5;
+OBSCURA_CONST int kAlchemyBlurPushConstantBytes = 128;  // 96 + 32; 128 is every device's minimum limit
+
 // ---- gtao.comp (src/gpu/gtao_pass.cpp) ----
 // Storage buffers of set 0 (float arrays, std430).
 OBSCURA_CONST int kGtaoBindingDepth = 0;       // width * height linear depths, +inf for sky
@@ -133,6 +144,9 @@ static_assert(kBilateralHorizontalTileX * kBilateralHorizontalTileY == kBilatera
                   kBilateralWorkgroupY == 1 && kBilateralWorkgroupX >= 2 * kBilateralMaxRadius + 1,
               "each pass's tile has one pixel per invocation, and one row of invocations loads the weights");
 static_assert(sizeof(GtaoMipConstants) == kGtaoMipsPushConstantBytes, "GtaoMipConstants keeps its std430 layout");
+static_assert(kAlchemyPushConstantBytes + kBilateralPushConstantBytes == kAlchemyBlurPushConstantBytes &&
+                  kAlchemyBlurPushConstantBytes <= 128,
+              "alchemy_blur_row.comp pushes both passes' constants, within the limit every device has");
 static_assert(sizeof(BilateralConstants) == kBilateralPushConstantBytes &&
                   offsetof(BilateralConstants, useNormal) == 16 && offsetof(BilateralConstants, depthScale) == 20,
               "BilateralConstants keeps its std430 layout");

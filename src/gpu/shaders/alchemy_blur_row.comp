@@ -1,0 +1,67 @@
+// Alchemy ambient obscurance (McGuire et al. 2011, eq. 10) and the horizontal pass of its separable
+// cross-bilateral blur (Fig. 6) in one dispatch: each workgroup evaluates a row of output pixels, radius
+// more on each side, into shared memory, and blurs them there. The raw AO never goes through memory, and
+// the frame has one dispatch and one barrier fewer than alchemy.comp followed by both passes of
+// bilateral_separable.comp; its vertical pass follows this one. The apron is evaluated twice, by this
+// workgroup and its neighbour: 2 radius / 256 more estimator work (5% at radius 6).
+//
+// The estimator is alchemy.comp's (alchemy_pixel.glsl) and the taps are bilateral_separable.comp's
+// (bilateral_taps.glsl), on the same values in the same order, so the result has the same bits as the two
+// dispatches it replaces wherever the compiler rounds both alike (lavapipe: tests/gpu).
+#version 460
+#extension GL_GOOGLE_include_directive : require
+
+#include "obscura/alchemy_constants.h"
+#include "layouts.h"
+
+layout(local_size_x = kBilateralHorizontalTileX, local_size_y = 1, local_size_z = 1) in;
+
+// The estimator's constants `k` (alchemy_pixel.glsl reads them by that name), then the blur's `b` on the
+// output grid: width and height are the output's, axis 0, no normal weight.
+layout(push_constant, std430) uniform Constants {
+    AlchemyConstants k;
+    BilateralConstants b;
+};
+layout(std430, binding = kAlchemyBindingDepth) readonly buffer DepthPlane { float depth[]; };
+layout(std430, binding = kAlchemyBindingNormal) readonly buffer NormalPlane { float normal[]; };
+layout(std430, binding = kAlchemyBindingSpiral) readonly buffer Spiral { float spiral[]; };
+layout(std430, binding = kAlchemyBlurBindingLogSpatial) readonly buffer LogSpatial { float logSpatial[]; };
+layout(std430, binding = kAlchemyBlurBindingOutput) writeonly buffer Output { float aoOut[]; };
+
+#include "alchemy_pixel.glsl"
+
+const int kUseNormal = 0;  // the separable blur's default (bilateral_taps.glsl)
+const int kSlots = kBilateralHorizontalTileX + 2 * kBilateralMaxRadius;
+shared float tileDepth[kSlots];
+shared float tileInput[kSlots];
+shared float tileLogSpatial[2 * kBilateralMaxRadius + 1];
+
+int tileIndex(int line, int i) { return i; }
+
+#include "bilateral_taps.glsl"
+
+void main() {
+    const int invocation = int(gl_LocalInvocationID.x);
+    const int y = int(gl_WorkGroupID.y);  // the output row; the host dispatches b.height rows
+    const int x = int(gl_WorkGroupID.x) * kBilateralHorizontalTileX + invocation;
+    // The tile starts radius pixels before the row's first one. Its slots outside the image stay unwritten:
+    // the tap loop never reads them (tFirst, tLast below), as the blur skips taps outside the image.
+    const int start = x - invocation - b.radius;
+    for (int i = invocation; i < kBilateralHorizontalTileX + 2 * b.radius; i += kBilateralHorizontalTileX) {
+        const int a = start + i;
+        if (a < 0 || a >= b.width) continue;
+        // Output pixel (a, y) is pixel (a + guardBand, y + guardBand) of the guard-banded buffers.
+        tileDepth[i] = depth[uint(y + k.guardBand) * uint(k.width) + uint(a + k.guardBand)];
+        tileInput[i] = alchemyPixel(a + k.guardBand, y + k.guardBand);
+    }
+    for (int i = invocation; i <= 2 * b.radius; i += kBilateralHorizontalTileX) tileLogSpatial[i] = logSpatial[i];
+    barrier();
+    if (x >= b.width) return;
+
+    const int centre = invocation + b.radius;
+    const float d = tileDepth[centre];
+    const float c = b.depthScale / (d * d);  // 0 on sky: its output is its input anyway
+    const int tFirst = max(-b.radius, -x), tLast = min(b.radius, b.width - 1 - x);
+    const uint o = uint(y) * uint(b.width) + uint(x);
+    aoOut[o] = bilateralTaps(0, centre, b.radius, tFirst, tLast, d, c, vec3(0.0), o, 1);
+}

@@ -1,0 +1,53 @@
+// alchemyPixel, src/ssao/alchemy.cpp's kernel for one pixel, for the shaders that evaluate it (alchemy.comp
+// and alchemy_blur_row.comp). The includer declares what it reads: the push constants `k` (an
+// AlchemyConstants) and the storage buffers `depth`, `normal` and `spiral` of alchemy.comp's layout.
+
+bool isSkyDepth(float d) { return !(d < 1e30); }
+
+int floorToInt(float v) { return int(floor(v)); }
+
+// The next float above a positive finite v (std::nextafter(v, INFINITY)).
+float nextUp(float v) { return uintBitsToFloat(floatBitsToUint(v) + 1u); }
+
+// SpiralTable::at: the table holds, for each count in [minSamples, samples] and each of the 16 classes,
+// 2 count floats; sum over c in [minSamples, count) of 16 * 2c = 16 (count - minSamples)(count + minSamples - 1).
+int alchemySpiralAt(int count, int cls) {
+    return kAlchemyPixelClasses * (count - k.minSamples) * (count + k.minSamples - 1) + 2 * cls * count;
+}
+
+float alchemyPixel(int x, int y) {
+    const uint c = uint(y) * uint(k.width) + uint(x);
+    const float d = depth[c];
+    if (isSkyDepth(d)) return 1.0;
+    const float fx = float(x) + 0.5, fy = float(y) + 0.5;
+    const float cx = (fx * k.viewScaleX + k.viewOffsetX) * d, cy = (fy * k.viewScaleY + k.viewOffsetY) * d, cz = -d;
+    const float nx = normal[3 * c], ny = normal[3 * c + 1], nz = normal[3 * c + 2];
+    const float radiusPixels = min(k.radius * k.focalPixels / d, k.maxRadiusPixels);
+    int count = k.samples;
+    if (k.lodRadiusPixels > 0.0 && radiusPixels < k.lodRadiusPixels)
+        count = clamp(int(ceil(float(k.samples) * radiusPixels / k.lodRadiusPixels)), k.minSamples, k.samples);
+    const int offsets = alchemySpiralAt(count, (y % kAlchemyClassTile) * kAlchemyClassTile + x % kAlchemyClassTile);
+    // Paper: + z_C beta with z_C < 0; chapter: - bias. Both are one constant per pixel.
+    const float shift = k.formulation == kAlchemyPaper ? cz * k.bias : -k.bias;
+    // The paper drops samples at |v| >= r, the chapter's step() keeps |v| = r: one ulp of r^2 apart.
+    const float radius2 = k.formulation == kAlchemyPaper ? k.radius2 : nextUp(k.radius2);
+    const bool paper = k.formulation == kAlchemyPaper;
+    float sum = 0.0;
+    for (int i = 0; i < count; ++i) {
+        const int sx = floorToInt(fx + spiral[offsets + 2 * i] * radiusPixels);
+        const int sy = floorToInt(fy + spiral[offsets + 2 * i + 1] * radiusPixels);
+        if (uint(sx) >= uint(k.width) || uint(sy) >= uint(k.height)) continue;  // unseen: empty
+        // A sky sample (+inf) becomes a point 1e18 m away: finite arithmetic, and far outside the radius.
+        const float ds = min(depth[uint(sy) * uint(k.width) + uint(sx)], 1e18);
+        const float vx = ((float(sx) + 0.5) * k.viewScaleX + k.viewOffsetX) * ds - cx;
+        const float vy = ((float(sy) + 0.5) * k.viewScaleY + k.viewOffsetY) * ds - cy;
+        const float vz = -ds - cz;
+        const float vv = vx * vx + vy * vy + vz * vz;
+        const float vn = max(0.0, vx * nx + vy * ny + vz * nz + shift);
+        const float term = vn / (paper ? vv + k.denominator : max(k.denominator, vv));
+        // Heaviside term as a 0/1 factor, as on the CPU.
+        sum += term * float(vv < radius2);
+    }
+    const float a = max(0.0, 1.0 - k.intensity / float(count) * sum);
+    return k.contrast == 1.0 ? a : pow(a, k.contrast);
+}

@@ -1,0 +1,26 @@
+// The separable blur's tap loop for one centre, shared by its passes (bilateral_separable.comp) and by the
+// Alchemy pass that blurs its own rows (alchemy_blur_row.comp). The includer declares the shared arrays
+// tileDepth, tileInput and tileLogSpatial, tileIndex(line, i), the specialization constant kUseNormal and,
+// where that can be 1, the buffer `normal`.
+
+// The centre at tile position `centre` of line `line`, with depth d, c = depthScale / d^2, normal n and
+// pixel index x; taps t in [tFirst, tLast] (those inside the image), `stride` pixels apart. Returns the
+// blurred value, or the centre's own input where nothing weighs.
+float bilateralTaps(int line, int centre, int radius, int tFirst, int tLast, float d, float c, vec3 n, uint x,
+                    int stride) {
+    float sum = 0.0, wsum = 0.0;
+    for (int t = tFirst; t <= tLast; ++t) {
+        const int i = tileIndex(line, centre + t);
+        const float dd = tileDepth[i] - d;
+        float w = exp2(tileLogSpatial[t + radius] - dd * dd * c);
+        if (kUseNormal != 0) {
+            const uint o = uint(int(x) + t * stride);
+            w *= max(0.0, dot(n, vec3(normal[3 * o], normal[3 * o + 1], normal[3 * o + 2])));
+        }
+        sum += w * tileInput[i];
+        wsum += w;
+    }
+    // A centre on sky or with no weight (impossible for a surface: its own tap counts) keeps its input.
+    const bool keep = d < 1e30 && wsum > 0.0;
+    return keep ? sum / wsum : tileInput[tileIndex(line, centre)];
+}
