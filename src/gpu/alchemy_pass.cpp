@@ -37,8 +37,9 @@ void recordAlchemy(Context::Impl& c, VkCommandBuffer cmd, const AlchemyBuffers& 
                           k.height - 2 * k.guardBand);
 }
 
-void recordAlchemyRows(Context::Impl& c, VkCommandBuffer cmd, const AlchemyBlurredBuffers& b,
-                       const ssao::AlchemyConstants& k, const SeparableBilateral& f) {
+void recordAlchemyBlurred(Context::Impl& c, VkCommandBuffer cmd, const AlchemyBlurredBuffers& b,
+                          const ssao::AlchemyConstants& k, const SeparableBilateral& f,
+                          const std::function<void(const char*)>& mark) {
     assert(f.constants.useNormal == 0 && f.constants.width == k.width - 2 * k.guardBand &&
            f.constants.height == k.height - 2 * k.guardBand);
     ComputePipeline& pipeline = c.pipeline("alchemy_blur_row", shaders::alchemy_blur_row, kAlchemyBlurBindingCount,
@@ -52,14 +53,11 @@ void recordAlchemyRows(Context::Impl& c, VkCommandBuffer cmd, const AlchemyBlurr
     // In binding order: kAlchemyBindingDepth, Normal, Spiral, kAlchemyBlurBindingLogSpatial, Output.
     pipeline.dispatch(cmd, {&b.depth, &b.normal, &b.spiral, &b.logSpatial, &b.scratch}, &constants, sizeof constants,
                       std::uint32_t(bilateralGroupsX(0, f.constants.width)), std::uint32_t(f.constants.height));
-}
-
-void recordAlchemyBlurred(Context::Impl& c, VkCommandBuffer cmd, const AlchemyBlurredBuffers& b,
-                          const ssao::AlchemyConstants& k, const SeparableBilateral& f) {
-    recordAlchemyRows(c, cmd, b, k, f);
+    if (mark) mark("alchemy-rows");
     computeBarrier(cmd);  // the vertical pass reads the rows
     // Its normal binding is unread without the normal weight; the depth buffer stands in for it.
     recordSeparableBilateralAxis(c, cmd, {b.blurDepth, b.blurDepth, b.logSpatial, b.scratch, b.scratch, b.output}, f, 1);
+    if (mark) mark("blur-columns");
 }
 
 Image alchemyAOBlurred(Context& context, const GBuffer& g, const ssao::AlchemySettings& s,

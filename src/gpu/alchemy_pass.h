@@ -8,6 +8,7 @@
 #include "obscura/alchemy.h"
 #include "obscura/gpu_shaders.h"  // SeparableBilateral
 
+#include <functional>
 #include <vector>
 
 namespace obscura::gpu {
@@ -42,11 +43,11 @@ struct AlchemyBlurredBuffers {
 
 // Records the estimator fused with the blur's horizontal pass, a barrier, and the vertical pass: what
 // recordAlchemy and recordSeparableBilateral record, in two dispatches instead of three. The filter is
-// separableBilateral(settings, out width, out height) without the normal weight (asserted).
+// separableBilateral(settings, out width, out height) without the normal weight (asserted). After each
+// dispatch it calls mark(stage) if set, so that a caller can write a timestamp: "alchemy-rows", then
+// "blur-columns".
 void recordAlchemyBlurred(Context::Impl& context, VkCommandBuffer cmd, const AlchemyBlurredBuffers& buffers,
-                          const ssao::AlchemyConstants& k, const SeparableBilateral& filter);
-// Its first dispatch alone: the estimator and the horizontal pass, into buffers.scratch.
-void recordAlchemyRows(Context::Impl& context, VkCommandBuffer cmd, const AlchemyBlurredBuffers& buffers,
-                       const ssao::AlchemyConstants& k, const SeparableBilateral& filter);
+                          const ssao::AlchemyConstants& k, const SeparableBilateral& filter,
+                          const std::function<void(const char*)>& mark = {});
 
 } // namespace obscura::gpu

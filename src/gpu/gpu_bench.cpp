@@ -103,11 +103,8 @@ CaseSetup alchemyCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s,
         setup.bytes = double(px) * (4 + 12 + 4) + double(px) * (4 + 4 + 4);
         setup.record = [&c, k, blur, spiral, logSpatial, scratch, out](
                            VkCommandBuffer cmd, const ResidentInput& in, int, const std::function<void(const char*)>& mark) {
-            recordAlchemyRows(c, cmd, {in.depth, in.normal, *spiral, in.depth, *logSpatial, *scratch, *out}, k, blur);
-            mark("alchemy-rows");
-            computeBarrier(cmd);  // the vertical pass reads the rows
-            recordSeparableBilateralAxis(c, cmd, {in.depth, in.normal, *logSpatial, *scratch, *scratch, *out}, blur, 1);
-            mark("blur-columns");
+            recordAlchemyBlurred(c, cmd, {in.depth, in.normal, *spiral, in.depth, *logSpatial, *scratch, *out}, k, blur,
+                                 mark);
         };
         return setup;
     }
