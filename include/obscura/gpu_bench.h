@@ -29,6 +29,8 @@ struct GpuBenchSettings {
     int framesPerSubmit = 1;  // frames recorded into one submission, back to back, [1, 64]; 1 waits for each
                               // frame before recording the next, and leaves the GPU idle in between
     int alchemySamples = 12;                          // the `alchemy` case's samples per pixel, [1, 1024]
+    int blurRadius = 6;  // taps on each side of the alchemy and gtao cases' separable blur, [1, 32] (6: the
+                         // paper's 13 taps, what the Alchemy target names)
     ssao::GtaoQuality quality = ssao::GtaoQuality::High;  // the GTAO cases' preset (slices x steps)
     // Counts over the preset's: slices of the gtao and gtao-spatial cases (the temporal ones take
     // temporalSlices), steps of every GTAO case; jitter rotates the gtao case's slices per pixel, noise its

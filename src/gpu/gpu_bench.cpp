@@ -72,6 +72,18 @@ std::string presetText(const GpuBenchSettings& s) {
     return s.gtao.slices != 0 || s.gtao.steps != 0 ? "GTAO" : "GTAO " + std::string(ssao::qualityName(s.quality));
 }
 
+// The cases' separable blur: the library's defaults at the settings' radius.
+ssao::BilateralSettings blurSettings(const GpuBenchSettings& s) {
+    ssao::BilateralSettings b;
+    b.radius = s.blurRadius;
+    return b;
+}
+
+// ", + separable bilateral, 13 taps per axis"
+std::string blurText(const GpuBenchSettings& s) {
+    return " + separable bilateral, " + std::to_string(2 * s.blurRadius + 1) + " taps per axis";
+}
+
 std::string slicesText(const ssao::GtaoSettings& g) {
     return std::to_string(g.sliceCount) + " slice" + (g.sliceCount > 1 ? "s" : "") + " x " +
            std::to_string(g.stepsPerSide) + " steps per side" + (g.jitter ? ", jittered" : "") +
@@ -86,7 +98,7 @@ CaseSetup alchemyCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s,
     settings.samples = s.alchemySamples;
     const ssao::AlchemyConstants k = ssao::alchemyConstants(settings, camera);
     const std::vector<float> offsets = alchemySpiralOffsets(k);
-    const SeparableBilateral blur = separableBilateral(ssao::BilateralSettings{}, w, h);
+    const SeparableBilateral blur = separableBilateral(blurSettings(s), w, h);
     const std::size_t px = std::size_t(w) * std::size_t(h);
     auto spiral = std::make_shared<Buffer>(upload(c, offsets.data(), offsets.size() * sizeof(float)));
     auto logSpatial = std::make_shared<Buffer>(upload(c, blur.logSpatial.data(), blur.logSpatial.size() * sizeof(float)));
@@ -95,7 +107,7 @@ CaseSetup alchemyCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s,
     auto out = std::make_shared<Buffer>(c, px * sizeof(float), MemoryUse::Device);
     CaseSetup setup;
     setup.description = "Alchemy AO, " + std::to_string(s.alchemySamples) +
-                        " samples/px (paper defaults, r 0.5 m) + separable bilateral, 13 taps per axis, depth only" +
+                        " samples/px (paper defaults, r 0.5 m)" + blurText(s) + ", depth only" +
                         (fused ? ", its horizontal pass fused into the estimator's dispatch" : "");
     setup.keepAlive = {spiral, logSpatial, raw, scratch, out};
     if (fused) {
@@ -124,7 +136,7 @@ CaseSetup alchemyCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s,
 CaseSetup gtaoCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s, const Camera& camera) {
     const ssao::GtaoSettings settings = gtaoSettings(s);
     const ssao::GtaoConstants k = ssao::gtaoConstants(settings, camera);
-    const SeparableBilateral blur = separableBilateral(ssao::BilateralSettings{}, w, h);
+    const SeparableBilateral blur = separableBilateral(blurSettings(s), w, h);
     const std::size_t px = std::size_t(w) * std::size_t(h);
     auto logSpatial = std::make_shared<Buffer>(upload(c, blur.logSpatial.data(), blur.logSpatial.size() * sizeof(float)));
     auto visibility = std::make_shared<Buffer>(c, px * sizeof(float), MemoryUse::Device);
@@ -135,7 +147,7 @@ CaseSetup gtaoCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s, co
     CaseSetup setup;
     setup.description = presetText(s) + " (" + slicesText(settings) +
                         radiusText(settings) + "), visibility" + (s.bentNormals ? " + bent normal" : " only") +
-                        ", + separable bilateral, 13 taps per axis";
+                        "," + blurText(s);
     // GTAO: depth + normal in, visibility (+ bent normal) out; blur axes as in the alchemy case.
     setup.bytes = double(px) * (4 + 12 + 4 + (s.bentNormals ? 12 : 0)) + 2 * double(px) * (4 + 4 + 4);
     // Mip sampling: the chain's pass reads depth and writes the chain, which the GTAO pass reads.
@@ -196,6 +208,7 @@ void GpuBenchSettings::validate() const {
     check(warmup >= 0 && warmup <= 10000, "warmup", "[0, 10000]");
     check(framesPerSubmit >= 1 && framesPerSubmit <= 64, "frames-per-submit", "[1, 64]");
     check(alchemySamples >= 1 && alchemySamples <= 1024, "alchemy-samples", "[1, 1024]");
+    check(blurRadius >= 1 && blurRadius <= ssao::kMaxBlurRadius, "blur-radius", "[1, 32] taps on each side");
     check(temporalSlices >= 1 && temporalSlices <= 64, "temporal-slices", "[1, 64]");
     check(gtaoRadius > 0.0f && gtaoRadius <= 1e4f, "ao-radius", "(0, 1e4] m");
     check(mipDistanceRatio >= 2.0f && mipDistanceRatio <= 64.0f, "gtao-mip-ratio", "[2, 64]");

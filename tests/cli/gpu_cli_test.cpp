@@ -339,6 +339,16 @@ TEST_F(GpuCommands, BenchGpuReportsEveryCase) {
               std::string::npos);
     for (int i = 0; i < 2; ++i) EXPECT_EQ(b["cases"][i]["bytes_per_frame"], c["cases"][i]["bytes_per_frame"]);
 
+    // --blur-radius: the gtao case's blur taps, in the report and the description; the same buffers.
+    const CliResult taps = runCli(small + " --blur-radius 2");
+    ASSERT_EQ(taps.code, 0) << taps.out;
+    const nlohmann::json t = nlohmann::json::parse(taps.out);
+    EXPECT_EQ(b["blur_radius"], 6);
+    EXPECT_EQ(t["blur_radius"], 2);
+    EXPECT_NE(b["cases"][0]["description"].get<std::string>().find("13 taps per axis"), std::string::npos);
+    EXPECT_NE(t["cases"][0]["description"].get<std::string>().find("5 taps per axis"), std::string::npos);
+    EXPECT_EQ(b["cases"][0]["bytes_per_frame"], t["cases"][0]["bytes_per_frame"]);
+
     // --ao-radius: the GTAO cases' radius, in the report and the descriptions; the same buffers.
     const CliResult small4 = runCli(small + " --ao-radius 0.25");
     ASSERT_EQ(small4.code, 0) << small4.out;
@@ -362,6 +372,7 @@ TEST_F(GpuCommands, BenchGpuRejectsBadArguments) {
     expectFailure("bench --gpu --ao-radius 0", {"--ao-radius", "(0, 1e4] m"});
     expectFailure("bench --gpu --gtao-mip-ratio 1", {"--gtao-mip-ratio", "[2, 64]"});
     expectFailure("bench --gpu --gtao-slices 65", {"--gtao-slices", "[1, 64]"});
+    expectFailure("bench --gpu --blur-radius 33", {"--blur-radius", "[1, 32]"});
     expectFailure("bench --gpu --gtao-steps -1", {"--gtao-steps", "[1, 256]"});
     expectFailure("bench --gpu --frames-per-submit 0", {"--frames-per-submit", "[1, 64]"});
     expectFailure("bench --gpu --frames-per-submit 65", {"--frames-per-submit", "[1, 64]"});

@@ -165,6 +165,10 @@ TEST_F(GtaoCli, SliceFlagsReachTheKernel) {
     };
     EXPECT_EQ(mae("--gtao-slices 3 --gtao-steps 3"), mae(""));
     EXPECT_NE(mae("--gtao-slices 2 --gtao-steps 4 --gtao-jitter"), mae(""));
+    // --blur-radius reaches compare's blur: the default radius is 6, another changes the error.
+    EXPECT_EQ(mae("--blur separable --blur-radius 6"), mae("--blur separable"));
+    EXPECT_NE(mae("--blur separable --blur-radius 2"), mae("--blur separable"));
+    expectFailure(compare + " --blur-radius 0", {"--blur-radius", "[1, 32]"});
     expectFailure(compare + " --samples 12 --gtao-slices 2", {"--gtao-slices", "--samples"});
     EXPECT_FALSE(fs::exists(path("a.exr")));
 }

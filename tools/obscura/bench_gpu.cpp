@@ -55,6 +55,7 @@ struct GpuBenchOptions {
     float mipRatio = 7.0f;
     float radius = 1.0f;
     GtaoSliceFlags gtao;
+    int blurRadius = 6;
     double peakGbps = 3000.0;
     int device = -1;
     bool json = false;
@@ -99,6 +100,10 @@ void GpuBenchOptions::add(CLI::App& bench) {
     addGtaoSamplingOption(bench, sampling, mipRatio, "--gpu: how the GTAO cases' horizon samples read depth");
     gtao.add(bench, "--gpu, the GTAO cases", "; the temporal cases take --temporal-slices",
              "; the gtao case only: the others rotate by their 4x4 interleave");
+    bench.add_option("--blur-radius", blurRadius,
+                     "--gpu: taps on each side of the alchemy and gtao cases' separable blur, [1, 32] (6: 13 taps, the "
+                     "paper's)")
+        ->capture_default_str();
     bench.add_option("--ao-radius", radius,
                      "--gpu: the GTAO cases' radius, m, (0, 1e4]; a smaller one keeps the horizon samples nearer the "
                      "pixel on screen (fewer cache lines per frame, nearly the same arithmetic)")
@@ -120,6 +125,7 @@ void runGpuBench(const GpuBenchOptions& o) {
     settings.quality = ssao::parseQuality(o.quality);
     settings.temporalSlices = o.temporalSlices;
     settings.gtao = o.gtao.value;
+    settings.blurRadius = o.blurRadius;
     settings.bentNormals = !o.visibilityOnly;
     settings.packedHistory = o.packedHistory;
     settings.callerKeepsDepth = o.keepPreviousDepth;
@@ -185,6 +191,7 @@ void runGpuBench(const GpuBenchOptions& o) {
     report["gtao_slices"] = o.gtao.value.slices;  // 0: the preset's (the descriptions give each case's counts)
     report["gtao_steps"] = o.gtao.value.steps;
     report["gtao_jitter"] = o.gtao.value.jitter;
+    report["blur_radius"] = o.blurRadius;
     report["validation"] = context.validation();
     if (!o.json) {
         std::string variants;  // the flags that change what the GTAO cases run
@@ -198,6 +205,8 @@ void runGpuBench(const GpuBenchOptions& o) {
         if (o.gtao.value.slices != 0) variants += ", GTAO " + std::to_string(o.gtao.value.slices) + " slices";
         if (o.gtao.value.steps != 0) variants += ", GTAO " + std::to_string(o.gtao.value.steps) + " steps per side";
         if (o.gtao.value.jitter) variants += ", GTAO jittered";
+        if (o.blurRadius != gpu::GpuBenchSettings{}.blurRadius)
+            variants += ", blur " + std::to_string(2 * o.blurRadius + 1) + " taps per axis";
         if (settings.gtaoRadius != gpu::GpuBenchSettings{}.gtaoRadius) {
             char text[48];
             std::snprintf(text, sizeof text, ", GTAO r %g m", double(o.radius));

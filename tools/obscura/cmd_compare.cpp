@@ -36,6 +36,7 @@ struct CompareOptions {
     float radius = 0.0f;
     std::string blur = "none";
     std::string blurNormalWeight = "auto";
+    int blurRadius = 6;
     float range = 0.5f;
     unsigned seed = 0;
     int threads = 0;
@@ -103,6 +104,12 @@ void run(const CompareOptions& o) {
     mo.seed = o.seed;
     mo.blur.mode = o.blur == "none" ? ssao::BlurMode::None : o.blur == "2d" ? ssao::BlurMode::TwoD : ssao::BlurMode::Separable;
     mo.blur.normalWeight = normalWeightFromFlag(o.blurNormalWeight);
+    mo.blur.radius = o.blurRadius;
+    try {
+        mo.blur.validate();
+    } catch (const Error& e) {
+        throw Error("--" + std::string(e.what()));  // "--blur-radius: ..."
+    }
     o.gpu.validate();
     const std::unique_ptr<gpu::Context> context = o.gpu.open();
     mo.gpu = context.get();
@@ -229,6 +236,8 @@ void addCompareCommand(CLI::App& app) {
         ->capture_default_str();
     cmd->add_option("--blur", o->blur, "Filter the methods' AO: none, separable or 2d (the reference is exact)")
         ->check(CLI::IsMember({"none", "separable", "2d"}))
+        ->capture_default_str();
+    cmd->add_option("--blur-radius", o->blurRadius, "Taps on each side of the blur's centre, [1, 32] (6: 13 taps)")
         ->capture_default_str();
     cmd->add_option("--blur-normal-weight", o->blurNormalWeight, kNormalWeightHelp)
         ->check(CLI::IsMember({"auto", "on", "off"}))
