@@ -3,8 +3,9 @@
 # scripts/gpu-ab), on this build and whatever Vulkan device there is (lavapipe in CI):
 # - every patch applies to this checkout and compiles, and changes the shaders it edits (and those that
 #   include a file it edits);
-# - each candidate agrees with the CPU path (scripts/gpu-verify --small), and with the embedded shader: to
-#   the bit where its header says "the same bits", else within 1e-5;
+# - each candidate agrees with the CPU path (scripts/gpu-verify --small, whose list has the fused Alchemy
+#   pass), and with the embedded shaders, the fused pass included: to the bit where its header says "the
+#   same bits", else within 1e-5;
 # - gpu-ab times two variants against each other and writes its JSON; it refuses a missing folder.
 # Exit 77 (skipped) without a Vulkan device, python3 or glslc. Arguments: source dir, build dir, scratch dir.
 source "$(dirname "$0")/check_common.sh"
@@ -33,7 +34,8 @@ for patch in "$src"/bench/gpu-candidates/*.patch; do
   limit=1e-5
   grep -q '^Results: the same bits' "$patch" && limit=0
   for args in "demo --size 133x77 --ao alchemy" "demo --size 133x77 --ao gtao" \
-              "stairs --size 120x70 --ao alchemy --blur-radius 32"; do
+              "stairs --size 120x70 --ao alchemy --blur-radius 32" \
+              "stairs --size 120x70 --ao alchemy --ao-guard-band 8 --gpu-fused-blur"; do
     # shellcheck disable=SC2086  # the list's words are separate arguments
     "$tool" render $args -q --gpu -o "$work/e.png" --aov-dir "$work/e" >/dev/null
     # shellcheck disable=SC2086

@@ -83,6 +83,7 @@ struct GtaoSliceOverride {
     bool empty() const { return slices == 0 && steps == 0 && !jitter; }
     void apply(GtaoSettings& settings) const;
 };
+
 // "low", "medium", "high", "ultra"; throws obscura::Error for another name.
 GtaoQuality parseQuality(const std::string& name);
 const char* qualityName(GtaoQuality quality);
