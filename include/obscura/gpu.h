@@ -23,6 +23,7 @@
 #include "obscura/bilateral.h"
 #include "obscura/gbuffer.h"
 #include "obscura/gtao.h"
+#include "obscura/gtao_half_res.h"
 #include "obscura/image.h"
 
 #include <cstdint>
@@ -109,5 +110,13 @@ ssao::GtaoResult computeGtao(Context& context, const GBuffer& gbuffer, const ssa
 // Validates the settings, then computeGtao(context, gbuffer, ssao::gtaoConstants(settings, gbuffer.camera)).
 ssao::GtaoResult computeGtao(Context& context, const GBuffer& gbuffer, const ssao::GtaoSettings& settings,
                              GtaoOutputs outputs = GtaoOutputs::VisibilityAndBentNormal);
+
+// ssao::computeGtaoHalfResolution on the GPU: gtao.comp over the half-resolution grid, the blur reading its
+// guide from the full-resolution planes at a stride (BilateralConstants::guideStep 2), and
+// upsample_depth_aware.comp; the same settings, validation, errors and outputs, within the GPU's rounding
+// (tests/gpu bound it). GtaoOutputs::Visibility leaves the result's bentNormal empty.
+ssao::GtaoResult computeGtaoHalfResolution(Context& context, const GBuffer& gbuffer, const ssao::GtaoSettings& settings,
+                                          const ssao::GtaoHalfResolutionSettings& half, int frameIndex = 0,
+                                          GtaoOutputs outputs = GtaoOutputs::VisibilityAndBentNormal);
 
 } // namespace obscura::gpu

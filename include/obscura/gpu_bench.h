@@ -31,10 +31,13 @@ struct GpuBenchSettings {
     int alchemySamples = 12;                          // the `alchemy` case's samples per pixel, [1, 1024]
     int blurRadius = 6;  // taps on each side of the alchemy and gtao cases' separable blur, [1, 32] (6: the
                          // paper's 13 taps, what the Alchemy target names)
+    int halfBlurRadius = 2;  // taps on each side of the gtao-half case's blur, on the half-resolution grid,
+                             // [1, 32] (2: 5 taps, the configuration docs/QUALITY.md measured)
     ssao::GtaoQuality quality = ssao::GtaoQuality::High;  // the GTAO cases' preset (slices x steps)
     // Counts over the preset's: slices of the gtao and gtao-spatial cases (the temporal ones take
     // temporalSlices), steps of every GTAO case; jitter rotates the gtao case's slices per pixel, noise its
-    // blur averages (the interleaved cases rotate by their 4x4 pattern instead).
+    // blur averages (the interleaved cases rotate by their 4x4 pattern instead). The gtao-half case takes 2
+    // slices, 4 steps and the 4x4 interleave where this gives no count and no jitter.
     ssao::GtaoSliceOverride gtao;
     int temporalSlices = 1;  // slices of the `gtao-temporal` cases, [1, 64]: the paper's 1, times the 16
                              // interleave directions and 6 rotations of the history
@@ -53,7 +56,8 @@ struct GpuBenchSettings {
 struct GpuPassTime {
     std::string name;       // "alchemy", "blur", "alchemy-rows" (the estimator with the horizontal blur),
                             // "blur-columns" (the vertical blur), "gtao", "mips", "denoise", "temporal",
-                            // "resolve" (gpu::GtaoTemporalPasses::record says which dispatches those time)
+                            // "resolve" (gpu::GtaoTemporalPasses::record says which dispatches those time),
+                            // "upsample" (gtao-half: gpu::GtaoHalfResolutionPasses::record)
     double medianMs = 0;    // median over the timed frames of this pass's GPU time
     double minMs = 0;       // its fastest frame (the passes of one frame add up to its time)
 };

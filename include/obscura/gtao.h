@@ -67,6 +67,9 @@ struct GtaoSettings {
     float bitmaskThickness = 0.5f;  // assumed thickness of every occluder for the bitmask, m, (0, 1e4]
     bool jitter = false;            // per-pixel hashed slice rotation and step offsets (noise for a filter
                                     // to remove); false: the same regular slices everywhere
+    bool interleave = false;        // slices rotated by the pixel's place in the 4x4 pattern of §4.1
+                                    // (interleaveIndex), 16 direction classes per 4x4 block for a filter to
+                                    // gather: stratified where jitter is white noise; not with jitter
 
     void validate() const;          // throws obscura::Error("gtao-<field>: ...")
 };
@@ -80,7 +83,8 @@ struct GtaoSliceOverride {
     int slices = 0;       // replaces sliceCount unless 0; GtaoSettings::validate checks what results
     int steps = 0;        // replaces stepsPerSide unless 0; the same
     bool jitter = false;  // sets GtaoSettings::jitter
-    bool empty() const { return slices == 0 && steps == 0 && !jitter; }
+    bool interleave = false;  // sets GtaoSettings::interleave
+    bool empty() const { return slices == 0 && steps == 0 && !jitter && !interleave; }
     void apply(GtaoSettings& settings) const;
 };
 
@@ -91,7 +95,7 @@ const char* qualityName(GtaoQuality quality);
 // The pure function between settings and kernel: camera projection, radius and falloff, slice and step
 // counts. `interleaved` rotates each pixel's slices by its place in the 4x4 pattern and by frameIndex
 // (§4.1): with 1 slice (the paper's setting) a 4x4 block and 6 frames cover 96 directions, with k slices
-// 96 k.
+// 96 k. settings.interleave does the same for any caller.
 // Assumes validated settings and camera.
 GtaoConstants gtaoConstants(const GtaoSettings& settings, const Camera& camera, int frameIndex = 0,
                             bool interleaved = false);

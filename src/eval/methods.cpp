@@ -5,6 +5,7 @@
 #include "obscura/error.h"
 #include "obscura/gpu.h"
 #include "obscura/gtao.h"
+#include "obscura/gtao_half_res.h"
 
 #include <algorithm>
 
@@ -65,6 +66,34 @@ AoMethod gtao(const char* name, const char* description, ssao::GtaoQuality quali
             }};
 }
 
+// GTAO at half resolution (ssao::computeGtaoHalfResolution) with its measured counts unless the override
+// gives others; the options' blur filters the grid before the upsampling.
+AoMethod gtaoHalf(const char* name, const char* description) {
+    auto settings = [](const MethodOptions& o) {
+        ssao::GtaoSettings s;
+        if (o.radius > 0.0f) s.radius = o.radius;
+        ssao::applyHalfResolutionCounts(s, o.gtao);
+        if (o.samples > 0 && o.gtao.slices == 0) s.sliceCount = std::clamp(o.samples / (2 * s.stepsPerSide), 1, 64);
+        return s;
+    };
+    return {name, description,
+            [settings](const GBuffer& g, const MethodOptions& o) {
+                ssao::GtaoHalfResolutionSettings half;
+                half.blur = o.blur;
+                if (o.gpu)
+                    return gpu::computeGtaoHalfResolution(*o.gpu, g, settings(o), half, 0, gpu::GtaoOutputs::Visibility)
+                        .visibility;
+                return ssao::computeGtaoHalfResolution(g, settings(o), half).visibility;
+            },
+            [settings](const MethodOptions& o, int rays) {
+                trace::ObscuranceSettings ref;
+                ref.falloff = trace::Falloff::Binary;
+                ref.radius = settings(o).radius;
+                ref.rays = rays;
+                return ref;
+            }};
+}
+
 } // namespace
 
 const std::vector<AoMethod>& aoMethods() {
@@ -84,6 +113,8 @@ const std::vector<AoMethod>& aoMethods() {
         gtao("gtao-planar-mip", "GTAO high preset with a depth MIP chain: far samples from 4 coarser levels, near "
                                 "ones planar",
              ssao::GtaoQuality::High, ssao::GtaoSampling::PlanarMip),
+        gtaoHalf("gtao-half", "GTAO at half resolution (2 slices x 4 steps per side, 4x4 interleave, r 1 m), the "
+                              "blur on the grid, depth-aware upsample"),
     };
     return methods;
 }

@@ -6,6 +6,7 @@
 #include "gpu/bilateral_pass.h"
 #include "gpu/buffer.h"
 #include "gpu/context.h"
+#include "gpu/gtao_half_res_pass.h"
 #include "gpu/gtao_pass.h"
 #include "gpu/gtao_temporal_pass.h"
 
@@ -87,6 +88,7 @@ std::string blurText(const GpuBenchSettings& s) {
 std::string slicesText(const ssao::GtaoSettings& g) {
     return std::to_string(g.sliceCount) + " slice" + (g.sliceCount > 1 ? "s" : "") + " x " +
            std::to_string(g.stepsPerSide) + " steps per side" + (g.jitter ? ", jittered" : "") +
+           (g.interleave ? ", 4x4 interleave" : "") +
            (g.sampling == ssao::GtaoSampling::Planar ? "" : ", " + ssao::gtaoSamplingText(g));
 }
 
@@ -169,6 +171,25 @@ CaseSetup gtaoCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s, co
     return setup;
 }
 
+CaseSetup gtaoHalfCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s) {
+    ssao::GtaoSettings settings = gtaoSettings(s);
+    ssao::applyHalfResolutionCounts(settings, s.gtao);
+    ssao::GtaoHalfResolutionSettings half;
+    half.blur.radius = s.halfBlurRadius;
+    auto passes = std::make_shared<GtaoHalfResolutionPasses>(c, settings, half, w, h, s.bentNormals);
+    CaseSetup setup;
+    setup.description = "GTAO at half resolution (" + slicesText(settings) + radiusText(settings) +
+                        "), visibility" + (s.bentNormals ? " + bent normal" : " only") + " + separable bilateral there, " +
+                        std::to_string(2 * s.halfBlurRadius + 1) + " taps per axis + depth-aware upsample";
+    setup.bytes = double(passes->bytesPerFrame());
+    setup.keepAlive = {passes};
+    setup.record = [passes](VkCommandBuffer cmd, const ResidentInput& in, int index,
+                            const std::function<void(const char*)>& mark) {
+        passes->record(cmd, in.depth, in.normal, in.camera, index, mark);
+    };
+    return setup;
+}
+
 CaseSetup temporalCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s, bool temporal, bool half) {
     ssao::GtaoSettings settings = gtaoSettings(s);
     if (temporal) settings.sliceCount = s.temporalSlices;
@@ -209,6 +230,7 @@ void GpuBenchSettings::validate() const {
     check(framesPerSubmit >= 1 && framesPerSubmit <= 64, "frames-per-submit", "[1, 64]");
     check(alchemySamples >= 1 && alchemySamples <= 1024, "alchemy-samples", "[1, 1024]");
     check(blurRadius >= 1 && blurRadius <= ssao::kMaxBlurRadius, "blur-radius", "[1, 32] taps on each side");
+    check(halfBlurRadius >= 1 && halfBlurRadius <= ssao::kMaxBlurRadius, "half-blur-radius", "[1, 32] taps on each side");
     check(temporalSlices >= 1 && temporalSlices <= 64, "temporal-slices", "[1, 64]");
     check(gtaoRadius > 0.0f && gtaoRadius <= 1e4f, "ao-radius", "(0, 1e4] m");
     check(mipDistanceRatio >= 2.0f && mipDistanceRatio <= 64.0f, "gtao-mip-ratio", "[2, 64]");
@@ -226,7 +248,9 @@ std::vector<GpuBenchCaseInfo> gpuBenchCases() {
             {"gtao", "GTAO (every slice each frame) + separable bilateral blur"},
             {"gtao-spatial", "GTAO with the 4x4 interleave + its depth- and normal-aware reconstruction"},
             {"gtao-temporal", "interleaved GTAO + reconstruction + reprojected exponential history"},
-            {"gtao-temporal-half", "gtao-temporal at half resolution + depth-aware upsample"}};
+            {"gtao-temporal-half", "gtao-temporal at half resolution + depth-aware upsample"},
+            {"gtao-half", "GTAO at half resolution (2 interleaved slices x 4 steps) + 5-tap blur there + depth-aware "
+                          "upsample"}};
 }
 
 GpuBenchCase benchGpuCase(Context& context, const std::string& name, const std::vector<GBuffer>& inputs,
@@ -257,7 +281,8 @@ GpuBenchCase benchGpuCase(Context& context, const std::string& name, const std::
     }
     const CaseSetup setup = name == "alchemy" || name == "alchemy-fused"
                                 ? alchemyCase(c, w, h, settings, inputs[0].camera, name == "alchemy-fused")
-                            : name == "gtao" ? gtaoCase(c, w, h, settings, inputs[0].camera)
+                            : name == "gtao"      ? gtaoCase(c, w, h, settings, inputs[0].camera)
+                            : name == "gtao-half" ? gtaoHalfCase(c, w, h, settings)
                                               : temporalCase(c, w, h, settings, name != "gtao-spatial",
                                                              name == "gtao-temporal-half");
 

@@ -137,6 +137,8 @@ void GtaoSettings::validate() const {
     check(bitmaskThickness > 0.0f && bitmaskThickness <= 1e4f, "bitmask-thickness", "(0, 1e4] m");
     check(depthMipLevels >= 0 && depthMipLevels <= GTAO_MAX_MIP_LEVELS, "depth-mips", "[0, 4]");
     check(mipDistanceRatio >= 2.0f && mipDistanceRatio <= 64.0f, "mip-ratio", "[2, 64]");
+    if (jitter && interleave)
+        fail("gtao-interleave", "rotates the slices by the 4x4 pattern, which --gtao-jitter rotates by a hash: give one");
 }
 
 void applyQuality(GtaoSettings& settings, GtaoQuality quality) {
@@ -149,6 +151,7 @@ void GtaoSliceOverride::apply(GtaoSettings& settings) const {
     if (slices != 0) settings.sliceCount = slices;
     if (steps != 0) settings.stepsPerSide = steps;
     settings.jitter = jitter;
+    settings.interleave = interleave;
 }
 
 GtaoQuality parseQuality(const std::string& name) {
@@ -223,7 +226,7 @@ GtaoConstants gtaoConstants(const GtaoSettings& s, const Camera& camera, int fra
     c.thicknessMode = s.thickness == GtaoThickness::Bitmask    ? GTAO_THICKNESS_BITMASK
                       : s.thickness == GtaoThickness::Heuristic ? GTAO_THICKNESS_HEURISTIC
                                                                 : GTAO_THICKNESS_NONE;
-    c.interleaved = interleaved ? 1 : 0;
+    c.interleaved = interleaved || s.interleave ? 1 : 0;
     c.noiseMode = s.jitter ? 1 : 0;
     c.frameIndex = frameIndex;
     c.beyondRadius = s.beyondRadius == GtaoBeyondRadius::Column ? GTAO_BEYOND_COLUMN : GTAO_BEYOND_DROP;

@@ -115,6 +115,8 @@ TEST_F(GpuCommands, RenderGtaoMatchesTheCpu) {
         "stairs --size 81x47 --ao gtao --frames 3 --gtao-sampling nearest",  // temporal, nearest samples
         "demo --size 99x57 --ao gtao --gtao-sampling mip",                     // depth MIP chain
         "stairs --size 81x47 --ao gtao --frames 3 --gtao-sampling planar-mip --gtao-half-res",  // temporal, half
+        "demo --size 75x41 --ao gtao --gtao-half-res --gtao-slices 2 --gtao-steps 4 --gtao-interleave",  // full, half
+        "well --size 70x40 --ao gtao --gtao-half-res --gtao-half-blur-radius 0",
     };
     for (const char* c : cases) {
         const Pair d = renderBoth(c);
@@ -129,7 +131,8 @@ TEST_F(GpuCommands, RenderGtaoMatchesTheCpu) {
 // passes' bound (1e-2 per component, tests/gpu), with one frame and with the history.
 TEST_F(GpuCommands, RenderGtaoBentNormalOnlyWhenAskedFor) {
     for (const char* c : {"well --size 64x48 --ao gtao --ao-output bent-normal",
-                          "well --size 64x48 --ao gtao --frames 2 --ao-output bent-normal"}) {
+                          "well --size 64x48 --ao gtao --frames 2 --ao-output bent-normal",
+                          "well --size 63x47 --ao gtao --gtao-half-res --ao-output bent-normal"}) {
         const Pair d = renderBoth(c);
         EXPECT_LE(d.frame.mean, 1e-3) << c;
         const Difference bent =
@@ -187,11 +190,12 @@ TEST_F(GpuCommands, BenchGpuReportsEveryCase) {
     EXPECT_FALSE(j["device"].get<std::string>().empty());
     EXPECT_FALSE(j["driver"].get<std::string>().empty());
     EXPECT_EQ(j["frames"], 3);
-    ASSERT_EQ(j["cases"].size(), 12u);  // 6 cases x 2 sizes
+    ASSERT_EQ(j["cases"].size(), 14u);  // 7 cases x 2 sizes
     const std::map<std::string, std::set<std::string>> passes = {
         {"alchemy", {"alchemy", "blur"}},
         {"alchemy-fused", {"alchemy-rows", "blur-columns"}},
         {"gtao", {"gtao", "blur"}},
+        {"gtao-half", {"gtao", "blur", "upsample"}},
         // At full resolution the last pass reconstructs its own pixel; at half it upsamples its own pixel.
         {"gtao-spatial", {"gtao", "resolve"}},
         {"gtao-temporal", {"gtao", "temporal"}},
@@ -241,7 +245,7 @@ TEST_F(GpuCommands, BenchGpuReportsEveryCase) {
     EXPECT_EQ(j["frames_per_submit"], 1);
     EXPECT_EQ(bj["frames_per_submit"], 3);
     EXPECT_EQ(bj["validation"], true);
-    ASSERT_EQ(bj["cases"].size(), 6u);
+    ASSERT_EQ(bj["cases"].size(), 7u);
     for (const auto& c : bj["cases"]) {
         std::set<std::string> seen;
         for (const auto& p : c["passes"]) {
@@ -338,6 +342,27 @@ TEST_F(GpuCommands, BenchGpuReportsEveryCase) {
     EXPECT_NE(c["cases"][1]["description"].get<std::string>().find("(1 slice x 4 steps per side, 4x4 interleave"),
               std::string::npos);
     for (int i = 0; i < 2; ++i) EXPECT_EQ(b["cases"][i]["bytes_per_frame"], c["cases"][i]["bytes_per_frame"]);
+
+    // The gtao-half case: 2 slices x 4 steps with the 4x4 interleave and a 5-tap grid blur unless told
+    // otherwise (--gtao-* counts, --gtao-jitter, --half-blur-radius); the same buffers either way.
+    const std::string half = "bench --gpu --sizes 40x24 --frames 2 --warmup 0 --inputs 1 --json --cases gtao-half";
+    const CliResult h0 = runCli(half), h1 = runCli(half + " --gtao-slices 3 --gtao-jitter --half-blur-radius 4");
+    ASSERT_EQ(h0.code, 0) << h0.out;
+    ASSERT_EQ(h1.code, 0) << h1.out;
+    const nlohmann::json j0 = nlohmann::json::parse(h0.out), j1 = nlohmann::json::parse(h1.out);
+    EXPECT_EQ(j0["half_blur_radius"], 2);
+    EXPECT_EQ(j1["half_blur_radius"], 4);
+    EXPECT_NE(j0["cases"][0]["description"].get<std::string>().find(
+                  "half resolution (2 slices x 4 steps per side, 4x4 interleave, r 1 m)"),
+              std::string::npos)
+        << j0["cases"][0]["description"];
+    EXPECT_NE(j0["cases"][0]["description"].get<std::string>().find("5 taps per axis"), std::string::npos);
+    EXPECT_NE(j1["cases"][0]["description"].get<std::string>().find("(3 slices x 4 steps per side, jittered, r 1 m)"),
+              std::string::npos)
+        << j1["cases"][0]["description"];
+    EXPECT_NE(j1["cases"][0]["description"].get<std::string>().find("9 taps per axis"), std::string::npos);
+    EXPECT_EQ(j0["cases"][0]["bytes_per_frame"], j1["cases"][0]["bytes_per_frame"]);
+    expectFailure(half + " --half-blur-radius 0", {"half-blur-radius", "[1, 32]"});
 
     // --blur-radius: the gtao case's blur taps, in the report and the description; the same buffers.
     const CliResult taps = runCli(small + " --blur-radius 2");

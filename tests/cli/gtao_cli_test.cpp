@@ -67,7 +67,10 @@ TEST_F(GtaoCli, BadInputFailsWithOneLine) {
                           {"--gtao-falloff-start 1.5", "--gtao-falloff-start"},
                           {"--gtao-step-power 9", "--gtao-step-power"},
                           {"--gtao-sampling mip --gtao-mip-ratio 100", "--gtao-mip-ratio"},
-                          {"--gtao-half-res --gtao-mode full", "--gtao-half-res"},
+                          {"--gtao-half-blur-radius 3", "--gtao-half-res"},
+                          {"--gtao-half-res --gtao-half-blur-radius 33", "--gtao-half-blur-radius"},
+                          {"--gtao-half-res --frames 3 --gtao-half-blur-radius 1", "--gtao-half-blur-radius"},
+                          {"--gtao-jitter --gtao-interleave", "--gtao-interleave"},
                           {"--gtao-packed-history --frames 1", "--gtao-packed-history"},
                           {"--gtao-packed-history --frames 3 --gtao-mode spatial", "--gtao-packed-history"},
                           {"--gtao-slices 65", "--gtao-slices"},
@@ -130,8 +133,9 @@ TEST_F(GtaoCli, CompareMeasuresNearestSampling) {
     EXPECT_NEAR(nearest, planar, 0.005);
 }
 
-// --gtao-slices, --gtao-steps and --gtao-jitter reach the kernel in render, ao and compare: the preset's own
-// counts change nothing, other counts and the jitter change the AO, and `render` and `ao` agree bit for bit
+// --gtao-slices, --gtao-steps, --gtao-jitter and --gtao-interleave reach the kernel in render, ao and compare:
+// the preset's own counts change nothing, other counts, the jitter and the interleave change the AO, and
+// `render` and `ao` agree bit for bit (the gtao-half method with render's --gtao-half-res too)
 // on the same buffers; compare refuses --samples with --gtao-slices (both set the slices), and `ao` the flags
 // with an Alchemy method.
 TEST_F(GtaoCli, SliceFlagsReachTheKernel) {
@@ -147,12 +151,24 @@ TEST_F(GtaoCli, SliceFlagsReachTheKernel) {
     EXPECT_NE(render("--gtao-steps 5"), high);
     const std::vector<float> jittered = render("--gtao-slices 2 --gtao-steps 4 --gtao-jitter");
     EXPECT_NE(render("--gtao-slices 2 --gtao-steps 4"), jittered);
+    const std::vector<float> interleaved = render("--gtao-slices 2 --gtao-steps 4 --gtao-interleave");
+    EXPECT_NE(interleaved, jittered);
+    EXPECT_NE(render("--gtao-slices 2 --gtao-steps 4"), interleaved);
 
     const std::string buffers = "ao --method gtao --depth " + path("aov/depth.exr") + " --normal " +
                                 path("aov/normal.exr") + " --camera " + path("aov/camera.json") + " -o " + path("ao.exr");
     Result r = run(buffers + " --blur none --gtao-slices 2 --gtao-steps 4 --gtao-jitter");
     ASSERT_EQ(r.code, 0) << r.out;
     EXPECT_EQ(obscura::readExr(path("ao.exr")).pixels, render("--blur none --gtao-slices 2 --gtao-steps 4 --gtao-jitter"));
+    // The gtao-half method: 2 interleaved slices x 4 steps at half resolution, --blur on the grid; render's
+    // --gtao-half-res with the same counts and a 5-tap grid blur gives the same bits.
+    r = run("ao --method gtao-half --depth " + path("aov/depth.exr") + " --normal " + path("aov/normal.exr") +
+            " --camera " + path("aov/camera.json") + " -o " + path("ao.exr") + " --blur separable --blur-radius 2");
+    ASSERT_EQ(r.code, 0) << r.out;
+    const std::vector<float> half = render("--gtao-half-res --gtao-slices 2 --gtao-steps 4 --gtao-interleave");
+    EXPECT_EQ(obscura::readExr(path("ao.exr")).pixels, half);
+    EXPECT_NE(half, interleaved);
+    EXPECT_NE(render("--gtao-half-res --gtao-slices 2 --gtao-steps 4 --gtao-interleave --gtao-half-blur-radius 0"), half);
     expectFailure("ao --method alchemy --depth " + path("aov/depth.exr") + " --camera " + path("aov/camera.json") +
                       " -o " + path("a.exr") + " --gtao-steps 4",
                   {"--gtao-steps", "alchemy"});
@@ -165,6 +181,7 @@ TEST_F(GtaoCli, SliceFlagsReachTheKernel) {
     };
     EXPECT_EQ(mae("--gtao-slices 3 --gtao-steps 3"), mae(""));
     EXPECT_NE(mae("--gtao-slices 2 --gtao-steps 4 --gtao-jitter"), mae(""));
+    EXPECT_NE(mae("--gtao-slices 2 --gtao-steps 4 --gtao-interleave"), mae("--gtao-slices 2 --gtao-steps 4"));
     // --blur-radius reaches compare's blur: the default radius is 6, another changes the error.
     EXPECT_EQ(mae("--blur separable --blur-radius 6"), mae("--blur separable"));
     EXPECT_NE(mae("--blur separable --blur-radius 2"), mae("--blur separable"));

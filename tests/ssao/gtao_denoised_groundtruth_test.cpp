@@ -59,15 +59,14 @@ TEST(GtaoGroundTruth, TwoJitteredSlicesOfFourStepsMatchTheHighPresetOnceBlurred)
         double worstFewerMargin[kFewer];  // per config, its largest excess over high's error
         std::fill(std::begin(worstFewerMargin), std::end(worstFewerMargin), -1.0);
         for (const char* scene : {"well", "stairs", "corner"}) {
-            test::TopDownView view = test::topDownView(scene, 256, 256);
-            trace::Tracer tracer(view.scene);
-            GBuffer g = trace::renderGBuffer(tracer, view.camera);
-            const Image reference = test::rayTracedReference(tracer, g, view.radius, 1024);
+            const test::TopDownReference top(scene, 256, 1024);
+            const GBuffer& g = top.g;
+            const Image& reference = top.reference;
             // radius: the blur's taps on each side (6, its default: 13 taps; 0: no blur).
             auto blurredError = [&](const Config& c, int radius = 6) {
                 GtaoSettings s;
                 applyQuality(s, GtaoQuality::High);
-                s.radius = view.radius;
+                s.radius = top.view.radius;
                 s.sampling = sampling;
                 c.counts.apply(s);
                 const Image visibility = computeGtao(g, s).visibility;

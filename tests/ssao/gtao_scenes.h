@@ -51,6 +51,21 @@ inline Image rayTracedReference(const trace::Tracer& tracer, const GBuffer& g, f
     return trace::ambientObscurance(tracer, g, settings);
 }
 
+// A top-down view rendered, with its ray-traced reference (`rays` rays per pixel) and the tracer for more.
+// Neither copied nor moved: the tracer refers to the view's scene.
+struct TopDownReference {
+    TopDownReference(const std::string& name, int size, int rays)
+        : view(topDownView(name, size, size)), tracer(view.scene), g(trace::renderGBuffer(tracer, view.camera)),
+          reference(rayTracedReference(tracer, g, view.radius, rays)) {}
+    TopDownReference(const TopDownReference&) = delete;
+    TopDownReference& operator=(const TopDownReference&) = delete;
+
+    TopDownView view;
+    trace::Tracer tracer;
+    GBuffer g;
+    Image reference;
+};
+
 // Mean of |a - b| over the G-buffer's surface pixels: the MAE that `obscura compare` reports.
 inline double meanAbsoluteError(const GBuffer& g, const Image& a, const Image& b) {
     return eval::errorStats(a, b, g).mae;

@@ -113,10 +113,10 @@ TEST(GtaoTemporal, AccumulatedMatchesRayTraced) {
     //   the first frame (= spatial-only mode) is within 0.001 of these: the error is bias, not noise.
     // (Before the column rule and linear steps, 3 steps gave 0.028-0.033.) The bound is the 0.03.
     for (const char* name : {"well", "stairs", "corner"}) {
-        test::TopDownView view = test::topDownView(name, 96, 96);
-        trace::Tracer tracer(view.scene);
-        GBuffer g = trace::renderGBuffer(tracer, view.camera);
-        const Image reference = test::rayTracedReference(tracer, g, view.radius, 1024);
+        const test::TopDownReference top(name, 96, 1024);
+        const GBuffer& g = top.g;
+        const Image& reference = top.reference;
+        const test::TopDownView& view = top.view;
         for (int steps : {3, 6})
             for (bool half : {false, true}) {
                 if (steps == 3 && half) continue;  // not worth the test's time
@@ -143,10 +143,10 @@ TEST(GtaoTemporal, AccumulatedMatchesRayTraced) {
 // tracing must not move at the digits the quality tables show.
 TEST(GtaoTemporal, PackedHistoryKeepsTheAccuracy) {
     for (const char* name : {"well", "stairs", "corner"}) {
-        test::TopDownView view = test::topDownView(name, 64, 64);
-        trace::Tracer tracer(view.scene);
-        const GBuffer g = trace::renderGBuffer(tracer, view.camera);
-        const Image reference = test::rayTracedReference(tracer, g, view.radius, 512);
+        const test::TopDownReference top(name, 64, 512);
+        const GBuffer& g = top.g;
+        const Image& reference = top.reference;
+        const test::TopDownView& view = top.view;
         GtaoTemporalSettings packed;
         packed.packedHistory = true;
         GtaoTemporal a(oneSlice(view.radius, 3), GtaoTemporalSettings{}), b(oneSlice(view.radius, 3), packed);

@@ -40,7 +40,7 @@ std::string apiText(std::uint32_t v) {
 struct GpuBenchOptions {
     bool gpu = false;
     std::string sizes = "1280x720,1920x1080,3840x2160";
-    std::string cases = "alchemy,alchemy-fused,gtao,gtao-spatial,gtao-temporal,gtao-temporal-half";
+    std::string cases = "alchemy,alchemy-fused,gtao,gtao-half,gtao-spatial,gtao-temporal,gtao-temporal-half";
     int frames = 200;
     int warmup = 20;
     int framesPerSubmit = 1;
@@ -56,6 +56,7 @@ struct GpuBenchOptions {
     float radius = 1.0f;
     GtaoSliceFlags gtao;
     int blurRadius = 6;
+    int halfBlurRadius = 2;
     double peakGbps = 3000.0;
     int device = -1;
     bool json = false;
@@ -69,7 +70,7 @@ void GpuBenchOptions::add(CLI::App& bench) {
                    "--warmup), Mpixel/s, bytes per frame and their share of --peak-gbps");
     bench.add_option("--sizes", sizes, "--gpu: comma-separated WxH sizes")->capture_default_str();
     bench.add_option("--cases", cases,
-                     "--gpu: comma-separated cases: alchemy, alchemy-fused, gtao, gtao-spatial, gtao-temporal, gtao-temporal-half")
+                     "--gpu: comma-separated cases: alchemy, alchemy-fused, gtao, gtao-half, gtao-spatial, gtao-temporal, gtao-temporal-half")
         ->capture_default_str();
     bench.add_option("--frames", frames, "--gpu: timed frames per case and size, [1, 100000]")->capture_default_str();
     bench.add_option("--warmup", warmup, "--gpu: untimed frames before them, [0, 10000]")->capture_default_str();
@@ -99,10 +100,14 @@ void GpuBenchOptions::add(CLI::App& bench) {
                    "as an engine that keeps last frame's depth (for TAA, say) can");
     addGtaoSamplingOption(bench, sampling, mipRatio, "--gpu: how the GTAO cases' horizon samples read depth");
     gtao.add(bench, "--gpu, the GTAO cases", "; the temporal cases take --temporal-slices",
-             "; the gtao case only: the others rotate by their 4x4 interleave");
+             "; the gtao and gtao-half cases only: the others rotate by their 4x4 interleave");
     bench.add_option("--blur-radius", blurRadius,
                      "--gpu: taps on each side of the alchemy and gtao cases' separable blur, [1, 32] (6: 13 taps, the "
                      "paper's)")
+        ->capture_default_str();
+    bench.add_option("--half-blur-radius", halfBlurRadius,
+                     "--gpu: taps on each side of the gtao-half case's blur, on the half-resolution grid, [1, 32] (2: 5 "
+                     "taps)")
         ->capture_default_str();
     bench.add_option("--ao-radius", radius,
                      "--gpu: the GTAO cases' radius, m, (0, 1e4]; a smaller one keeps the horizon samples nearer the "
@@ -126,6 +131,7 @@ void runGpuBench(const GpuBenchOptions& o) {
     settings.temporalSlices = o.temporalSlices;
     settings.gtao = o.gtao.value;
     settings.blurRadius = o.blurRadius;
+    settings.halfBlurRadius = o.halfBlurRadius;
     settings.bentNormals = !o.visibilityOnly;
     settings.packedHistory = o.packedHistory;
     settings.callerKeepsDepth = o.keepPreviousDepth;
@@ -191,7 +197,9 @@ void runGpuBench(const GpuBenchOptions& o) {
     report["gtao_slices"] = o.gtao.value.slices;  // 0: the preset's (the descriptions give each case's counts)
     report["gtao_steps"] = o.gtao.value.steps;
     report["gtao_jitter"] = o.gtao.value.jitter;
+    report["gtao_interleave"] = o.gtao.value.interleave;
     report["blur_radius"] = o.blurRadius;
+    report["half_blur_radius"] = o.halfBlurRadius;
     report["validation"] = context.validation();
     if (!o.json) {
         std::string variants;  // the flags that change what the GTAO cases run
@@ -205,8 +213,11 @@ void runGpuBench(const GpuBenchOptions& o) {
         if (o.gtao.value.slices != 0) variants += ", GTAO " + std::to_string(o.gtao.value.slices) + " slices";
         if (o.gtao.value.steps != 0) variants += ", GTAO " + std::to_string(o.gtao.value.steps) + " steps per side";
         if (o.gtao.value.jitter) variants += ", GTAO jittered";
+        if (o.gtao.value.interleave) variants += ", GTAO slices by the 4x4 interleave";
         if (o.blurRadius != gpu::GpuBenchSettings{}.blurRadius)
             variants += ", blur " + std::to_string(2 * o.blurRadius + 1) + " taps per axis";
+        if (o.halfBlurRadius != gpu::GpuBenchSettings{}.halfBlurRadius)
+            variants += ", half-resolution blur " + std::to_string(2 * o.halfBlurRadius + 1) + " taps per axis";
         if (settings.gtaoRadius != gpu::GpuBenchSettings{}.gtaoRadius) {
             char text[48];
             std::snprintf(text, sizeof text, ", GTAO r %g m", double(o.radius));

@@ -227,14 +227,14 @@ void addCompareCommand(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand(
         "compare", "Screen-space AO methods against the ray-traced integral they estimate: MAE, RMSE, bias, max");
     cmd->add_option("scene", o->scene, "Built-in scene name or a .gltf/.glb/.obj/.ply file")->capture_default_str();
-    cmd->add_option("--methods", o->methods, "Comma-separated methods: alchemy, alchemy-chapter, gtao, gtao-ultra, gtao-nearest, gtao-mip, gtao-planar-mip")->capture_default_str();
+    cmd->add_option("--methods", o->methods, "Comma-separated methods: alchemy, alchemy-chapter, gtao, gtao-ultra, gtao-nearest, gtao-mip, gtao-planar-mip, gtao-half (at half resolution: --blur filters its grid before the upsampling)")->capture_default_str();
     cmd->add_option("-o,--output", o->output, "Side-by-side PNG")->capture_default_str();
     cmd->add_option("--rays", o->rays, "Rays per pixel of the ray-traced reference, [1, 65536]")->capture_default_str();
     cmd->add_option("--samples", o->samples, "Samples per pixel of every method (0: each method's default)")
         ->capture_default_str();
     cmd->add_option("--radius", o->radius, "World radius of every method, m (0: each method's default)")
         ->capture_default_str();
-    cmd->add_option("--blur", o->blur, "Filter the methods' AO: none, separable or 2d (the reference is exact)")
+    cmd->add_option("--blur", o->blur, "Filter the methods' AO: none, separable or 2d (the reference is exact; gtao-half's grid, before its upsampling)")
         ->check(CLI::IsMember({"none", "separable", "2d"}))
         ->capture_default_str();
     cmd->add_option("--blur-radius", o->blurRadius, "Taps on each side of the blur's centre, [1, 32] (6: 13 taps)")

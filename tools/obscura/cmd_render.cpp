@@ -174,7 +174,12 @@ void run(const RenderOptions& o) {
                     alchemy.formulation == ssao::AlchemyFormulation::Paper ? "paper" : "chapter", double(alchemy.radius),
                     double(alchemy.intensity), double(alchemy.contrast), alchemy.samples, o.blur.mode.c_str(),
                     o.fusedBlur ? ", rows fused into the estimator" : "");
-    if (o.ao == "gtao") std::printf(" (%s, r = %s m, %d frame(s))", o.gtao.quality.c_str(), o.radius.c_str(), o.gtao.frames);
+    if (o.ao == "gtao") {
+        const ssao::GtaoSettings g = o.gtao.settings(aoSettings.radius);
+        std::printf(" (%s: %d slice(s) x %d steps%s, r = %s m, %d frame(s)%s)", o.gtao.quality.c_str(), g.sliceCount,
+                    g.stepsPerSide, g.interleave ? ", 4x4 interleave" : g.jitter ? ", jittered" : "", o.radius.c_str(),
+                    o.gtao.frames, o.gtao.halfResolution ? ", half resolution" : "");
+    }
     if (context) std::printf(", on %s", context->device().name.c_str());
     std::printf(", %.2f s\n", secondsSince(start));
 }

@@ -6,12 +6,14 @@
 #include "obscura/error.h"
 #include "obscura/gpu_lighting.h"
 #include "obscura/gpu_temporal.h"
+#include "obscura/gtao_half_res.h"
 #include "obscura/image_io.h"
 #include "obscura/multibounce.h"
 #include "obscura/specular_occlusion.h"
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <optional>
@@ -58,6 +60,10 @@ void GtaoSliceFlags::add(CLI::App& app, const std::string& lead, const std::stri
     app.add_flag("--gtao-jitter", value.jitter,
                  lead + ": rotate each pixel's slices and offset its steps by a hash of the pixel (and frame), noise "
                         "that a blur averages; without it every pixel has the same regular slices" + jitterNote);
+    app.add_flag("--gtao-interleave", value.interleave,
+                 lead + ": rotate each pixel's slices by its place in the 4x4 pattern of the spatio-temporal mode "
+                        "(16 direction classes per 4x4 block), stratified where --gtao-jitter is noise; a blur "
+                        "averages them" + jitterNote);
 }
 
 void GtaoSliceFlags::validate() const {
@@ -104,7 +110,14 @@ void GtaoOptions::add(CLI::App& app) {
                    "history), auto (full for one frame, temporal for more)")
         ->check(CLI::IsMember({"auto", "full", "spatial", "temporal"}))
         ->capture_default_str();
-    app.add_flag("--gtao-half-res", halfResolution, "GTAO spatial/temporal: evaluate at half resolution, upsample by depth");
+    app.add_flag("--gtao-half-res", halfResolution,
+                 "GTAO: evaluate at half resolution (every other pixel in x and y) and upsample by depth; in the full "
+                 "mode the grid is blurred first (--gtao-half-blur-radius). At half resolution 2 slices x 4 steps "
+                 "with --gtao-interleave beat the full-resolution high preset against ray tracing (docs/QUALITY.md)");
+    app.add_option("--gtao-half-blur-radius", halfBlurRadius,
+                   "GTAO full mode with --gtao-half-res: taps on each side of the separable blur on the half-resolution "
+                   "grid, [0, 32] (0: no blur; 2: 5 taps)")
+        ->capture_default_str();
     app.add_flag("--gtao-packed-history", packedHistory,
                  "GTAO temporal: keep the history in packed words (visibility to 1/65535, octahedral normals), "
                  "4 words per pixel instead of 9 floats, as a GPU would");
@@ -152,8 +165,10 @@ void GtaoOptions::validate(const std::string& aovDir) const {
     if (!(roughness >= 0.0f && roughness <= 1.0f)) fail("--roughness", "must be in [0, 1]");
     if (!(falloffStart >= 0.0f && falloffStart <= 1.0f)) fail("--gtao-falloff-start", "must be in [0, 1]");
     if (output != "visibility" && aovDir.empty()) fail("--ao-output", "'" + output + "' needs --aov-dir");
-    if (halfResolution && mode == "full") fail("--gtao-half-res", "needs --gtao-mode spatial or temporal");
     const bool temporal = mode == "temporal" || (mode == "auto" && frames > 1);
+    if (halfBlurRadius < 0 || halfBlurRadius > ssao::kMaxBlurRadius) fail("--gtao-half-blur-radius", "must be in [0, 32]");
+    if (halfBlurRadius != 2 && !(halfResolution && (mode == "full" || (mode == "auto" && !temporal))))
+        fail("--gtao-half-blur-radius", "needs --gtao-half-res in the full mode (--gtao-mode full, or auto with one frame)");
     if (packedHistory && !temporal)
         fail("--gtao-packed-history", "needs a history: --gtao-mode temporal, or auto with --frames > 1");
     if (sliceFlags.value.jitter && (mode == "spatial" || temporal))
@@ -170,6 +185,9 @@ GtaoFrame renderGtaoFrames(const GtaoOptions& o, float radius, const trace::Trac
     temporalSettings.temporal = mode == "temporal";
     temporalSettings.halfResolution = o.halfResolution;
     temporalSettings.packedHistory = o.packedHistory;
+    ssao::GtaoHalfResolutionSettings half;  // the full mode's, with --gtao-half-res
+    half.blur.mode = o.halfBlurRadius > 0 ? ssao::BlurMode::Separable : ssao::BlurMode::None;
+    half.blur.radius = std::max(o.halfBlurRadius, 1);
     const bool bent = o.output != "visibility";
     const bool all = o.output == "all";
     // The GPU skips the bent normal where nothing reads it: no bent-normal image, no specular occlusion (the
@@ -189,7 +207,10 @@ GtaoFrame renderGtaoFrames(const GtaoOptions& o, float radius, const trace::Trac
         f.gbuffer = trace::renderGBuffer(tracer, gtaoPathCamera(camera, k), gbufferSettings);
         ssao::GtaoResult r;
         const ssao::GtaoConstants constants = ssao::gtaoConstants(settings, f.gbuffer.camera, k);
-        if (mode == "full")
+        if (mode == "full" && o.halfResolution)
+            r = context ? gpu::computeGtaoHalfResolution(*context, f.gbuffer, settings, half, k, outputs)
+                        : ssao::computeGtaoHalfResolution(f.gbuffer, settings, half, k);
+        else if (mode == "full")
             r = context ? gpu::computeGtao(*context, f.gbuffer, constants, outputs)
                         : ssao::computeGtao(f.gbuffer, constants);
         else

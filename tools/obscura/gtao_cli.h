@@ -18,7 +18,7 @@ class App;
 
 namespace obscura::cli {
 
-// --gtao-slices, --gtao-steps and --gtao-jitter (ssao::GtaoSliceOverride), for the commands that run GTAO.
+// --gtao-slices, --gtao-steps, --gtao-jitter and --gtao-interleave (ssao::GtaoSliceOverride), for the commands that run GTAO.
 struct GtaoSliceFlags {
     ssao::GtaoSliceOverride value;
 
@@ -39,6 +39,7 @@ struct GtaoOptions {
     int frames = 1;
     std::string mode = "auto";          // auto, full, spatial, temporal
     bool halfResolution = false;
+    int halfBlurRadius = 2;  // full mode at half resolution: taps on each side of the grid's blur; 0: none
     bool packedHistory = false;
     std::string thickness = "none";
     float falloffStart = 1.0f;

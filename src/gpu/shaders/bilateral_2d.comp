@@ -23,28 +23,31 @@ layout(std430, binding = kBilateral2DBindingKernel) readonly buffer Kernel { flo
 layout(std430, binding = kBilateralBindingInput) readonly buffer Input { float aoIn[]; };
 layout(std430, binding = kBilateralBindingOutput) writeonly buffer Output { float aoOut[]; };
 
+#include "bilateral_guide.glsl"
+
 vec3 normalAt(uint i) { return vec3(normal[3 * i], normal[3 * i + 1], normal[3 * i + 2]); }
 
 void main() {
     const ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     if (p.x >= k.width || p.y >= k.height) return;
     const uint x = uint(p.y) * uint(k.width) + uint(p.x);
-    const float d = depth[x];
+    const float d = depth[bilateralGuideIndex(p.x, p.y)];
     // A centre on sky keeps its input (its weights would be 0 / 0).
     if (!(d < 1e30)) {
         aoOut[x] = aoIn[x];
         return;
     }
     const float c = k.depthScale / (d * d);  // 0 on sky: its output is its input anyway
-    const vec3 n = kUseNormal != 0 ? normalAt(x) : vec3(0.0);
+    const vec3 n = kUseNormal != 0 ? normalAt(bilateralGuideIndex(p.x, p.y)) : vec3(0.0);
     float sum = 0.0, wsum = 0.0;
     for (int ty = max(-k.radius, -p.y); ty <= min(k.radius, k.height - 1 - p.y); ++ty) {
         const float ky = kernel[abs(ty)];
         for (int tx = max(-k.radius, -p.x); tx <= min(k.radius, k.width - 1 - p.x); ++tx) {
             const uint o = uint((p.y + ty) * k.width + p.x + tx);
-            const float dd = depth[o] - d;
+            const uint g = bilateralGuideIndex(p.x + tx, p.y + ty);
+            const float dd = depth[g] - d;
             float w = kernel[abs(tx)] * ky * exp2(-dd * dd * c);
-            if (kUseNormal != 0) w *= max(0.0, dot(n, normalAt(o)));
+            if (kUseNormal != 0) w *= max(0.0, dot(n, normalAt(g)));
             sum += w * aoIn[o];
             wsum += w;
         }

@@ -43,6 +43,7 @@ shared float tileLogSpatial[2 * kBilateralMaxRadius + 1];
 // 8 columns x 4 rows read 32 consecutive slots.
 int tileIndex(int line, int i) { return k.axis == 0 ? i : i * kBilateralVerticalTileX + line; }
 
+#include "bilateral_guide.glsl"
 #include "bilateral_taps.glsl"
 
 void main() {
@@ -71,7 +72,7 @@ void main() {
     for (int i = localAlong; i < tileLength + 2 * k.radius; i += tileLength) {
         const int a = clamp(start + i, 0, length - 1);
         const uint o = k.axis == 0 ? uint(across) * uint(k.width) + uint(a) : uint(a) * uint(k.width) + uint(across);
-        tileDepth[tileIndex(line, i)] = depth[o];
+        tileDepth[tileIndex(line, i)] = depth[k.axis == 0 ? bilateralGuideIndex(a, across) : bilateralGuideIndex(across, a)];
         tileInput[tileIndex(line, i)] = aoIn[o];
     }
     for (int i = invocation; i <= 2 * k.radius; i += kBilateralWorkgroupX) tileLogSpatial[i] = logSpatial[i];
@@ -82,9 +83,11 @@ void main() {
     const int centre = localAlong + k.radius;  // this pixel in the tile
     const float d = tileDepth[tileIndex(line, centre)];
     const float c = k.depthScale / (d * d);  // 0 on sky: its output is its input anyway
-    const vec3 n = kUseNormal != 0 ? vec3(normal[3 * x], normal[3 * x + 1], normal[3 * x + 2]) : vec3(0.0);
-    const int stride = k.axis == 0 ? 1 : k.width;
+    // The normals are read from the guide: the centre's index there, and the taps' spacing.
+    const uint g = bilateralGuideIndex(p.x, p.y);
+    const vec3 n = kUseNormal != 0 ? vec3(normal[3 * g], normal[3 * g + 1], normal[3 * g + 2]) : vec3(0.0);
+    const int guideStride = k.axis == 0 ? bilateralGuideStep() : int(bilateralGuideIndex(0, 1));
     // Taps inside the image along the axis: t in [tFirst, tLast].
     const int tFirst = max(-k.radius, -along), tLast = min(k.radius, length - 1 - along);
-    aoOut[x] = bilateralTaps(line, centre, k.radius, tFirst, tLast, d, c, n, x, stride);
+    aoOut[x] = bilateralTaps(line, centre, k.radius, tFirst, tLast, d, c, n, g, guideStride);
 }

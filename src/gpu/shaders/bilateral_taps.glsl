@@ -4,8 +4,8 @@
 // where that can be 1, the buffer `normal`.
 
 // The centre at tile position `centre` of line `line`, with depth d, c = depthScale / d^2, normal n and
-// pixel index x; taps t in [tFirst, tLast] (those inside the image), `stride` pixels apart. Returns the
-// blurred value, or the centre's own input where nothing weighs.
+// index x in the normal plane; taps t in [tFirst, tLast] (those inside the image), `stride` pixels apart
+// there. Returns the blurred value, or the centre's own input where nothing weighs.
 float bilateralTaps(int line, int centre, int radius, int tFirst, int tLast, float d, float c, vec3 n, uint x,
                     int stride) {
     float sum = 0.0, wsum = 0.0;

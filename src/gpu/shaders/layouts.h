@@ -35,8 +35,11 @@ struct BilateralConstants {
 
     int useNormal;     // 0 or 1
     float depthScale;  // log2(e) / (2 depthSigma^2)
-    int pad0;
-    int pad1;
+    // Where the depth and normal planes (the guide) hold pixel (x, y): at (x, y) guideStep, in rows of
+    // guideWidth pixels. 0 or 1: planes of the image's own size (guideWidth unused); 2: full-resolution planes
+    // under a half-resolution image (pixel (x, y) at (2x, 2y), gtao_half_res.h).
+    int guideStep;
+    int guideWidth;    // px, with guideStep 2
 };
 
 // Storage buffers of set 0 (float arrays, std430).
