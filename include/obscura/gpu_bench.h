@@ -33,6 +33,8 @@ struct GpuBenchSettings {
                          // paper's 13 taps, what the Alchemy target names)
     int halfBlurRadius = 2;  // taps on each side of the gtao-half case's blur, on the half-resolution grid,
                              // [1, 32] (2: 5 taps, the configuration docs/QUALITY.md measured)
+    bool halfBlur2D = false;  // the gtao-half case's blur as one 2-D dispatch instead of two separable ones
+                              // (both by depth alone; the same error on the built-in views)
     ssao::GtaoQuality quality = ssao::GtaoQuality::High;  // the GTAO cases' preset (slices x steps)
     // Counts over the preset's: slices of the gtao and gtao-spatial cases (the temporal ones take
     // temporalSlices), steps of every GTAO case; jitter rotates the gtao case's slices per pixel, noise its

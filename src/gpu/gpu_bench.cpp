@@ -176,11 +176,17 @@ CaseSetup gtaoHalfCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s
     ssao::applyHalfResolutionCounts(settings, s.gtao);
     ssao::GtaoHalfResolutionSettings half;
     half.blur.radius = s.halfBlurRadius;
+    // Both blurs by depth alone: the 2-D one measured as accurate as the separable one there (docs/QUALITY.md).
+    half.blur.mode = s.halfBlur2D ? ssao::BlurMode::TwoD : ssao::BlurMode::Separable;
+    half.blur.normalWeight = ssao::NormalWeight::Off;
     auto passes = std::make_shared<GtaoHalfResolutionPasses>(c, settings, half, w, h, s.bentNormals);
     CaseSetup setup;
-    setup.description = "GTAO at half resolution (" + slicesText(settings) + radiusText(settings) +
-                        "), visibility" + (s.bentNormals ? " + bent normal" : " only") + " + separable bilateral there, " +
-                        std::to_string(2 * s.halfBlurRadius + 1) + " taps per axis + depth-aware upsample";
+    const std::string taps = std::to_string(2 * s.halfBlurRadius + 1);
+    setup.description = "GTAO at half resolution (" + slicesText(settings) + radiusText(settings) + "), visibility" +
+                        (s.bentNormals ? " + bent normal" : " only") +
+                        (s.halfBlur2D ? " + 2-D bilateral there, " + taps + "x" + taps + " taps"
+                                      : " + separable bilateral there, " + taps + " taps per axis") +
+                        ", depth only + depth-aware upsample";
     setup.bytes = double(passes->bytesPerFrame());
     setup.keepAlive = {passes};
     setup.record = [passes](VkCommandBuffer cmd, const ResidentInput& in, int index,

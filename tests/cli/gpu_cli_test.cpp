@@ -363,6 +363,20 @@ TEST_F(GpuCommands, BenchGpuReportsEveryCase) {
     EXPECT_NE(j1["cases"][0]["description"].get<std::string>().find("9 taps per axis"), std::string::npos);
     EXPECT_EQ(j0["cases"][0]["bytes_per_frame"], j1["cases"][0]["bytes_per_frame"]);
     expectFailure(half + " --half-blur-radius 0", {"half-blur-radius", "[1, 32]"});
+    // --half-blur 2d: one dispatch, so one pass of guide, input and output over the grid instead of two.
+    const CliResult h2 = runCli(half + " --half-blur 2d");
+    ASSERT_EQ(h2.code, 0) << h2.out;
+    const nlohmann::json j2 = nlohmann::json::parse(h2.out);
+    EXPECT_EQ(j0["half_blur"], "separable");
+    EXPECT_EQ(j2["half_blur"], "2d");
+    EXPECT_NE(j2["cases"][0]["description"].get<std::string>().find("2-D bilateral there, 5x5 taps"), std::string::npos)
+        << j2["cases"][0]["description"];
+    EXPECT_EQ(j0["cases"][0]["bytes_per_frame"].get<double>() - j2["cases"][0]["bytes_per_frame"].get<double>(),
+              12.0 * 20 * 12);  // a 40x24 image's 20x12 grid
+    std::set<std::string> twoD;
+    for (const auto& pass : j2["cases"][0]["passes"]) twoD.insert(pass["name"].get<std::string>());
+    EXPECT_EQ(twoD, (std::set<std::string>{"gtao", "blur", "upsample"}));
+    expectFailure(half + " --half-blur box", {"--half-blur"}, 2);  // a bad command line
 
     // --blur-radius: the gtao case's blur taps, in the report and the description; the same buffers.
     const CliResult taps = runCli(small + " --blur-radius 2");

@@ -57,6 +57,7 @@ struct GpuBenchOptions {
     GtaoSliceFlags gtao;
     int blurRadius = 6;
     int halfBlurRadius = 2;
+    std::string halfBlur = "separable";
     double peakGbps = 3000.0;
     int device = -1;
     bool json = false;
@@ -109,6 +110,11 @@ void GpuBenchOptions::add(CLI::App& bench) {
                      "--gpu: taps on each side of the gtao-half case's blur, on the half-resolution grid, [1, 32] (2: 5 "
                      "taps)")
         ->capture_default_str();
+    bench.add_option("--half-blur", halfBlur,
+                     "--gpu: the gtao-half case's blur, separable (two dispatches from shared memory) or 2d (one "
+                     "dispatch, (2r+1)^2 taps); both by depth alone")
+        ->check(CLI::IsMember({"separable", "2d"}))
+        ->capture_default_str();
     bench.add_option("--ao-radius", radius,
                      "--gpu: the GTAO cases' radius, m, (0, 1e4]; a smaller one keeps the horizon samples nearer the "
                      "pixel on screen (fewer cache lines per frame, nearly the same arithmetic)")
@@ -132,6 +138,7 @@ void runGpuBench(const GpuBenchOptions& o) {
     settings.gtao = o.gtao.value;
     settings.blurRadius = o.blurRadius;
     settings.halfBlurRadius = o.halfBlurRadius;
+    settings.halfBlur2D = o.halfBlur == "2d";
     settings.bentNormals = !o.visibilityOnly;
     settings.packedHistory = o.packedHistory;
     settings.callerKeepsDepth = o.keepPreviousDepth;
@@ -200,6 +207,7 @@ void runGpuBench(const GpuBenchOptions& o) {
     report["gtao_interleave"] = o.gtao.value.interleave;
     report["blur_radius"] = o.blurRadius;
     report["half_blur_radius"] = o.halfBlurRadius;
+    report["half_blur"] = o.halfBlur;
     report["validation"] = context.validation();
     if (!o.json) {
         std::string variants;  // the flags that change what the GTAO cases run
@@ -218,6 +226,7 @@ void runGpuBench(const GpuBenchOptions& o) {
             variants += ", blur " + std::to_string(2 * o.blurRadius + 1) + " taps per axis";
         if (o.halfBlurRadius != gpu::GpuBenchSettings{}.halfBlurRadius)
             variants += ", half-resolution blur " + std::to_string(2 * o.halfBlurRadius + 1) + " taps per axis";
+        if (o.halfBlur == "2d") variants += ", half-resolution blur in 2-D";
         if (settings.gtaoRadius != gpu::GpuBenchSettings{}.gtaoRadius) {
             char text[48];
             std::snprintf(text, sizeof text, ", GTAO r %g m", double(o.radius));
