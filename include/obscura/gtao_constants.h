@@ -27,6 +27,7 @@ using uint = std::uint32_t;
 #define GTAO_SAMPLING_MIP 2       // ... or, farther out, the point of a coarser level of a depth MIP chain
                                   // (obscura/gtao_mips.h); nearest where no coarser level is fine enough
 #define GTAO_SAMPLING_PLANAR_MIP 3  // the chain farther out, planar samples nearer
+#define GTAO_SAMPLING_PLANAR_NEAREST 4  // planar samples nearer, nearest-pixel ones farther out (no chain)
 
 struct GtaoConstants {
     int width;                 // image size, pixels
@@ -54,7 +55,8 @@ struct GtaoConstants {
     int beyondRadius;          // GTAO_BEYOND_*: what a sample farther than the full-weight distance stands for
     int sampling;              // GTAO_SAMPLING_*: how a horizon sample reads the depth buffer
     int mipLevels;             // GTAO_SAMPLING_(PLANAR_)MIP: coarse levels of the chain, [0, GTAO_MAX_MIP_LEVELS]; else 0
-    float mipTexelScale;       // the same: widest texel a sample may read per pixel of its distance
+    float mipTexelScale;       // the same: widest texel a sample may read per pixel of its distance; with
+                               // PLANAR_NEAREST, samples from 2 / mipTexelScale pixels out read the nearest pixel
 };
 
 #ifdef __cplusplus
@@ -67,7 +69,14 @@ OBSCURA_FN bool gtaoSamplingReadsMips(int sampling) {
     return sampling == GTAO_SAMPLING_MIP || sampling == GTAO_SAMPLING_PLANAR_MIP;
 }
 OBSCURA_FN bool gtaoSamplingPlanarNear(int sampling) {
-    return sampling == GTAO_SAMPLING_PLANAR || sampling == GTAO_SAMPLING_PLANAR_MIP;
+    return sampling == GTAO_SAMPLING_PLANAR || sampling == GTAO_SAMPLING_PLANAR_MIP ||
+           sampling == GTAO_SAMPLING_PLANAR_NEAREST;
+}
+// Whether a sample offsetPixels from the centre that reads level 0 is planar: PLANAR_NEAREST keeps the quad
+// for samples nearer than 2 / texelScale pixels (where MIP sampling would read level 0), the others by mode.
+OBSCURA_FN bool gtaoSamplingPlanarAt(int sampling, float offsetPixels, float texelScale) {
+    return gtaoSamplingPlanarNear(sampling) &&
+           (sampling != GTAO_SAMPLING_PLANAR_NEAREST || offsetPixels * texelScale < 2.0f);
 }
 #undef OBSCURA_FN
 

@@ -68,9 +68,11 @@ AoMethod gtao(const char* name, const char* description, ssao::GtaoQuality quali
 
 // GTAO at half resolution (ssao::computeGtaoHalfResolution) with its measured counts unless the override
 // gives others; the options' blur filters the grid before the upsampling.
-AoMethod gtaoHalf(const char* name, const char* description) {
-    auto settings = [](const MethodOptions& o) {
+AoMethod gtaoHalf(const char* name, const char* description,
+                  ssao::GtaoSampling sampling = ssao::GtaoSampling::Planar) {
+    auto settings = [sampling](const MethodOptions& o) {
         ssao::GtaoSettings s;
+        s.sampling = sampling;
         if (o.radius > 0.0f) s.radius = o.radius;
         ssao::applyHalfResolutionCounts(s, o.gtao);
         if (o.samples > 0 && o.gtao.slices == 0) s.sliceCount = std::clamp(o.samples / (2 * s.stepsPerSide), 1, 64);
@@ -113,8 +115,14 @@ const std::vector<AoMethod>& aoMethods() {
         gtao("gtao-planar-mip", "GTAO high preset with a depth MIP chain: far samples from 4 coarser levels, near "
                                 "ones planar",
              ssao::GtaoQuality::High, ssao::GtaoSampling::PlanarMip),
+        gtao("gtao-planar-nearest", "GTAO high preset with planar horizon samples within 14 pixels and nearest-pixel "
+                                    "ones beyond (no chain)",
+             ssao::GtaoQuality::High, ssao::GtaoSampling::PlanarNearest),
         gtaoHalf("gtao-half", "GTAO at half resolution (2 slices x 4 steps per side, 4x4 interleave, r 1 m), the "
                               "blur on the grid, depth-aware upsample"),
+        gtaoHalf("gtao-half-planar-nearest", "gtao-half with planar horizon samples within 14 pixels and nearest-pixel "
+                                             "ones beyond",
+                 ssao::GtaoSampling::PlanarNearest),
     };
     return methods;
 }

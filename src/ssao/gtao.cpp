@@ -58,12 +58,13 @@ float fract(float v) { return v - std::floor(v); }
 // The quad around (sx, sy) is tried first, then the three other quads that hold the nearest pixel as a
 // corner (extrapolating an affine function is exact too): that keeps the interpolation at a surface's
 // edge against the sky, at its corners (where only the diagonal quad lies on the surface) and at the image
-// border. Across an edge or a silhouette, and always with GTAO_SAMPLING_NEAREST, the nearest pixel's own
-// point is used. With GTAO_SAMPLING_MIP and PLANAR_MIP, from level 1 the point is that of the chain's texel
-// holding the nearest pixel (obscura/gtao_mips.h); below, MIP reads as NEAREST and PLANAR_MIP as PLANAR. False
-// for sky or for (sx, sy) in the centre pixel (cx, cy).
-bool samplePosition(const GtaoConstants& c, const GBuffer& g, const GtaoDepthMips* mips, int level, float sx, float sy,
-                    int cx, int cy, Vec3& out) {
+// border. Across an edge or a silhouette, and always where `planar` is false (gtaoSamplingPlanarAt: NEAREST
+// and MIP, and PLANAR_NEAREST from 2 / mipTexelScale pixels out), the nearest pixel's own point is used.
+// With GTAO_SAMPLING_MIP and PLANAR_MIP, from level 1 the point is that of the chain's texel holding the
+// nearest pixel (obscura/gtao_mips.h); below, MIP reads as NEAREST and PLANAR_MIP as PLANAR. False for sky or
+// for (sx, sy) in the centre pixel (cx, cy).
+bool samplePosition(const GtaoConstants& c, const GBuffer& g, const GtaoDepthMips* mips, int level, bool planar,
+                    float sx, float sy, int cx, int cy, Vec3& out) {
     const int ix = int(sx), iy = int(sy);
     if (ix == cx && iy == cy) return false;
     if (level > 0) {
@@ -76,7 +77,7 @@ bool samplePosition(const GtaoConstants& c, const GBuffer& g, const GtaoDepthMip
     const float nearest = g.depth.at(ix, iy);
     if (!(nearest < 1e30f)) return false;
     const float gx = sx - 0.5f, gy = sy - 0.5f;
-    if (gtaoSamplingPlanarNear(c.sampling) && c.width > 1 && c.height > 1) {
+    if (planar && c.width > 1 && c.height > 1) {
         // The quad around (sx, sy) has the nearest pixel (ix, iy) as a corner; ox, oy pick the other quads.
         const int bx = int(std::floor(gx)), by = int(std::floor(gy));
         const int ox = bx == ix ? ix - 1 : ix, oy = by == iy ? iy - 1 : iy;
@@ -178,6 +179,7 @@ int samplingCode(GtaoSampling s) {
     return s == GtaoSampling::Nearest     ? GTAO_SAMPLING_NEAREST
            : s == GtaoSampling::Mip       ? GTAO_SAMPLING_MIP
            : s == GtaoSampling::PlanarMip ? GTAO_SAMPLING_PLANAR_MIP
+           : s == GtaoSampling::PlanarNearest ? GTAO_SAMPLING_PLANAR_NEAREST
                                           : GTAO_SAMPLING_PLANAR;
 }
 } // namespace
@@ -191,10 +193,13 @@ std::string gtaoSamplingText(const GtaoSettings& s) {
     std::snprintf(ratio, sizeof ratio, "%g", double(s.mipDistanceRatio));
     const std::string mips =
         "depth MIP samples (" + std::to_string(s.depthMipLevels + 1) + " levels, ratio " + ratio + ")";
+    char near[32];
+    std::snprintf(near, sizeof near, "%g", double(2.0f * s.mipDistanceRatio));
     switch (s.sampling) {
     case GtaoSampling::Nearest: return "nearest-pixel samples";
     case GtaoSampling::Mip: return mips;
     case GtaoSampling::PlanarMip: return "planar + " + mips;
+    case GtaoSampling::PlanarNearest: return "planar samples within " + std::string(near) + " px, nearest-pixel ones beyond";
     case GtaoSampling::Planar: break;
     }
     return "";
@@ -232,7 +237,9 @@ GtaoConstants gtaoConstants(const GtaoSettings& s, const Camera& camera, int fra
     c.beyondRadius = s.beyondRadius == GtaoBeyondRadius::Column ? GTAO_BEYOND_COLUMN : GTAO_BEYOND_DROP;
     c.sampling = samplingCode(s.sampling);
     c.mipLevels = gtaoDepthMipLevels(s);
-    c.mipTexelScale = gtaoSamplingReadsMips(c.sampling) ? 1.0f / s.mipDistanceRatio : 0.0f;
+    c.mipTexelScale = gtaoSamplingReadsMips(c.sampling) || c.sampling == GTAO_SAMPLING_PLANAR_NEAREST
+                          ? 1.0f / s.mipDistanceRatio
+                          : 0.0f;
     return c;
 }
 
@@ -296,13 +303,14 @@ GtaoPixel gtaoPixel(const GtaoConstants& c, const GBuffer& g, const GtaoDepthMip
             s = std::pow(s, c.stepPower) + minS;
             const float offset = s * screenRadius;
             const int level = c.mipLevels > 0 ? gtaoMipLevel(offset, c.mipTexelScale, c.mipLevels) : 0;
+            const bool planar = gtaoSamplingPlanarAt(c.sampling, offset, c.mipTexelScale);
             for (int side = 0; side < 2; ++side) {
                 const float sign = side == 0 ? 1.0f : -1.0f;
                 const float sx = float(x) + 0.5f + sign * offset * cosPhi;
                 const float sy = float(y) + 0.5f - sign * offset * sinPhi;
                 if (!(sx >= 0.0f && sy >= 0.0f && sx < float(c.width) && sy < float(c.height))) continue;
                 Vec3 sp;
-                if (!samplePosition(c, g, mips, level, sx, sy, x, y, sp)) continue;
+                if (!samplePosition(c, g, mips, level, planar, sx, sy, x, y, sp)) continue;
                 const Vec3 delta = sp - p;
                 const float distance = length(delta);
                 if (!(distance > 0.0f)) continue;

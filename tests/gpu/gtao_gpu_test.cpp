@@ -127,12 +127,18 @@ TEST(GpuGtao, MatchesTheCpuReferenceWithEveryOption) {
     mipFine.mipDistanceRatio = 2.0f;
     ssao::GtaoSettings planarMip = mip;
     planarMip.sampling = ssao::GtaoSampling::PlanarMip;
+    ssao::GtaoSettings planarNearest = high;
+    planarNearest.sampling = ssao::GtaoSampling::PlanarNearest;
+    ssao::GtaoSettings planarNearestJittered = planarNearest;  // rotated slices, near zone of 4 pixels
+    planarNearestJittered.jitter = true;
+    planarNearestJittered.mipDistanceRatio = 2.0f;
     for (const auto& [name, s] :
          {std::pair{"uniform", uniform}, std::pair{"heuristic thickness", heuristic},
           std::pair{"bitmask thickness", bitmask}, std::pair{"beyond radius drop", drop}, std::pair{"jitter", jitter},
           std::pair{"falloff 0.5, step power 2", falloff}, std::pair{"nearest samples", nearest},
           std::pair{"mip samples", mip}, std::pair{"mip samples, ratio 2", mipFine},
-          std::pair{"planar-mip samples", planarMip}}) {
+          std::pair{"planar-mip samples", planarMip}, std::pair{"planar-nearest samples", planarNearest},
+          std::pair{"planar-nearest samples, jitter, ratio 2", planarNearestJittered}}) {
         expectMatch(context, g, ssao::gtaoConstants(s, g.camera, 3), std::string("stairs ") + name);
         expectMatch(context, well, ssao::gtaoConstants(s, well.camera, 3), std::string("well ") + name);
     }

@@ -40,14 +40,16 @@ void addGtaoSamplingOption(CLI::App& app, std::string& sampling, float& mipRatio
                    lead + ": planar (inverse depth interpolated over a planar 2x2 quad, on the slice line; 5 reads), "
                           "nearest (the nearest pixel, 1 read, as XeGTAO; far open ground at grazing angles darkens) or "
                           "mip (samples farther than 14 pixels read a coarser level of a 5-level depth MIP chain, "
-                          "nearer ones are nearest, as XeGTAO) or planar-mip (the same, nearer ones planar: far open "
-                          "ground stays open)")
-        ->check(CLI::IsMember({"planar", "nearest", "mip", "planar-mip"}))
+                          "nearer ones are nearest, as XeGTAO), planar-mip (the same, nearer ones planar: far open "
+                          "ground stays open) or planar-nearest (planar within 14 pixels, nearest beyond, no chain: "
+                          "nearest's false horizons come from near samples of rotated slices)")
+        ->check(CLI::IsMember({"planar", "nearest", "mip", "planar-mip", "planar-nearest"}))
         ->capture_default_str();
     app.add_option("--gtao-mip-ratio", mipRatio,
                    "With --gtao-sampling mip or planar-mip: a sample d pixels away reads the coarsest MIP level whose texels are at "
                    "most d / ratio pixels wide, [2, 64]; smaller reads coarser levels sooner (fewer cache lines, a "
-                   "lower horizon behind thin rims)")
+                   "lower horizon behind thin rims). With planar-nearest: samples from 2 ratio pixels out are "
+                   "nearest-pixel ones")
         ->capture_default_str();
 }
 
@@ -80,6 +82,7 @@ ssao::GtaoSampling gtaoSampling(const std::string& sampling) {
     return sampling == "nearest" ? ssao::GtaoSampling::Nearest
            : sampling == "mip"     ? ssao::GtaoSampling::Mip
            : sampling == "planar-mip" ? ssao::GtaoSampling::PlanarMip
+           : sampling == "planar-nearest" ? ssao::GtaoSampling::PlanarNearest
                                    : ssao::GtaoSampling::Planar;
 }
 

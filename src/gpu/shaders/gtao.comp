@@ -121,7 +121,7 @@ float mipAt(int level, int x, int y) {
     return depthMips[base + uint(y) * uint(gtaoMipSize(k.width, level)) + uint(x)];
 }
 
-bool samplePosition(int level, float sx, float sy, int cx, int cy, out vec3 result) {
+bool samplePosition(int level, bool planar, float sx, float sy, int cx, int cy, out vec3 result) {
     result = vec3(0.0);
     const int ix = int(sx), iy = int(sy);
     if (ix == cx && iy == cy) return false;
@@ -135,7 +135,7 @@ bool samplePosition(int level, float sx, float sy, int cx, int cy, out vec3 resu
     const float nearest = depthAt(ix, iy);
     if (!(nearest < 1e30)) return false;
     const float gx = sx - 0.5, gy = sy - 0.5;
-    if (gtaoSamplingPlanarNear(kSampling) && k.width > 1 && k.height > 1) {
+    if (planar && k.width > 1 && k.height > 1) {
         const int bx = int(floor(gx)), by = int(floor(gy));
         const int ox = bx == ix ? ix - 1 : ix, oy = by == iy ? iy - 1 : iy;
         const ivec2 quads[4] = ivec2[4](ivec2(bx, by), ivec2(ox, by), ivec2(bx, oy), ivec2(ox, oy));
@@ -241,13 +241,14 @@ GtaoPixel gtaoPixel(int x, int y, int interleave) {
             // gtaoMipLevel: the largest l <= mipLevels with 2^l <= offset * mipTexelScale, by its highest bit.
             const int level =
                 gtaoSamplingReadsMips(kSampling) ? clamp(findMSB(int(offset * k.mipTexelScale)), 0, k.mipLevels) : 0;
+            const bool planar = gtaoSamplingPlanarAt(kSampling, offset, k.mipTexelScale);
             [[unroll]] for (int side = 0; side < 2; ++side) {
                 const float sign = side == 0 ? 1.0 : -1.0;
                 const float sx = float(x) + 0.5 + sign * offset * cosPhi;
                 const float sy = float(y) + 0.5 - sign * offset * sinPhi;
                 if (!(sx >= 0.0 && sy >= 0.0 && sx < float(k.width) && sy < float(k.height))) continue;
                 vec3 sp;
-                if (!samplePosition(level, sx, sy, x, y, sp)) continue;
+                if (!samplePosition(level, planar, sx, sy, x, y, sp)) continue;
                 const vec3 delta = sp - p;
                 const float distance2 = dot3(delta, delta);
                 if (!(distance2 > 0.0)) continue;
