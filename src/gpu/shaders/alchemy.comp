@@ -19,7 +19,8 @@ layout(local_size_x = kAlchemyWorkgroupX, local_size_y = kAlchemyWorkgroupY, loc
 layout(push_constant, std430) uniform Constants { AlchemyConstants k; };
 layout(std430, binding = kAlchemyBindingDepth) readonly buffer DepthPlane { float depth[]; };
 layout(std430, binding = kAlchemyBindingNormal) readonly buffer NormalPlane { float normal[]; };
-layout(std430, binding = kAlchemyBindingSpiral) readonly buffer Spiral { float spiral[]; };
+// The table as pairs: a sample's two offsets in one 8-byte load (every count's run starts at an even float).
+layout(std430, binding = kAlchemyBindingSpiral) readonly buffer Spiral { vec2 spiral[]; };
 layout(std430, binding = kAlchemyBindingOutput) writeonly buffer Obscurance { float ao[]; };
 
 #include "alchemy_pixel.glsl"

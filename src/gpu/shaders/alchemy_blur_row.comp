@@ -24,7 +24,7 @@ layout(push_constant, std430) uniform Constants {
 };
 layout(std430, binding = kAlchemyBindingDepth) readonly buffer DepthPlane { float depth[]; };
 layout(std430, binding = kAlchemyBindingNormal) readonly buffer NormalPlane { float normal[]; };
-layout(std430, binding = kAlchemyBindingSpiral) readonly buffer Spiral { float spiral[]; };
+layout(std430, binding = kAlchemyBindingSpiral) readonly buffer Spiral { vec2 spiral[]; };  // as alchemy.comp's
 layout(std430, binding = kAlchemyBlurBindingLogSpatial) readonly buffer LogSpatial { float logSpatial[]; };
 layout(std430, binding = kAlchemyBlurBindingOutput) writeonly buffer Output { float aoOut[]; };
 
@@ -32,8 +32,7 @@ layout(std430, binding = kAlchemyBlurBindingOutput) writeonly buffer Output { fl
 
 const int kUseNormal = 0;  // the separable blur's default (bilateral_taps.glsl)
 const int kSlots = kBilateralHorizontalTileX + 2 * kBilateralMaxRadius;
-shared float tileDepth[kSlots];
-shared float tileInput[kSlots];
+shared vec2 tile[kSlots];  // depth, input
 shared float tileLogSpatial[2 * kBilateralMaxRadius + 1];
 
 int tileIndex(int line, int i) { return i; }
@@ -51,15 +50,15 @@ void main() {
         const int a = start + i;
         if (a < 0 || a >= b.width) continue;
         // Output pixel (a, y) is pixel (a + guardBand, y + guardBand) of the guard-banded buffers.
-        tileDepth[i] = depth[uint(y + k.guardBand) * uint(k.width) + uint(a + k.guardBand)];
-        tileInput[i] = alchemyPixel(a + k.guardBand, y + k.guardBand);
+        tile[i] = vec2(depth[uint(y + k.guardBand) * uint(k.width) + uint(a + k.guardBand)],
+                       alchemyPixel(a + k.guardBand, y + k.guardBand));
     }
     for (int i = invocation; i <= 2 * b.radius; i += kBilateralHorizontalTileX) tileLogSpatial[i] = logSpatial[i];
     barrier();
     if (x >= b.width) return;
 
     const int centre = invocation + b.radius;
-    const float d = tileDepth[centre];
+    const float d = tile[centre].x;
     const float c = b.depthScale / (d * d);  // 0 on sky: its output is its input anyway
     const int tFirst = max(-b.radius, -x), tLast = min(b.radius, b.width - 1 - x);
     const uint o = uint(y) * uint(b.width) + uint(x);

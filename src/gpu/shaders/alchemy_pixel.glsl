@@ -34,8 +34,9 @@ float alchemyPixel(int x, int y) {
     const bool paper = k.formulation == kAlchemyPaper;
     float sum = 0.0;
     for (int i = 0; i < count; ++i) {
-        const int sx = floorToInt(fx + spiral[offsets + 2 * i] * radiusPixels);
-        const int sy = floorToInt(fy + spiral[offsets + 2 * i + 1] * radiusPixels);
+        const vec2 offset = spiral[offsets / 2 + i];
+        const int sx = floorToInt(fx + offset.x * radiusPixels);
+        const int sy = floorToInt(fy + offset.y * radiusPixels);
         if (uint(sx) >= uint(k.width) || uint(sy) >= uint(k.height)) continue;  // unseen: empty
         // A sky sample (+inf) becomes a point 1e18 m away: finite arithmetic, and far outside the radius.
         const float ds = min(depth[uint(sy) * uint(k.width) + uint(sx)], 1e18);

@@ -35,8 +35,8 @@ layout(std430, binding = kBilateralBindingOutput) writeonly buffer Output { floa
 const int kHorizontalSlots = kBilateralHorizontalTileX + 2 * kBilateralMaxRadius;
 const int kVerticalSlots = kBilateralVerticalTileX * (kBilateralVerticalTileY + 2 * kBilateralMaxRadius);
 const int kSlots = kHorizontalSlots > kVerticalSlots ? kHorizontalSlots : kVerticalSlots;
-shared float tileDepth[kSlots];
-shared float tileInput[kSlots];
+// Each slot holds a tap's depth and input side by side: one 8-byte shared load per tap instead of two.
+shared vec2 tile[kSlots];
 shared float tileLogSpatial[2 * kBilateralMaxRadius + 1];
 
 // Position i along line `line`: the horizontal line as it lies; the columns interleaved, so that a warp's
@@ -72,8 +72,8 @@ void main() {
     for (int i = localAlong; i < tileLength + 2 * k.radius; i += tileLength) {
         const int a = clamp(start + i, 0, length - 1);
         const uint o = k.axis == 0 ? uint(across) * uint(k.width) + uint(a) : uint(a) * uint(k.width) + uint(across);
-        tileDepth[tileIndex(line, i)] = depth[k.axis == 0 ? bilateralGuideIndex(a, across) : bilateralGuideIndex(across, a)];
-        tileInput[tileIndex(line, i)] = aoIn[o];
+        tile[tileIndex(line, i)] =
+            vec2(depth[k.axis == 0 ? bilateralGuideIndex(a, across) : bilateralGuideIndex(across, a)], aoIn[o]);
     }
     for (int i = invocation; i <= 2 * k.radius; i += kBilateralWorkgroupX) tileLogSpatial[i] = logSpatial[i];
     barrier();
@@ -81,7 +81,7 @@ void main() {
 
     const uint x = uint(p.y) * uint(k.width) + uint(p.x);
     const int centre = localAlong + k.radius;  // this pixel in the tile
-    const float d = tileDepth[tileIndex(line, centre)];
+    const float d = tile[tileIndex(line, centre)].x;
     const float c = k.depthScale / (d * d);  // 0 on sky: its output is its input anyway
     // The normals are read from the guide: the centre's index there, and the taps' spacing.
     const uint g = bilateralGuideIndex(p.x, p.y);

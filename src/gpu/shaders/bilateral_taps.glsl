@@ -1,6 +1,6 @@
 // The separable blur's tap loop for one centre, shared by its passes (bilateral_separable.comp) and by the
 // Alchemy pass that blurs its own rows (alchemy_blur_row.comp). The includer declares the shared arrays
-// tileDepth, tileInput and tileLogSpatial, tileIndex(line, i), the specialization constant kUseNormal and,
+// tile (depth and input of each slot) and tileLogSpatial, tileIndex(line, i), the specialization constant kUseNormal and,
 // where that can be 1, the buffer `normal`.
 
 // The centre at tile position `centre` of line `line`, with depth d, c = depthScale / d^2, normal n and
@@ -10,17 +10,17 @@ float bilateralTaps(int line, int centre, int radius, int tFirst, int tLast, flo
                     int stride) {
     float sum = 0.0, wsum = 0.0;
     for (int t = tFirst; t <= tLast; ++t) {
-        const int i = tileIndex(line, centre + t);
-        const float dd = tileDepth[i] - d;
+        const vec2 tap = tile[tileIndex(line, centre + t)];
+        const float dd = tap.x - d;
         float w = exp2(tileLogSpatial[t + radius] - dd * dd * c);
         if (kUseNormal != 0) {
             const uint o = uint(int(x) + t * stride);
             w *= max(0.0, dot(n, vec3(normal[3 * o], normal[3 * o + 1], normal[3 * o + 2])));
         }
-        sum += w * tileInput[i];
+        sum += w * tap.y;
         wsum += w;
     }
     // A centre on sky or with no weight (impossible for a surface: its own tap counts) keeps its input.
     const bool keep = d < 1e30 && wsum > 0.0;
-    return keep ? sum / wsum : tileInput[tileIndex(line, centre)];
+    return keep ? sum / wsum : tile[tileIndex(line, centre)].y;
 }

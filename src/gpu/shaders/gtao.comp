@@ -20,9 +20,12 @@
 //   tangent, the projected normal, a sample's distance and cosine, and the column test's vectors;
 // - the open slice's visibility, arc(n - pi/2, n + pi/2, n).visibility, is in closed form, n sin n + cos n
 //   (1 uniformly weighted), and the lowest horizon cosines cos(n +- pi/2) are -+sin n;
-// - the planar quad loop and the two sides are unrolled.
-// On an H100 (2026-11-25, 1920x1080, high, visibility only) these took the pass from 0.237 to 0.212 ms with
-// planar samples and from 0.126 to 0.121 ms with nearest ones (docs/PERFORMANCE.md).
+// - the planar quad loop and the two sides are unrolled;
+// - without the thickness heuristic the horizon update is a plain maximum (gtaoConstants sets thicknessBlend
+//   to 0 then, so the lerp keeps the horizon), chosen by the thickness mode's specialization constant.
+// On an H100 (2026-11-25, 1920x1080, high, visibility only) the first three took the pass from 0.237 to
+// 0.212 ms with planar samples and from 0.126 to 0.121 ms with nearest ones; the plain maximum took 0.965x
+// the pass's time there (2026-11-26; docs/PERFORMANCE.md).
 //
 // With the specialization constant kGtaoSpecBentNormal 0 (layouts.h) the pass writes visibility alone. The
 // modes of the constants (sampling, weighting, thickness, beyond radius) are specialization constants too,
@@ -282,7 +285,11 @@ GtaoPixel gtaoPixel(int x, int y, int interleave) {
                     }
                 }
                 float horizonCos = side == 0 ? horizonCos0 : horizonCos1;
-                if (sampleCos >= horizonCos)
+                // Without the heuristic, gtaoConstants sets thicknessBlend to 0, and the lerp below keeps the
+                // horizon: the update is a plain maximum, which the compiler cannot see in a push constant.
+                if (kThicknessMode != GTAO_THICKNESS_HEURISTIC)
+                    horizonCos = max(horizonCos, sampleCos);
+                else if (sampleCos >= horizonCos)
                     horizonCos = sampleCos;
                 else
                     horizonCos = lerp(horizonCos, sampleCos, k.thicknessBlend);
