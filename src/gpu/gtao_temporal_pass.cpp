@@ -80,7 +80,9 @@ void recordUpsample(Context::Impl& c, VkCommandBuffer cmd, const UpsampleBuffers
         c.pipeline("upsample_depth_aware", shaders::upsample_depth_aware, storageBuffers(kUpsampleBindingCount),
                    kUpsamplePushConstantBytes, kTemporalWorkgroupX, kTemporalWorkgroupY, {channels});
     // In binding order: kUpsampleBindingLow, LowDepth, Depth, Output.
-    pipeline.dispatchGrid(cmd, {&b.low, &b.lowDepth, &b.depth, &b.output}, &k, sizeof k, k.width, k.height);
+    // One invocation per 2x2 block of full-resolution pixels (the shader's main).
+    pipeline.dispatchGrid(cmd, {&b.low, &b.lowDepth, &b.depth, &b.output}, &k, sizeof k, (k.width + 1) / 2,
+                          (k.height + 1) / 2);
 }
 
 GtaoTemporalPasses::GtaoTemporalPasses(Context::Impl& c, const ssao::GtaoSettings& settings,
