@@ -18,13 +18,12 @@ skip_without_vulkan
 shopt -s nullglob
 patches=("$src"/bench/gpu-candidates/*.patch)
 if [ ${#patches[@]} -eq 0 ]; then
-  # None waiting: gpu-candidates says so, and gpu-ab is checked below with a folder of this checkout's own
-  # alchemy.comp compiled as gpu-candidates compiles.
+  # None waiting: gpu-candidates says so, and gpu-ab is checked below with a folder holding the build's own
+  # alchemy.spv, the module the library embeds.
   if "$src/scripts/gpu-candidates" "$work/spv" >"$work/built" 2>&1; then fail "gpu-candidates ran without a patch"; fi
   grep -q "no patch in" "$work/built" || fail "gpu-candidates: $(cat "$work/built")"
   mkdir -p "$work/spv/same"
-  glslc --target-env=vulkan1.2 -O -Werror -I "$src/include" -I "$src/src/gpu/shaders" \
-    -o "$work/spv/same/alchemy.spv" "$src/src/gpu/shaders/alchemy.comp" || fail "glslc failed on alchemy.comp"
+  cp "$build/shaders/alchemy.spv" "$work/spv/same/" || fail "the build has no shaders/alchemy.spv"
 else
   "$src/scripts/gpu-candidates" "$work/spv" >"$work/built" 2>&1 || fail "gpu-candidates failed: $(cat "$work/built")"
 fi
@@ -61,8 +60,8 @@ for patch in "${patches[@]}"; do
   count=$((count + 1))
 done
 
-# gpu-ab: the embedded shaders against the first candidate (or the recompiled alchemy.comp), one round, at a
-# tiny size.
+# gpu-ab: the embedded shaders against the first candidate (or the build's alchemy.spv), one round, at a tiny
+# size.
 first=$(ls "$work/spv" | head -1)
 "$src/scripts/gpu-ab" --obscura "$tool" --rounds 1 --json "$work/ab.json" embedded "cand=$work/spv/$first" \
   -- --sizes 64x32 --cases alchemy --frames 3 --warmup 0 --inputs 1 >"$work/ab" 2>"$work/ab.err" ||

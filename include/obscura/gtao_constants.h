@@ -55,8 +55,9 @@ struct GtaoConstants {
     int beyondRadius;          // GTAO_BEYOND_*: what a sample farther than the full-weight distance stands for
     int sampling;              // GTAO_SAMPLING_*: how a horizon sample reads the depth buffer
     int mipLevels;             // GTAO_SAMPLING_(PLANAR_)MIP: coarse levels of the chain, [0, GTAO_MAX_MIP_LEVELS]; else 0
-    float mipTexelScale;       // the same: widest texel a sample may read per pixel of its distance; with
-                               // PLANAR_NEAREST, samples from 2 / mipTexelScale pixels out read the nearest pixel
+    float mipTexelScale;       // 1 / GtaoSettings::mipDistanceRatio: with (PLANAR_)MIP the widest texel a sample may
+                               // read per pixel of its distance; with PLANAR_NEAREST, samples from 2 / mipTexelScale
+                               // pixels out read the nearest pixel; the other modes ignore it
 };
 
 #ifdef __cplusplus
@@ -64,19 +65,16 @@ struct GtaoConstants {
 #else
 #define OBSCURA_FN
 #endif
-// Whether a GTAO_SAMPLING_* mode reads the depth MIP chain, and whether its samples that do not are planar.
+// Whether a GTAO_SAMPLING_* mode reads the depth MIP chain.
 OBSCURA_FN bool gtaoSamplingReadsMips(int sampling) {
     return sampling == GTAO_SAMPLING_MIP || sampling == GTAO_SAMPLING_PLANAR_MIP;
 }
-OBSCURA_FN bool gtaoSamplingPlanarNear(int sampling) {
-    return sampling == GTAO_SAMPLING_PLANAR || sampling == GTAO_SAMPLING_PLANAR_MIP ||
-           sampling == GTAO_SAMPLING_PLANAR_NEAREST;
-}
-// Whether a sample offsetPixels from the centre that reads level 0 is planar: PLANAR_NEAREST keeps the quad
-// for samples nearer than 2 / texelScale pixels (where MIP sampling would read level 0), the others by mode.
+// Whether a sample offsetPixels from the centre that reads level 0 is planar: always with PLANAR and
+// PLANAR_MIP, never with NEAREST and MIP, and with PLANAR_NEAREST nearer than 2 / texelScale pixels (where
+// MIP sampling would still read level 0).
 OBSCURA_FN bool gtaoSamplingPlanarAt(int sampling, float offsetPixels, float texelScale) {
-    return gtaoSamplingPlanarNear(sampling) &&
-           (sampling != GTAO_SAMPLING_PLANAR_NEAREST || offsetPixels * texelScale < 2.0f);
+    return sampling == GTAO_SAMPLING_PLANAR || sampling == GTAO_SAMPLING_PLANAR_MIP ||
+           (sampling == GTAO_SAMPLING_PLANAR_NEAREST && offsetPixels * texelScale < 2.0f);
 }
 #undef OBSCURA_FN
 

@@ -168,6 +168,11 @@ const char* qualityName(GtaoQuality quality) {
     return kNames[int(quality)];
 }
 
+const char* gtaoSamplingName(GtaoSampling sampling) {
+    static const char* kNames[kGtaoSamplingCount] = {"planar", "nearest", "mip", "planar-mip", "planar-nearest"};
+    return kNames[int(sampling)];
+}
+
 int interleaveIndex(int x, int y) {
     // 4x4 Bayer order: neighbours take directions half the pattern apart.
     static constexpr int kBayer[16] = {0, 8, 2, 10, 12, 4, 14, 6, 3, 11, 1, 9, 15, 7, 13, 5};
@@ -189,17 +194,19 @@ int gtaoDepthMipLevels(const GtaoSettings& s) {
 }
 
 std::string gtaoSamplingText(const GtaoSettings& s) {
-    char ratio[32];
-    std::snprintf(ratio, sizeof ratio, "%g", double(s.mipDistanceRatio));
-    const std::string mips =
-        "depth MIP samples (" + std::to_string(s.depthMipLevels + 1) + " levels, ratio " + ratio + ")";
-    char near[32];
-    std::snprintf(near, sizeof near, "%g", double(2.0f * s.mipDistanceRatio));
+    auto number = [](float v) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%g", double(v));
+        return std::string(text);
+    };
+    const std::string mips = "depth MIP samples (" + std::to_string(s.depthMipLevels + 1) + " levels, ratio " +
+                             number(s.mipDistanceRatio) + ")";
     switch (s.sampling) {
     case GtaoSampling::Nearest: return "nearest-pixel samples";
     case GtaoSampling::Mip: return mips;
     case GtaoSampling::PlanarMip: return "planar + " + mips;
-    case GtaoSampling::PlanarNearest: return "planar samples within " + std::string(near) + " px, nearest-pixel ones beyond";
+    case GtaoSampling::PlanarNearest:
+        return "planar samples within " + number(2.0f * s.mipDistanceRatio) + " px, nearest-pixel ones beyond";
     case GtaoSampling::Planar: break;
     }
     return "";
@@ -237,9 +244,7 @@ GtaoConstants gtaoConstants(const GtaoSettings& s, const Camera& camera, int fra
     c.beyondRadius = s.beyondRadius == GtaoBeyondRadius::Column ? GTAO_BEYOND_COLUMN : GTAO_BEYOND_DROP;
     c.sampling = samplingCode(s.sampling);
     c.mipLevels = gtaoDepthMipLevels(s);
-    c.mipTexelScale = gtaoSamplingReadsMips(c.sampling) || c.sampling == GTAO_SAMPLING_PLANAR_NEAREST
-                          ? 1.0f / s.mipDistanceRatio
-                          : 0.0f;
+    c.mipTexelScale = 1.0f / s.mipDistanceRatio;
     return c;
 }
 

@@ -101,9 +101,9 @@ void expectMatch(Context& context, const Run& run, const ssao::GtaoTemporalSetti
     Image lastVisibility;
     const int pixels = run.width * run.height;
     const std::string name = std::string(run.scene) + " " + ssao::qualityName(run.quality) +
-                             (run.sampling == ssao::GtaoSampling::Mip         ? " mip "
-                              : run.sampling == ssao::GtaoSampling::PlanarMip ? " planar-mip "
-                                                                              : " ") +
+                             (run.sampling == ssao::GtaoSampling::Planar
+                                  ? std::string(" ")
+                                  : " " + std::string(ssao::gtaoSamplingName(run.sampling)) + " ") +
                              mode;
     for (int f = 0; f < frames; ++f) {
         const ssao::GtaoResult& c = cpu.frame(gbuffers[std::size_t(f)]);

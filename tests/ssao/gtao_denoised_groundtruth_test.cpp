@@ -55,7 +55,7 @@ TEST(GtaoGroundTruth, TwoJitteredSlicesOfFourStepsMatchTheHighPresetOnceBlurred)
                             {"1x4 jittered", {1, 4, true}}};
     constexpr int kFewer = int(std::size(fewer));
     for (GtaoSampling sampling : {GtaoSampling::Nearest, GtaoSampling::Planar}) {
-        const char* samplingName = sampling == GtaoSampling::Nearest ? "nearest" : "planar";
+        const char* samplingName = gtaoSamplingName(sampling);
         double worstFewerMargin[kFewer];  // per config, its largest excess over high's error
         std::fill(std::begin(worstFewerMargin), std::end(worstFewerMargin), -1.0);
         for (const char* scene : {"well", "stairs", "corner"}) {

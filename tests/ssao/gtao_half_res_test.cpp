@@ -158,9 +158,7 @@ TEST(GtaoHalfResolution, BeatsTheHighPresetWithItsBlurAgainstRayTracing) {
         const GBuffer& g = top.g;
         const Image& reference = top.reference;
         for (GtaoSampling sampling : {GtaoSampling::Planar, GtaoSampling::Nearest, GtaoSampling::PlanarNearest}) {
-            const char* samplingName = sampling == GtaoSampling::Nearest         ? "nearest"
-                                       : sampling == GtaoSampling::PlanarNearest ? "planar-nearest"
-                                                                                 : "planar";
+            const char* samplingName = gtaoSamplingName(sampling);
             GtaoSettings high;
             applyQuality(high, GtaoQuality::High);
             high.radius = top.view.radius;

@@ -357,11 +357,7 @@ TEST(Gtao, NearestSamplingDarkensAnOpenPlaneSlightly) {
                 darker += e > 1e-3;
                 ++count;
             }
-        const char* name = sampling == GtaoSampling::Planar      ? "planar"
-                           : sampling == GtaoSampling::Mip       ? "mip"
-                           : sampling == GtaoSampling::PlanarMip ? "planar-mip"
-                           : sampling == GtaoSampling::PlanarNearest ? "planar-nearest"
-                                                                 : "nearest";
+        const char* name = gtaoSamplingName(sampling);
         std::printf("open plane, %s samples: mean 1 - A %.2e, worst %.3f, %d of %d px below 0.999\n", name,
                     sum / count, worst, darker, count);
         if (sampling == GtaoSampling::Planar) {

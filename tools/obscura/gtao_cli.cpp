@@ -17,6 +17,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <optional>
+#include <string>
+#include <vector>
 
 namespace obscura::cli {
 
@@ -33,6 +35,12 @@ std::string numbered(const std::string& dir, const char* name, int frame) {
     return (std::filesystem::path(dir) / (std::string(name) + buffer)).string();
 }
 
+std::vector<std::string> gtaoSamplingNames() {
+    std::vector<std::string> names;
+    for (int i = 0; i < ssao::kGtaoSamplingCount; ++i) names.push_back(ssao::gtaoSamplingName(ssao::GtaoSampling(i)));
+    return names;
+}
+
 } // namespace
 
 void addGtaoSamplingOption(CLI::App& app, std::string& sampling, float& mipRatio, const std::string& lead) {
@@ -43,7 +51,7 @@ void addGtaoSamplingOption(CLI::App& app, std::string& sampling, float& mipRatio
                           "nearer ones are nearest, as XeGTAO), planar-mip (the same, nearer ones planar: far open "
                           "ground stays open) or planar-nearest (planar within 14 pixels, nearest beyond, no chain: "
                           "nearest's false horizons come from near samples of rotated slices)")
-        ->check(CLI::IsMember({"planar", "nearest", "mip", "planar-mip", "planar-nearest"}))
+        ->check(CLI::IsMember(gtaoSamplingNames()))
         ->capture_default_str();
     app.add_option("--gtao-mip-ratio", mipRatio,
                    "With --gtao-sampling mip or planar-mip: a sample d pixels away reads the coarsest MIP level whose texels are at "
@@ -79,11 +87,9 @@ void GtaoSliceFlags::validate() const {
 }
 
 ssao::GtaoSampling gtaoSampling(const std::string& sampling) {
-    return sampling == "nearest" ? ssao::GtaoSampling::Nearest
-           : sampling == "mip"     ? ssao::GtaoSampling::Mip
-           : sampling == "planar-mip" ? ssao::GtaoSampling::PlanarMip
-           : sampling == "planar-nearest" ? ssao::GtaoSampling::PlanarNearest
-                                   : ssao::GtaoSampling::Planar;
+    for (int i = 0; i < ssao::kGtaoSamplingCount; ++i)
+        if (sampling == ssao::gtaoSamplingName(ssao::GtaoSampling(i))) return ssao::GtaoSampling(i);
+    return ssao::GtaoSampling::Planar;  // the option's check has refused any other word
 }
 
 // Slow enough for the history to follow and fast enough to disocclude something over a few frames.
