@@ -10,8 +10,10 @@ tar -C "$work" -xzf "$work/bundle.tar.gz"
 tool=$work/obscura-bundle/obscura
 libs=$(LD_DEBUG=libs "$tool" render --size 32x18 --ao alchemy -q -o "$work/frame.png" 2>&1 >/dev/null)
 [ -s "$work/frame.png" ] || fail "the bundled tool wrote no frame"
+# A here-string, not `echo | grep -q`: grep -q exits at the first match, and under pipefail the echo still
+# writing into a full pipe would die of SIGPIPE and fail the check for a library that was loaded.
 for lib in libembree3.so.3 libtbb.so.12 libOpenEXR-3_1.so.30; do
-  echo "$libs" | grep -q "calling init: $work/obscura-bundle/lib/$lib" || fail "$lib was not loaded from the bundle"
+  grep -qF "calling init: $work/obscura-bundle/lib/$lib" <<<"$libs" || fail "$lib was not loaded from the bundle"
 done
 
 if "$src/scripts/bundle" "$work/no-such-build" "$work/none.tar.gz" 2>"$work/err"; then
