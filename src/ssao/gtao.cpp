@@ -180,13 +180,16 @@ int interleaveIndex(int x, int y) {
 }
 
 namespace {
-int samplingCode(GtaoSampling s) {
-    return s == GtaoSampling::Nearest     ? GTAO_SAMPLING_NEAREST
-           : s == GtaoSampling::Mip       ? GTAO_SAMPLING_MIP
-           : s == GtaoSampling::PlanarMip ? GTAO_SAMPLING_PLANAR_MIP
-           : s == GtaoSampling::PlanarNearest ? GTAO_SAMPLING_PLANAR_NEAREST
-                                          : GTAO_SAMPLING_PLANAR;
-}
+// The enum's values are the shaders' GTAO_SAMPLING_* codes, so that a mode added to one without the other
+// stops the build here.
+static_assert(int(GtaoSampling::Planar) == GTAO_SAMPLING_PLANAR &&
+                  int(GtaoSampling::Nearest) == GTAO_SAMPLING_NEAREST &&
+                  int(GtaoSampling::Mip) == GTAO_SAMPLING_MIP &&
+                  int(GtaoSampling::PlanarMip) == GTAO_SAMPLING_PLANAR_MIP &&
+                  int(GtaoSampling::PlanarNearest) == GTAO_SAMPLING_PLANAR_NEAREST &&
+                  kGtaoSamplingCount == GTAO_SAMPLING_PLANAR_NEAREST + 1,
+              "GtaoSampling and GTAO_SAMPLING_* list the modes in the same order");
+int samplingCode(GtaoSampling s) { return int(s); }
 } // namespace
 
 int gtaoDepthMipLevels(const GtaoSettings& s) {
