@@ -23,6 +23,8 @@ namespace obscura::eval {
 struct MethodOptions {
     int samples = 0;                      // samples (or directions x steps) per pixel
     ssao::GtaoSliceOverride gtao;         // GTAO methods: slice and step counts, jitter; slices over samples'
+    float gtaoMipRatio = 0.0f;            // GTAO methods: GtaoSettings::mipDistanceRatio, [2, 64]; 0: its
+                                          // default. Only the mip and planar-nearest samplings read it
     float radius = 0.0f;                  // world-space radius, m
     ssao::BilateralSettings blur{ssao::BlurMode::None};  // filter applied after the raw estimate
     std::uint32_t seed = 0;

@@ -42,6 +42,7 @@ ssao::GtaoSettings gtaoSettings(ssao::GtaoQuality quality, ssao::GtaoSampling sa
     if (o.radius > 0.0f) s.radius = o.radius;
     o.gtao.apply(s);
     if (o.samples > 0 && o.gtao.slices == 0) s.sliceCount = std::clamp(o.samples / (2 * s.stepsPerSide), 1, 64);
+    if (o.gtaoMipRatio > 0.0f) s.mipDistanceRatio = o.gtaoMipRatio;
     return s;
 }
 
@@ -76,6 +77,7 @@ AoMethod gtaoHalf(const char* name, const char* description,
         if (o.radius > 0.0f) s.radius = o.radius;
         ssao::applyHalfResolutionCounts(s, o.gtao);
         if (o.samples > 0 && o.gtao.slices == 0) s.sliceCount = std::clamp(o.samples / (2 * s.stepsPerSide), 1, 64);
+        if (o.gtaoMipRatio > 0.0f) s.mipDistanceRatio = o.gtaoMipRatio;
         return s;
     };
     return {name, description,

@@ -197,3 +197,52 @@ TEST_F(GtaoCli, SliceFlagsReachTheKernel) {
     expectFailure(compare + " --samples 12 --gtao-slices 2", {"--gtao-slices", "--samples"});
     EXPECT_FALSE(fs::exists(path("a.exr")));
 }
+
+// --gtao-mip-ratio reaches the registry's methods in ao and compare: `ao --method gtao-half-planar-nearest`
+// with ratio 2 (planar samples within 4 px) gives render's bits for the same configuration, and not the
+// default ratio's; 7, the default, changes nothing, nor does any ratio for planar samples, which never read
+// it. compare reports the ratio in its JSON; a ratio out of [2, 64], or one given to an Alchemy method,
+// fails with one line naming the flag and writes nothing.
+TEST_F(GtaoCli, MipRatioReachesAoAndCompare) {
+    const std::string half = "--gtao-half-res --gtao-slices 2 --gtao-steps 4 --gtao-interleave --gtao-sampling "
+                             "planar-nearest";
+    auto render = [&](const std::string& flags) {
+        const Result r = run("render corner --ao gtao --size 96x64 -q -o " + path("f.png") + " --aov-dir " +
+                             path("aov") + " " + flags);
+        EXPECT_EQ(r.code, 0) << flags << ": " << r.out;
+        return obscura::readExr(path("aov/ao.exr")).pixels;
+    };
+    const std::vector<float> rendered = render(half + " --gtao-mip-ratio 2");
+    const std::string buffers = "ao --depth " + path("aov/depth.exr") + " --normal " + path("aov/normal.exr") +
+                                " --camera " + path("aov/camera.json") + " -o " + path("ao.exr");
+    auto ao = [&](const std::string& flags) {
+        const Result r = run(buffers + " " + flags);
+        EXPECT_EQ(r.code, 0) << flags << ": " << r.out;
+        return obscura::readExr(path("ao.exr")).pixels;
+    };
+    const std::string halfMethod = "--method gtao-half-planar-nearest --blur separable --blur-radius 2";
+    EXPECT_EQ(ao(halfMethod + " --gtao-mip-ratio 2"), rendered);
+    EXPECT_NE(ao(halfMethod), rendered);
+    EXPECT_EQ(ao("--method gtao-planar-nearest --gtao-mip-ratio 7"), ao("--method gtao-planar-nearest"));
+    EXPECT_NE(ao("--method gtao-planar-nearest --gtao-mip-ratio 2"), ao("--method gtao-planar-nearest"));
+    EXPECT_EQ(ao("--method gtao --gtao-mip-ratio 2"), ao("--method gtao"));
+
+    const std::string compare = "compare corner --methods gtao-planar-nearest --size 96x64 --rays 16 -q --json -o " +
+                                path("c.png");
+    const Result plain = run(compare);
+    const Result ratio2 = run(compare + " --gtao-mip-ratio 2");
+    ASSERT_EQ(plain.code, 0) << plain.out;
+    ASSERT_EQ(ratio2.code, 0) << ratio2.out;
+    const nlohmann::json a = nlohmann::json::parse(plain.out), b = nlohmann::json::parse(ratio2.out);
+    EXPECT_FALSE(a.contains("gtao_mip_ratio"));
+    EXPECT_EQ(b["gtao_mip_ratio"].get<double>(), 2.0);
+    EXPECT_NE(a["methods"][0]["mae"].get<double>(), b["methods"][0]["mae"].get<double>());
+
+    fs::remove(path("ao.exr"));
+    fs::remove(path("c.png"));
+    expectFailure(compare + " --gtao-mip-ratio 1", {"--gtao-mip-ratio", "[2, 64]"});
+    expectFailure(buffers + " --method gtao-mip --gtao-mip-ratio 65", {"--gtao-mip-ratio", "[2, 64]"});
+    expectFailure(buffers + " --method alchemy --gtao-mip-ratio 2", {"--gtao-mip-ratio", "alchemy"});
+    EXPECT_FALSE(fs::exists(path("ao.exr")));
+    EXPECT_FALSE(fs::exists(path("c.png")));
+}

@@ -33,6 +33,7 @@ struct AoOptions {
     AlchemyFlags alchemy;
     BlurFlags blur;
     GtaoSliceFlags gtao;
+    float gtaoMipRatio = 0.0f;  // eval::MethodOptions::gtaoMipRatio
 };
 
 // The whole image when it has exactly names.size() channels, or the channels `names` of a combined
@@ -78,11 +79,13 @@ void run(const AoOptions& o) {
         fail("--normal", "method " + o.method + " needs a normal buffer");
     o.gpu.validate();
     o.gtao.validate();
-    if (!o.gtao.value.empty() && o.method.starts_with("alchemy"))
-        fail(o.gtao.value.slices != 0 ? "--gtao-slices"
+    validateGtaoMipRatioOverride(o.gtaoMipRatio);
+    if ((!o.gtao.value.empty() || o.gtaoMipRatio != 0.0f) && o.method.starts_with("alchemy"))
+        fail(o.gtao.value.slices != 0  ? "--gtao-slices"
              : o.gtao.value.steps != 0 ? "--gtao-steps"
              : o.gtao.value.jitter     ? "--gtao-jitter"
-                                       : "--gtao-interleave",
+             : o.gtao.value.interleave ? "--gtao-interleave"
+                                       : "--gtao-mip-ratio",
              "applies to the gtao methods, not " + o.method);
     ThreadLimit limit(o.threads);
 
@@ -122,6 +125,7 @@ void run(const AoOptions& o) {
         eval::MethodOptions mo;
         mo.blur = blur;
         mo.gtao = o.gtao.value;
+        mo.gtaoMipRatio = o.gtaoMipRatio;
         mo.gpu = context.get();
         ao = method.compute(g, mo);
     }
@@ -151,6 +155,7 @@ void addAoCommand(CLI::App& app) {
     o->alchemy.add(*cmd, true);
     o->blur.add(*cmd);
     o->gtao.add(*cmd, "GTAO methods");
+    addGtaoMipRatioOverride(*cmd, o->gtaoMipRatio);
     cmd->callback([o] { run(*o); });
 }
 

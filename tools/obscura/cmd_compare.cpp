@@ -45,6 +45,7 @@ struct CompareOptions {
     CameraOptions camera;
     GpuFlags gpu;
     GtaoSliceFlags gtao;
+    float gtaoMipRatio = 0.0f;  // eval::MethodOptions::gtaoMipRatio
 };
 
 // 3 x 5 glyphs of the legend's labels, one row of 3 bits per line, top first.
@@ -95,11 +96,13 @@ void run(const CompareOptions& o) {
     if (!(o.radius >= 0.0f && o.radius <= 1e4f)) fail("--radius", "must be in [0, 1e4] m (0: the method's default)");
     if (!(o.range > 0.0f && o.range <= 1.0f)) fail("--range", "must be in (0, 1]");
     o.gtao.validate();
+    validateGtaoMipRatioOverride(o.gtaoMipRatio);
     if (o.samples > 0 && o.gtao.value.slices != 0)
         fail("--gtao-slices", "sets what --samples sets for GTAO: give one of them");
     eval::MethodOptions mo;
     mo.samples = o.samples;
     mo.gtao = o.gtao.value;
+    mo.gtaoMipRatio = o.gtaoMipRatio;
     mo.radius = o.radius;
     mo.seed = o.seed;
     mo.blur.mode = o.blur == "none" ? ssao::BlurMode::None : o.blur == "2d" ? ssao::BlurMode::TwoD : ssao::BlurMode::Separable;
@@ -162,6 +165,7 @@ void run(const CompareOptions& o) {
     report["width"] = camera.width;
     report["height"] = camera.height;
     report["rays"] = o.rays;
+    if (o.gtaoMipRatio > 0.0f) report["gtao_mip_ratio"] = o.gtaoMipRatio;
     report["surface_pixels"] = rows.front().stats.pixels;
     for (const Row& r : rows)
         report["methods"].push_back({{"name", r.method->name},
@@ -248,6 +252,7 @@ void addCompareCommand(CLI::App& app) {
     cmd->add_flag("--json", o->json, "Print JSON instead of a table");
     cmd->add_flag("-q,--quiet", o->quiet, "No progress bars");
     o->gtao.add(*cmd, "GTAO methods");
+    addGtaoMipRatioOverride(*cmd, o->gtaoMipRatio);
     o->camera.add(*cmd);
     o->gpu.add(*cmd, "the methods (estimators and blur)", "The reference stays ray traced on the CPU.");
     cmd->callback([o] { run(*o); });

@@ -41,7 +41,26 @@ std::vector<std::string> gtaoSamplingNames() {
     return names;
 }
 
+// What --gtao-mip-ratio does, wherever it is offered.
+const char* const kMipRatioHelp =
+    "a sample d pixels away reads the coarsest MIP level whose texels are at most d / ratio pixels wide, [2, 64]; "
+    "smaller reads coarser levels sooner (fewer cache lines, a lower horizon behind thin rims). With "
+    "planar-nearest: samples from 2 ratio pixels out are nearest-pixel ones";
+
 } // namespace
+
+void addGtaoMipRatioOverride(CLI::App& app, float& mipRatio) {
+    app.add_option("--gtao-mip-ratio", mipRatio,
+                   std::string("GTAO methods with a depth MIP chain (gtao-mip, gtao-planar-mip) or planar-nearest "
+                               "samples (gtao-planar-nearest, gtao-half-planar-nearest), 0 for their default (7): ") +
+                       kMipRatioHelp)
+        ->capture_default_str();
+}
+
+void validateGtaoMipRatioOverride(float mipRatio) {
+    if (mipRatio != 0.0f && !(mipRatio >= 2.0f && mipRatio <= 64.0f))
+        fail("--gtao-mip-ratio", "must be in [2, 64], or 0 for the methods' default (7)");
+}
 
 void addGtaoSamplingOption(CLI::App& app, std::string& sampling, float& mipRatio, const std::string& lead) {
     app.add_option("--gtao-sampling", sampling,
@@ -53,11 +72,7 @@ void addGtaoSamplingOption(CLI::App& app, std::string& sampling, float& mipRatio
                           "nearest's false horizons come from near samples of rotated slices)")
         ->check(CLI::IsMember(gtaoSamplingNames()))
         ->capture_default_str();
-    app.add_option("--gtao-mip-ratio", mipRatio,
-                   "With --gtao-sampling mip or planar-mip: a sample d pixels away reads the coarsest MIP level whose texels are at "
-                   "most d / ratio pixels wide, [2, 64]; smaller reads coarser levels sooner (fewer cache lines, a "
-                   "lower horizon behind thin rims). With planar-nearest: samples from 2 ratio pixels out are "
-                   "nearest-pixel ones")
+    app.add_option("--gtao-mip-ratio", mipRatio, std::string("With --gtao-sampling mip or planar-mip: ") + kMipRatioHelp)
         ->capture_default_str();
 }
 

@@ -61,6 +61,12 @@ struct GtaoOptions {
 void addGtaoSamplingOption(CLI::App& app, std::string& sampling, float& mipRatio, const std::string& lead);
 ssao::GtaoSampling gtaoSampling(const std::string& sampling);
 
+// --gtao-mip-ratio for the commands that run the registry's GTAO methods (compare, ao), whose sampling the
+// method fixes: eval::MethodOptions::gtaoMipRatio, 0 meaning the method's default.
+void addGtaoMipRatioOverride(CLI::App& app, float& mipRatio);
+// Throws obscura::Error naming --gtao-mip-ratio unless it is 0 or in [2, 64].
+void validateGtaoMipRatioOverride(float mipRatio);
+
 // Frame k of the built-in camera path: `base` turned k * 0.5 degrees about the vertical through its target.
 Camera gtaoPathCamera(const Camera& base, int k);
 
