@@ -41,6 +41,8 @@ struct AoMethod {
 };
 
 const std::vector<AoMethod>& aoMethods();
+// Their names in order, comma-separated: "alchemy, alchemy-chapter, gtao, ...".
+std::string aoMethodNames();
 const AoMethod& findAoMethod(const std::string& name);
 // "alchemy,gtao" -> the methods, in order, without duplicates.
 std::vector<const AoMethod*> parseMethodList(const std::string& commaSeparated);

@@ -32,17 +32,22 @@ AoMethod alchemy(const char* name, const char* description, ssao::AlchemyFormula
             [f](const MethodOptions& o, int rays) { return ssao::rayTracedEquivalent(alchemySettings(f, o), rays); }};
 }
 
-// GTAO with a preset and the override's counts; `samples` > 0 sets the slice count to samples / (2 x steps
-// per side), the horizon samples per pixel being 2 x slices x steps, unless the override sets it. Its
-// integral is binary AO of the same radius (default 1 m).
+// What every GTAO method takes from the options after its counts: `samples` > 0 sets the slice count to
+// samples / (2 x steps per side), the horizon samples per pixel being 2 x slices x steps, unless the override
+// sets it; and the MIP distance ratio.
+void applySampleOptions(ssao::GtaoSettings& s, const MethodOptions& o) {
+    if (o.samples > 0 && o.gtao.slices == 0) s.sliceCount = std::clamp(o.samples / (2 * s.stepsPerSide), 1, 64);
+    if (o.gtaoMipRatio > 0.0f) s.mipDistanceRatio = o.gtaoMipRatio;
+}
+
+// GTAO with a preset and the override's counts. Its integral is binary AO of the same radius (default 1 m).
 ssao::GtaoSettings gtaoSettings(ssao::GtaoQuality quality, ssao::GtaoSampling sampling, const MethodOptions& o) {
     ssao::GtaoSettings s;
     ssao::applyQuality(s, quality);
     s.sampling = sampling;
     if (o.radius > 0.0f) s.radius = o.radius;
     o.gtao.apply(s);
-    if (o.samples > 0 && o.gtao.slices == 0) s.sliceCount = std::clamp(o.samples / (2 * s.stepsPerSide), 1, 64);
-    if (o.gtaoMipRatio > 0.0f) s.mipDistanceRatio = o.gtaoMipRatio;
+    applySampleOptions(s, o);
     return s;
 }
 
@@ -76,8 +81,7 @@ AoMethod gtaoHalf(const char* name, const char* description,
         s.sampling = sampling;
         if (o.radius > 0.0f) s.radius = o.radius;
         ssao::applyHalfResolutionCounts(s, o.gtao);
-        if (o.samples > 0 && o.gtao.slices == 0) s.sliceCount = std::clamp(o.samples / (2 * s.stepsPerSide), 1, 64);
-        if (o.gtaoMipRatio > 0.0f) s.mipDistanceRatio = o.gtaoMipRatio;
+        applySampleOptions(s, o);
         return s;
     };
     return {name, description,
@@ -129,13 +133,16 @@ const std::vector<AoMethod>& aoMethods() {
     return methods;
 }
 
-const AoMethod& findAoMethod(const std::string& name) {
+std::string aoMethodNames() {
     std::string names;
-    for (const AoMethod& m : aoMethods()) {
+    for (const AoMethod& m : aoMethods()) names += (names.empty() ? "" : ", ") + m.name;
+    return names;
+}
+
+const AoMethod& findAoMethod(const std::string& name) {
+    for (const AoMethod& m : aoMethods())
         if (m.name == name) return m;
-        names += (names.empty() ? "" : ", ") + m.name;
-    }
-    fail("--methods", "unknown AO method '" + name + "' (known: " + names + ")");
+    fail("--methods", "unknown AO method '" + name + "' (known: " + aoMethodNames() + ")");
 }
 
 std::vector<const AoMethod*> parseMethodList(const std::string& list) {

@@ -149,7 +149,7 @@ void addAoCommand(CLI::App& app) {
                     "View-space unit normal EXR: 3 channels, or N.X N.Y N.Z; default: rebuilt from depth");
     cmd->add_option("--camera", o->camera, "Camera JSON of the buffers (as `obscura gbuffer` writes it)")->required();
     cmd->add_option("-o,--output", o->output, "Output AO EXR (1 channel Y, 1 = unoccluded)")->required();
-    cmd->add_option("--method", o->method, "AO method: alchemy, alchemy-chapter, gtao, gtao-ultra, gtao-nearest, gtao-mip, gtao-planar-mip, gtao-planar-nearest, gtao-half or gtao-half-planar-nearest (see `obscura compare --help`)")->capture_default_str();
+    cmd->add_option("--method", o->method, "AO method: " + eval::aoMethodNames() + " (see `obscura compare --help`)")->capture_default_str();
     cmd->add_option("--threads", o->threads, "Worker threads (0 = all cores)")->capture_default_str();
     o->gpu.add(*cmd, "the AO method and the blur");
     o->alchemy.add(*cmd, true);

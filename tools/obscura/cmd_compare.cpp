@@ -231,7 +231,7 @@ void addCompareCommand(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand(
         "compare", "Screen-space AO methods against the ray-traced integral they estimate: MAE, RMSE, bias, max");
     cmd->add_option("scene", o->scene, "Built-in scene name or a .gltf/.glb/.obj/.ply file")->capture_default_str();
-    cmd->add_option("--methods", o->methods, "Comma-separated methods: alchemy, alchemy-chapter, gtao, gtao-ultra, gtao-nearest, gtao-mip, gtao-planar-mip, gtao-planar-nearest, gtao-half, gtao-half-planar-nearest (at half resolution: --blur filters its grid before the upsampling)")->capture_default_str();
+    cmd->add_option("--methods", o->methods, "Comma-separated methods: " + eval::aoMethodNames() + " (at half resolution: --blur filters its grid before the upsampling)")->capture_default_str();
     cmd->add_option("-o,--output", o->output, "Side-by-side PNG")->capture_default_str();
     cmd->add_option("--rays", o->rays, "Rays per pixel of the ray-traced reference, [1, 65536]")->capture_default_str();
     cmd->add_option("--samples", o->samples, "Samples per pixel of every method (0: each method's default)")

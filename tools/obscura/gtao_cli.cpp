@@ -47,19 +47,25 @@ const char* const kMipRatioHelp =
     "smaller reads coarser levels sooner (fewer cache lines, a lower horizon behind thin rims). With "
     "planar-nearest: samples from 2 ratio pixels out are nearest-pixel ones";
 
+// "0 for the methods' default (7)", from GtaoSettings' own default.
+std::string defaultMipRatioText() {
+    char text[64];
+    std::snprintf(text, sizeof text, "0 for the methods' default (%g)", double(ssao::GtaoSettings{}.mipDistanceRatio));
+    return text;
+}
+
 } // namespace
 
 void addGtaoMipRatioOverride(CLI::App& app, float& mipRatio) {
     app.add_option("--gtao-mip-ratio", mipRatio,
-                   std::string("GTAO methods with a depth MIP chain (gtao-mip, gtao-planar-mip) or planar-nearest "
-                               "samples (gtao-planar-nearest, gtao-half-planar-nearest), 0 for their default (7): ") +
-                       kMipRatioHelp)
+                   "GTAO methods with a depth MIP chain (gtao-mip, gtao-planar-mip) or planar-nearest samples "
+                   "(gtao-planar-nearest, gtao-half-planar-nearest), " + defaultMipRatioText() + ": " + kMipRatioHelp)
         ->capture_default_str();
 }
 
 void validateGtaoMipRatioOverride(float mipRatio) {
     if (mipRatio != 0.0f && !(mipRatio >= 2.0f && mipRatio <= 64.0f))
-        fail("--gtao-mip-ratio", "must be in [2, 64], or 0 for the methods' default (7)");
+        fail("--gtao-mip-ratio", "must be in [2, 64], or " + defaultMipRatioText());
 }
 
 void addGtaoSamplingOption(CLI::App& app, std::string& sampling, float& mipRatio, const std::string& lead) {

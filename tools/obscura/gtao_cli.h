@@ -56,7 +56,7 @@ struct GtaoOptions {
     void validate(const std::string& aovDir) const;
 };
 
-// --gtao-sampling (planar, nearest, mip) and --gtao-mip-ratio on `app`, the first's help starting with `lead`
+// --gtao-sampling (ssao::gtaoSamplingName's words) and --gtao-mip-ratio on `app`, the first's help starting with `lead`
 // (what the flag sets, for this command), and the sampling's value as the setting.
 void addGtaoSamplingOption(CLI::App& app, std::string& sampling, float& mipRatio, const std::string& lead);
 ssao::GtaoSampling gtaoSampling(const std::string& sampling);
