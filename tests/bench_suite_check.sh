@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # scripts/bench-gpu-suite on this build, at a tiny size on whatever Vulkan device there is (lavapipe in CI):
-# the nine JSON files, each with its variant's flags; FLAGS after -- reach every run; a failing run stops
+# the ten JSON files, each with its variant's flags, and the internals folder; FLAGS after -- reach every run; a failing run stops
 # the suite with a non-zero exit and leaves no JSON of its own. Exit 77 (skipped) without a Vulkan device.
 # Arguments: source dir, build dir, scratch dir.
 source "$(dirname "$0")/check_common.sh"
@@ -27,7 +27,14 @@ expect ao-half-2d.json '"half_blur": "2d"' '"case": "gtao-half"' '2-D bilateral 
 if grep -q '"case": "gtao"' "$work/out/ao-half-2d.json"; then fail "ao-half-2d ran more than the gtao-half case"; fi
 expect ao-r025.json '"gtao_radius_m": 0.25' '"case": "gtao-spatial"' 'r 0.25 m'
 if grep -q '"case": "gtao-temporal' "$work/out/ao-r025.json"; then fail "ao-r025 ran more than the GTAO cases"; fi
-[ "$(ls -A "$work/out" | wc -l)" -eq 9 ] || fail "expected exactly 9 files, got: $(ls -A "$work/out")"
+expect pipelines.json '"pipeline_statistics": ' '"gtao_sampling": "planar-nearest"' '"case": "alchemy"'
+if grep -q '"pipeline_statistics": false' "$work/out/pipelines.json"; then
+  expect pipelines.json 'VK_KHR_pipeline_executable_properties'
+else
+  expect pipelines.json '"pipelines": ' '"statistics": '
+fi
+[ -d "$work/out/internals" ] || fail "no internals folder"
+[ "$(ls -A "$work/out" | wc -l)" -eq 11 ] || fail "expected exactly 10 files and internals/, got: $(ls -A "$work/out")"
 
 # A bad flag fails the first run: non-zero exit, its one-line error, nothing written.
 if "$src/scripts/bench-gpu-suite" "$tool" "$work/bad" -- --frames 0 2>"$work/err"; then fail "--frames 0 did not fail"; fi

@@ -39,6 +39,13 @@ struct ContextSettings {
     int deviceIndex = -1;
     std::string deviceIndexName = "ContextSettings::deviceIndex";  // how errors name it (a CLI: its flag)
     bool validation = false;  // also on when the environment has OBSCURA_VALIDATION=1
+    // Keep what the driver says of each compute pipeline it compiles (VK_KHR_pipeline_executable_properties):
+    // statistics such as registers per invocation, and with pipelineInternals its internal representations
+    // (the driver's intermediate or machine code, as text where it gives text). Where the driver lacks the
+    // extension the context works as without them and DeviceInfo::pipelineStatistics says so. Off by default:
+    // a driver may compile more slowly or skip its pipeline cache while capturing.
+    bool pipelineStatistics = false;
+    bool pipelineInternals = false;  // implies pipelineStatistics
 };
 
 struct DeviceInfo {
@@ -48,6 +55,30 @@ struct DeviceInfo {
     std::uint32_t apiVersion = 0;   // VK_MAKE_API_VERSION encoding
     std::string driver;             // the driver's name and version, e.g. "llvmpipe Mesa 22.3.6"
     double timestampPeriodNs = 0;   // ns per timestamp tick; 0 when the compute queue has no timestamps
+    bool pipelineStatistics = false;  // the context captures pipeline statistics (asked for, and offered)
+};
+
+// What the driver says of one compiled pipeline (Context::pipelineReports). A compute pipeline usually has
+// one executable; the names of executables and statistics are the driver's own, e.g. "Register Count".
+struct PipelineStatistic {
+    std::string name, description;
+    double value = 0;  // booleans as 0 or 1
+};
+struct PipelineInternal {
+    std::string name, description;
+    bool text = false;  // data is text (else raw bytes)
+    std::string data;
+};
+struct PipelineExecutable {
+    std::string name, description;
+    std::uint32_t subgroupSize = 0;  // the subgroup (warp, wave) size it runs with
+    std::vector<PipelineStatistic> statistics;
+    std::vector<PipelineInternal> internals;  // with ContextSettings::pipelineInternals
+};
+struct PipelineReport {
+    std::string pipeline;  // the shader's name, with its specialization constants as name<a,b>
+    std::vector<PipelineExecutable> executables;
+    std::string error;  // the driver refused a query: what and why (the executables are then missing)
 };
 
 // Number of Vulkan devices; 0 when there is no loader, no driver or no device. Never throws.
@@ -69,6 +100,9 @@ public:
     std::vector<std::string> validationMessages() const;
     // GPU time of the last pass's dispatches, from timestamp queries, ms; -1 when timestamps are missing.
     double lastPassMs() const;
+    // Every pipeline the context has made so far, by name, with what the driver said of it; empty unless
+    // device().pipelineStatistics.
+    std::vector<PipelineReport> pipelineReports() const;
 
     struct Impl;  // src/gpu/context.h
     Impl& impl() { return *impl_; }

@@ -1,5 +1,6 @@
 // Compute pipelines with checked layouts; see compute_pipeline.h.
 #include "gpu/compute_pipeline.h"
+#include "gpu/pipeline_executables.h"
 
 #include "obscura/error.h"
 
@@ -103,10 +104,15 @@ ComputePipeline::ComputePipeline(Context::Impl& context, const Spirv& code, cons
     specInfo.pData = specialization.data();
     if (!specialization.empty()) pipelineInfo.stage.pSpecializationInfo = &specInfo;
     pipelineInfo.layout = pipelineLayout_.get();
+    if (context.info.pipelineStatistics) pipelineInfo.flags |= VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR;
+    if (context.captureInternals) pipelineInfo.flags |= VK_PIPELINE_CREATE_CAPTURE_INTERNAL_REPRESENTATIONS_BIT_KHR;
     VkPipeline pipeline = VK_NULL_HANDLE;
     context.check(vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &pipelineInfo, nullptr, &pipeline),
                   "compiling " + what);
     pipeline_ = Unique<VkPipeline>(device, pipeline, vkDestroyPipeline);
+    if (context.info.pipelineStatistics)
+        executables_ = describeExecutables(context.device, pipeline, context.executableQueries,
+                                           context.captureInternals, &describeError_);
 
     std::vector<VkDescriptorPoolSize> poolSizes;
     for (const BindingKind k : {BindingKind::StorageBuffer, BindingKind::SampledImage}) {

@@ -48,6 +48,9 @@ public:
                       std::uint32_t pushBytes, int width, int height);
 
     const SpirvLayout& layout() const { return layout_; }
+    // What the driver said of the compiled pipeline, when the context captures it (Context::pipelineReports).
+    const std::vector<PipelineExecutable>& executables() const { return executables_; }
+    const std::string& describeError() const { return describeError_; }  // why they are missing, if they are
     // Called by Context::Impl::submit before recording: the descriptor sets are free again.
     void beginCommands() { used_ = 0; }
 
@@ -66,6 +69,8 @@ private:
     Unique<VkDescriptorPool> pool_;
     VkDescriptorSet sets_[kSetsPerSubmit] = {};  // freed with the pool
     int used_ = 0;
+    std::vector<PipelineExecutable> executables_;
+    std::string describeError_;
 };
 
 } // namespace obscura::gpu

@@ -35,6 +35,16 @@ VKAPI_ATTR VkBool32 VKAPI_CALL recordMessage(VkDebugUtilsMessageSeverityFlagBits
     return VK_FALSE;  // never abort the call: the message is the finding
 }
 
+bool hasDeviceExtension(VkPhysicalDevice physical, const char* name) {
+    std::uint32_t n = 0;
+    if (vkEnumerateDeviceExtensionProperties(physical, nullptr, &n, nullptr) != VK_SUCCESS) return false;
+    std::vector<VkExtensionProperties> extensions(n);
+    if (vkEnumerateDeviceExtensionProperties(physical, nullptr, &n, extensions.data()) < VK_SUCCESS) return false;
+    for (std::uint32_t i = 0; i < n; ++i)
+        if (std::strcmp(extensions[i].extensionName, name) == 0) return true;
+    return false;
+}
+
 bool hasLayer(const char* name) {
     std::uint32_t n = 0;
     vkEnumerateInstanceLayerProperties(&n, nullptr);
@@ -210,8 +220,36 @@ Context::Context(const ContextSettings& settings) : impl_(std::make_unique<Impl>
     deviceInfo.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO;
     deviceInfo.queueCreateInfoCount = 1;
     deviceInfo.pQueueCreateInfos = &queue;
+    // Pipeline statistics only where asked: the extension and its feature must both be there.
+    const char* executableProperties = VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME;
+    VkPhysicalDevicePipelineExecutablePropertiesFeaturesKHR executableFeature{};
+    executableFeature.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PIPELINE_EXECUTABLE_PROPERTIES_FEATURES_KHR;
+    if ((settings.pipelineStatistics || settings.pipelineInternals) &&
+        hasDeviceExtension(c.physical, executableProperties)) {
+        VkPhysicalDeviceFeatures2 features2{};
+        features2.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2;
+        features2.pNext = &executableFeature;
+        vkGetPhysicalDeviceFeatures2(c.physical, &features2);
+        if (executableFeature.pipelineExecutableInfo) {
+            executableFeature.pNext = nullptr;
+            deviceInfo.pNext = &executableFeature;
+            deviceInfo.enabledExtensionCount = 1;
+            deviceInfo.ppEnabledExtensionNames = &executableProperties;
+        }
+    }
     c.check(vkCreateDevice(c.physical, &deviceInfo, nullptr, &c.device), "creating the device");
     vkGetDeviceQueue(c.device, c.queueFamily, 0, &c.queue);
+    if (deviceInfo.enabledExtensionCount == 1) {
+        ExecutableQueries& q = c.executableQueries;
+        q.properties = reinterpret_cast<PFN_vkGetPipelineExecutablePropertiesKHR>(
+            vkGetDeviceProcAddr(c.device, "vkGetPipelineExecutablePropertiesKHR"));
+        q.statistics = reinterpret_cast<PFN_vkGetPipelineExecutableStatisticsKHR>(
+            vkGetDeviceProcAddr(c.device, "vkGetPipelineExecutableStatisticsKHR"));
+        q.internals = reinterpret_cast<PFN_vkGetPipelineExecutableInternalRepresentationsKHR>(
+            vkGetDeviceProcAddr(c.device, "vkGetPipelineExecutableInternalRepresentationsKHR"));
+        c.info.pipelineStatistics = q.properties && q.statistics && q.internals;
+        c.captureInternals = c.info.pipelineStatistics && settings.pipelineInternals;
+    }
 
     VkCommandPoolCreateInfo pool{};
     pool.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO;
@@ -376,5 +414,11 @@ std::vector<std::string> Context::validationMessages() const {
     return impl_->messages;
 }
 double Context::lastPassMs() const { return impl_->lastPassMs; }
+std::vector<PipelineReport> Context::pipelineReports() const {
+    std::vector<PipelineReport> reports;
+    if (!impl_->info.pipelineStatistics) return reports;
+    for (const auto& [name, p] : impl_->pipelines) reports.push_back({name, p->executables(), p->describeError()});
+    return reports;
+}
 
 } // namespace obscura::gpu

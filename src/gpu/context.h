@@ -2,6 +2,7 @@
 #pragma once
 
 #include "gpu/allocator.h"
+#include "gpu/pipeline_executables.h"
 #include "gpu/vulkan.h"
 
 #include "obscura/gpu.h"
@@ -35,6 +36,10 @@ struct Context::Impl {
     VkPhysicalDeviceProperties properties{};
     DeviceInfo info;
     bool validation = false;
+    // VK_KHR_pipeline_executable_properties, when ContextSettings asked for it and the device offers it
+    // (info.pipelineStatistics): pipelines are made with the capture flags and report what the driver says.
+    bool captureInternals = false;
+    ExecutableQueries executableQueries;
     std::unique_ptr<Allocator> allocator;
     double lastPassMs = -1.0;
     // Timestamps of the submission being recorded: slot 0 at its start, one per mark(), one at its end.

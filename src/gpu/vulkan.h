@@ -12,7 +12,8 @@
 #include <string>
 
 // Core functions, taken from the loader's exports (the loader's trampolines work for every instance and
-// device). Extension functions (debug utils) come from vkGetInstanceProcAddr per instance.
+// device). Extension functions come from vkGetInstanceProcAddr per instance (debug utils) or
+// vkGetDeviceProcAddr per device (pipeline executable properties).
 #define OBSCURA_VK_FUNCTIONS(X)                                                                                  \
     X(vkGetInstanceProcAddr) X(vkEnumerateInstanceVersion) X(vkEnumerateInstanceLayerProperties)              \
     X(vkEnumerateInstanceExtensionProperties) X(vkCreateInstance) X(vkDestroyInstance)                        \
@@ -30,7 +31,8 @@
     X(vkCmdBindPipeline) X(vkCmdBindDescriptorSets) X(vkCmdPushConstants) X(vkCmdDispatch)                    \
     X(vkCreateImage) X(vkDestroyImage) X(vkGetImageMemoryRequirements) X(vkBindImageMemory)                   \
     X(vkCreateImageView) X(vkDestroyImageView) X(vkCreateSampler) X(vkDestroySampler)                         \
-    X(vkCmdCopyBufferToImage) X(vkGetPhysicalDeviceFormatProperties) X(vkGetPhysicalDeviceProperties2)
+    X(vkCmdCopyBufferToImage) X(vkGetPhysicalDeviceFormatProperties) X(vkGetPhysicalDeviceProperties2)        \
+    X(vkGetPhysicalDeviceFeatures2) X(vkEnumerateDeviceExtensionProperties) X(vkGetDeviceProcAddr)
 
 namespace obscura::gpu {
 

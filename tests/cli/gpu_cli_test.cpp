@@ -17,6 +17,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <set>
 #include <string>
@@ -399,6 +400,43 @@ TEST_F(GpuCommands, BenchGpuReportsEveryCase) {
         EXPECT_NE(b["cases"][i]["description"].get<std::string>().find("r 1 m"), std::string::npos);
         EXPECT_NE(q["cases"][i]["description"].get<std::string>().find("r 0.25 m"), std::string::npos);
     }
+}
+
+// --pipeline-stats and --pipeline-internals: what the driver says of each pipeline the cases compiled, or,
+// where it lacks VK_KHR_pipeline_executable_properties (lavapipe in Mesa 22.3), a note naming the device while
+// the timings still come; a folder that cannot be made fails in one line before any work.
+TEST_F(GpuCommands, BenchGpuPipelineStatistics) {
+    const std::string args = "bench --gpu --sizes 24x16 --frames 1 --warmup 0 --inputs 1 --cases alchemy,gtao";
+    const CliResult r = runGpu(args + " --json --pipeline-internals " + path("internals"));
+    const nlohmann::json j = nlohmann::json::parse(r.out);
+    ASSERT_EQ(j["cases"].size(), 2u);
+    if (!j["pipeline_statistics"].get<bool>()) {
+        EXPECT_EQ(j.count("pipelines"), 0u);
+        const std::string note = j["pipeline_statistics_note"];
+        EXPECT_NE(note.find(j["device"].get<std::string>()), std::string::npos) << note;
+        EXPECT_NE(note.find("VK_KHR_pipeline_executable_properties"), std::string::npos) << note;
+        const CliResult table = runGpu(args + " --pipeline-stats");
+        EXPECT_NE(table.out.find("pipelines: " + j["device"].get<std::string>()), std::string::npos) << table.out;
+        EXPECT_NE(table.out.find("alchemy "), std::string::npos) << "the timings still come: " << table.out;
+    } else {
+        // Every shader the two cases dispatch, each with an executable and a statistic, and its files written.
+        std::set<std::string> shaders;
+        for (const auto& p : j["pipelines"]) {
+            const std::string name = p["pipeline"];
+            shaders.insert(name.substr(0, name.find('<')));
+            EXPECT_EQ(p["error"], "") << name;
+            ASSERT_GE(p["executables"].size(), 1u) << name;
+            for (const auto& x : p["executables"]) {
+                EXPECT_GE(x["statistics"].size(), 1u) << name;
+                for (const auto& f : x["internal_files"])
+                    EXPECT_TRUE(std::filesystem::exists(f.get<std::string>())) << f;
+            }
+        }
+        for (const char* s : {"alchemy", "bilateral_separable", "gtao"}) EXPECT_EQ(shaders.count(s), 1u) << s;
+    }
+    std::filesystem::create_directories(path("d"));
+    { std::ofstream(path("d/file")) << "x"; }
+    expectFailure(args + " --gpu --pipeline-internals " + path("d/file/sub"), {"--pipeline-internals", "d/file/sub"});
 }
 
 TEST_F(GpuCommands, BenchGpuRejectsBadArguments) {

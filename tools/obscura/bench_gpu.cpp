@@ -9,13 +9,17 @@
 #include "obscura/error.h"
 #include "obscura/gpu.h"
 #include "obscura/gpu_bench.h"
+#include "obscura/image_io.h"
 #include "obscura/trace.h"
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <cctype>
 #include <cstdio>
 #include <ctime>
+#include <filesystem>
+#include <fstream>
 #include <memory>
 #include <sstream>
 #include <vector>
@@ -61,6 +65,8 @@ struct GpuBenchOptions {
     double peakGbps = 3000.0;
     int device = -1;
     bool json = false;
+    bool pipelineStats = false;
+    std::string pipelineInternals;
 
     void add(CLI::App& bench);
 };
@@ -126,6 +132,79 @@ void GpuBenchOptions::add(CLI::App& bench) {
     bench.add_option("--gpu-device", device, "--gpu: Vulkan device index (-1: OBSCURA_GPU_DEVICE, else the first discrete GPU)")
         ->capture_default_str();
     bench.add_flag("--json", json, "--gpu: print JSON instead of a table");
+    bench.add_flag("--pipeline-stats", pipelineStats,
+                   "--gpu: after the timings, what the driver says of each compute pipeline it compiled "
+                   "(VK_KHR_pipeline_executable_properties: registers per invocation, code size, spills, ... as the "
+                   "driver names them), so occupancy can be read beside the times; a driver without the extension "
+                   "is named and the run goes on");
+    bench.add_option("--pipeline-internals", pipelineInternals,
+                     "--gpu: also write each pipeline's internal representations (the driver's intermediate or "
+                     "machine code, where it gives them) into this folder, one file each: PIPELINE.N.NAME.txt "
+                     "(.bin where not text); implies --pipeline-stats");
+}
+
+// A pipeline's or representation's name as a file name: letters, digits, '-' and '_'; others become '_'.
+std::string fileWord(const std::string& name) {
+    std::string w;
+    for (const char ch : name) w.push_back(std::isalnum(static_cast<unsigned char>(ch)) || ch == '-' || ch == '_' ? ch : '_');
+    return w.empty() ? "_" : w;
+}
+
+// --pipeline-stats and --pipeline-internals: the driver's statistics of every pipeline the cases made, into
+// the report (and printed unless --json), and its internal representations into the folder.
+void reportPipelines(const gpu::Context& context, const GpuBenchOptions& o, nlohmann::json& report) {
+    const gpu::DeviceInfo& info = context.device();
+    report["pipeline_statistics"] = info.pipelineStatistics;
+    if (!info.pipelineStatistics) {
+        const std::string note = info.name + " (" + info.driver +
+                                 ") does not offer VK_KHR_pipeline_executable_properties: no pipeline statistics";
+        report["pipeline_statistics_note"] = note;
+        if (!o.json) std::printf("\npipelines: %s\n", note.c_str());
+        return;
+    }
+    nlohmann::json pipelines = nlohmann::json::array();
+    std::vector<std::string> written;
+    if (!o.json) std::printf("\npipelines (the driver's statistics of each executable):\n");
+    for (const gpu::PipelineReport& p : context.pipelineReports()) {
+        nlohmann::json executables = nlohmann::json::array();
+        for (std::size_t e = 0; e < p.executables.size(); ++e) {
+            const gpu::PipelineExecutable& x = p.executables[e];
+            nlohmann::json statistics = nlohmann::json::array();
+            std::string line;
+            for (const gpu::PipelineStatistic& s : x.statistics) {
+                statistics.push_back({{"name", s.name}, {"description", s.description}, {"value", s.value}});
+                char v[48];
+                std::snprintf(v, sizeof v, "%g", s.value);
+                line += (line.empty() ? "" : ", ") + s.name + " " + v;
+            }
+            nlohmann::json files = nlohmann::json::array();
+            for (const gpu::PipelineInternal& r : x.internals) {
+                const std::filesystem::path file = std::filesystem::path(o.pipelineInternals) /
+                    (fileWord(p.pipeline) + "." + std::to_string(e) + "." + fileWord(r.name) + (r.text ? ".txt" : ".bin"));
+                writeAtomically(file.string(), [&](const std::string& temp) {
+                    std::ofstream out(temp, std::ios::binary);
+                    out << r.data;
+                    out.flush();
+                    if (!out) fail(file.string(), "write failed");
+                });
+                files.push_back(file.string());
+                written.push_back(file.string());
+            }
+            executables.push_back({{"name", x.name},
+                                   {"description", x.description},
+                                   {"subgroup_size", x.subgroupSize},
+                                   {"statistics", statistics},
+                                   {"internal_files", files}});
+            if (!o.json)
+                std::printf("  %-40s %s (subgroup %u): %s\n", p.pipeline.c_str(), x.name.c_str(), x.subgroupSize,
+                            line.empty() ? "(no statistics)" : line.c_str());
+        }
+        if (!p.error.empty() && !o.json) std::printf("  %-40s (the driver refused: %s)\n", p.pipeline.c_str(), p.error.c_str());
+        pipelines.push_back({{"pipeline", p.pipeline}, {"executables", executables}, {"error", p.error}});
+    }
+    report["pipelines"] = pipelines;
+    if (!o.json && !o.pipelineInternals.empty())
+        std::printf("%zu internal representation(s) written to %s\n", written.size(), o.pipelineInternals.c_str());
 }
 
 void runGpuBench(const GpuBenchOptions& o) {
@@ -154,8 +233,16 @@ void runGpuBench(const GpuBenchOptions& o) {
     }
     if (o.inputs < 1 || o.inputs > 16) fail("--inputs", "must be in [1, 16]");
     if (!(o.peakGbps > 0.0 && o.peakGbps < 1e6)) fail("--peak-gbps", "must be in (0, 1e6) GB/s");
-    const GpuFlags device{true, o.device};
+    GpuFlags device{true, o.device};
+    device.pipelineStatistics = o.pipelineStats || !o.pipelineInternals.empty();
+    device.pipelineInternals = !o.pipelineInternals.empty();
     device.validate();
+    if (!o.pipelineInternals.empty()) {
+        std::error_code ec;
+        std::filesystem::create_directories(o.pipelineInternals, ec);
+        if (!std::filesystem::is_directory(o.pipelineInternals))
+            fail("--pipeline-internals " + o.pipelineInternals, "is not a folder and cannot be made one");
+    }
     std::vector<std::pair<int, int>> sizes;
     for (const std::string& s : splitList(o.sizes)) {
         int w = 0, h = 0;
@@ -297,6 +384,7 @@ void runGpuBench(const GpuBenchOptions& o) {
                     break;
                 }
     }
+    if (device.pipelineStatistics) reportPipelines(context, o, report);
     reportValidation(&context);
     if (o.json) std::printf("%s\n", report.dump(2).c_str());
 }

@@ -27,6 +27,8 @@ std::unique_ptr<gpu::Context> GpuFlags::open() const {
     gpu::ContextSettings cs;  // it names a missing driver or device, and a bad index by the flag
     cs.deviceIndex = device;
     cs.deviceIndexName = "--gpu-device";
+    cs.pipelineStatistics = pipelineStatistics;
+    cs.pipelineInternals = pipelineInternals;
     return std::make_unique<gpu::Context>(cs);
 }
 

@@ -15,6 +15,10 @@ namespace obscura::cli {
 struct GpuFlags {
     bool gpu = false;
     int device = -1;
+    // What the driver says of each pipeline (ContextSettings::pipelineStatistics, pipelineInternals); set by
+    // the commands that report it, not flags of every command.
+    bool pipelineStatistics = false;
+    bool pipelineInternals = false;
 
     // `what` completes the --gpu help: "Run <what> as Vulkan compute passes ..."; `note`, if any, follows it.
     void add(CLI::App& app, const std::string& what, const std::string& note = "");
