@@ -75,6 +75,19 @@ assert [v["name"] for v in d["variants"]] == ["embedded", "cand"]
 assert all(len(v["rounds_ms"]) == 1 and v["median_ms"] for v in d["variants"])
 assert all(m["ms"] > 0 for v in d["variants"] for m in v["median_ms"])
 EOF
+# A variant that is a flag: --flags-for reaches that variant's runs alone (bench says so in its JSON).
+"$src/scripts/gpu-ab" --obscura "$tool" --rounds 1 --json "$work/flags.json" two tiled --flags-for "tiled=--blur-tiled" \
+  -- --sizes 64x32 --cases alchemy --frames 2 --warmup 0 --inputs 1 >"$work/ab" 2>"$work/ab.err" ||
+  fail "gpu-ab --flags-for failed: $(cat "$work/ab.err")"
+python3 - "$work/flags.json" <<'EOF' || fail "gpu-ab --flags-for's JSON: $(cat "$work/flags.json")"
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert [(v["name"], v["flags"]) for v in d["variants"]] == [("two", []), ("tiled", ["--blur-tiled"])]
+EOF
+if "$src/scripts/gpu-ab" --obscura "$tool" two "--flags-for=nobody=--blur-tiled" >"$work/ab" 2>"$work/ab.err"; then
+  fail "gpu-ab took --flags-for a variant it does not have"
+fi
+grep -q "no variant named 'nobody'" "$work/ab.err" || fail "$(cat "$work/ab.err")"
 if "$src/scripts/gpu-ab" --obscura "$tool" embedded "gone=$work/missing" >"$work/ab" 2>"$work/ab.err"; then
   fail "gpu-ab ran with a missing folder"
 fi

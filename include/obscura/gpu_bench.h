@@ -35,6 +35,9 @@ struct GpuBenchSettings {
                              // [1, 32] (2: 5 taps, the configuration docs/QUALITY.md measured)
     bool halfBlur2D = false;  // the gtao-half case's blur as one 2-D dispatch instead of two separable ones
                               // (both by depth alone; the same error on the built-in views)
+    bool blurTiled = false;   // the separable blurs of the alchemy, gtao and gtao-half cases as one dispatch
+                              // (bilateral_tiled.comp: both passes per tile from shared memory, the same bits);
+                              // their radii must then be <= 8
     ssao::GtaoQuality quality = ssao::GtaoQuality::High;  // the GTAO cases' preset (slices x steps)
     // Counts over the preset's: slices of the gtao and gtao-spatial cases (the temporal ones take
     // temporalSlices), steps of every GTAO case; jitter rotates the gtao case's slices per pixel, noise its

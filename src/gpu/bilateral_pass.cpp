@@ -50,7 +50,22 @@ void recordSeparableBilateralAxis(Context::Impl& c, VkCommandBuffer cmd, const S
 }
 
 void recordSeparableBilateral(Context::Impl& c, VkCommandBuffer cmd, const SeparableBilateralBuffers& b,
-                              const SeparableBilateral& f) {
+                              const SeparableBilateral& f, BlurDispatch dispatch) {
+    if (dispatch == BlurDispatch::Tiled) {
+        if (f.constants.radius > kBilateralTiledMaxRadius)
+            fail("the tiled blur", "holds radii up to " + std::to_string(kBilateralTiledMaxRadius) + ", not " +
+                                       std::to_string(f.constants.radius));
+        ComputePipeline& pipeline =
+            c.pipeline("bilateral_tiled", shaders::bilateral_tiled,
+                       std::vector<BindingKind>(kBilateralBindingCount, BindingKind::StorageBuffer),
+                       kBilateralPushConstantBytes, kBilateralTiledWorkgroupX, kBilateralTiledWorkgroupY,
+                       {f.constants.useNormal});  // kBilateralSpecUseNormal
+        const std::uint32_t tilesX = std::uint32_t((f.constants.width + kBilateralTiledTile - 1) / kBilateralTiledTile);
+        const std::uint32_t tilesY = std::uint32_t((f.constants.height + kBilateralTiledTile - 1) / kBilateralTiledTile);
+        pipeline.dispatch(cmd, {&b.depth, &b.normal, &b.logSpatial, &b.input, &b.output}, &f.constants,
+                          sizeof f.constants, tilesX, tilesY);
+        return;
+    }
     recordSeparableBilateralAxis(c, cmd, {b.depth, b.normal, b.logSpatial, b.input, b.scratch, b.scratch}, f, 0);
     computeBarrier(cmd);  // the vertical pass reads what the horizontal one wrote
     recordSeparableBilateralAxis(c, cmd, {b.depth, b.normal, b.logSpatial, b.scratch, b.scratch, b.output}, f, 1);

@@ -23,10 +23,16 @@ struct SeparableBilateralBuffers {
     const Buffer& output;      // width * height AO
 };
 
-// Records the horizontal and the vertical dispatch with a barrier between them. The inputs must be visible
-// to compute shaders (the caller's barrier); the settings were checked by ssao::checkBilateralInputs.
+// How the two passes are dispatched: bilateral_separable.comp twice with a barrier between them, or
+// bilateral_tiled.comp once (both passes per tile from shared memory; radius <= kBilateralTiledMaxRadius).
+// The same bits either way.
+enum class BlurDispatch { TwoPasses, Tiled };
+
+// Records the blur. The inputs must be visible to compute shaders (the caller's barrier); the settings were
+// checked by ssao::checkBilateralInputs. BlurDispatch::Tiled with a larger radius throws obscura::Error;
+// buffers.scratch is then unused.
 void recordSeparableBilateral(Context::Impl& context, VkCommandBuffer cmd, const SeparableBilateralBuffers& buffers,
-                              const SeparableBilateral& filter);
+                              const SeparableBilateral& filter, BlurDispatch dispatch = BlurDispatch::TwoPasses);
 // One of them: axis 0 (horizontal) or 1 (vertical), from `input` to `output` (buffers.scratch unused).
 void recordSeparableBilateralAxis(Context::Impl& context, VkCommandBuffer cmd, const SeparableBilateralBuffers& buffers,
                                   const SeparableBilateral& filter, int axis);

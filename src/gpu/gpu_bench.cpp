@@ -61,6 +61,11 @@ ssao::GtaoSettings gtaoSettings(const GpuBenchSettings& s) {
     return g;
 }
 
+BlurDispatch blurDispatch(const GpuBenchSettings& s) { return s.blurTiled ? BlurDispatch::Tiled : BlurDispatch::TwoPasses; }
+double blurDispatches(BlurDispatch d) { return d == BlurDispatch::Tiled ? 1.0 : 2.0; }
+// What the descriptions add for GpuBenchSettings::blurTiled.
+std::string tiledText(const GpuBenchSettings& s) { return s.blurTiled ? " (both passes in one tiled dispatch)" : ""; }
+
 // ", r 1 m": the radius as the descriptions give it.
 std::string radiusText(const ssao::GtaoSettings& g) {
     char text[32];
@@ -109,7 +114,8 @@ CaseSetup alchemyCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s,
     auto out = std::make_shared<Buffer>(c, px * sizeof(float), MemoryUse::Device);
     CaseSetup setup;
     setup.description = "Alchemy AO, " + std::to_string(s.alchemySamples) +
-                        " samples/px (paper defaults, r 0.5 m)" + blurText(s) + ", depth only" +
+                        " samples/px (paper defaults, r 0.5 m)" + blurText(s) + (fused ? "" : tiledText(s)) +
+                        ", depth only" +
                         (fused ? ", its horizontal pass fused into the estimator's dispatch" : "");
     setup.keepAlive = {spiral, logSpatial, raw, scratch, out};
     if (fused) {
@@ -122,14 +128,15 @@ CaseSetup alchemyCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s,
         };
         return setup;
     }
-    // Estimator: depth + normal in, AO out; each blur axis: depth + AO in, AO out (normals unused).
-    setup.bytes = double(px) * (4 + 12 + 4) + 2 * double(px) * (4 + 4 + 4);
-    setup.record = [&c, k, blur, spiral, logSpatial, raw, scratch, out](
+    // Estimator: depth + normal in, AO out; each blur dispatch: depth + AO in, AO out (normals unused).
+    const BlurDispatch dispatch = blurDispatch(s);
+    setup.bytes = double(px) * (4 + 12 + 4) + blurDispatches(dispatch) * double(px) * (4 + 4 + 4);
+    setup.record = [&c, k, blur, spiral, logSpatial, raw, scratch, out, dispatch](
                        VkCommandBuffer cmd, const ResidentInput& in, int, const std::function<void(const char*)>& mark) {
         recordAlchemy(c, cmd, {in.depth, in.normal, *spiral, *raw}, k);
         mark("alchemy");
         computeBarrier(cmd);  // the blur reads the estimator's output
-        recordSeparableBilateral(c, cmd, {in.depth, in.normal, *logSpatial, *raw, *scratch, *out}, blur);
+        recordSeparableBilateral(c, cmd, {in.depth, in.normal, *logSpatial, *raw, *scratch, *out}, blur, dispatch);
         mark("blur");
     };
     return setup;
@@ -149,14 +156,16 @@ CaseSetup gtaoCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s, co
     CaseSetup setup;
     setup.description = presetText(s) + " (" + slicesText(settings) +
                         radiusText(settings) + "), visibility" + (s.bentNormals ? " + bent normal" : " only") +
-                        "," + blurText(s);
-    // GTAO: depth + normal in, visibility (+ bent normal) out; blur axes as in the alchemy case.
-    setup.bytes = double(px) * (4 + 12 + 4 + (s.bentNormals ? 12 : 0)) + 2 * double(px) * (4 + 4 + 4);
+                        "," + blurText(s) + tiledText(s);
+    // GTAO: depth + normal in, visibility (+ bent normal) out; blur dispatches as in the alchemy case.
+    const BlurDispatch dispatch = blurDispatch(s);
+    setup.bytes = double(px) * (4 + 12 + 4 + (s.bentNormals ? 12 : 0)) + blurDispatches(dispatch) * double(px) * (4 + 4 + 4);
     // Mip sampling: the chain's pass reads depth and writes the chain, which the GTAO pass reads.
     if (k.mipLevels > 0) setup.bytes += 4.0 * (double(px) + 2.0 * double(gtaoDepthMipsFloats(w, h, k.mipLevels)));
     setup.keepAlive = {logSpatial, visibility, bent, mips, scratch, out};
-    setup.record = [&c, k, blur, logSpatial, visibility, bent, mips, scratch, out, bentNormals = s.bentNormals](
-                       VkCommandBuffer cmd, const ResidentInput& in, int, const std::function<void(const char*)>& mark) {
+    setup.record = [&c, k, blur, logSpatial, visibility, bent, mips, scratch, out, bentNormals = s.bentNormals,
+                    dispatch](VkCommandBuffer cmd, const ResidentInput& in, int,
+                              const std::function<void(const char*)>& mark) {
         if (k.mipLevels > 0) {
             recordGtaoDepthMips(c, cmd, in.depth, *mips, k);
             mark("mips");
@@ -165,7 +174,8 @@ CaseSetup gtaoCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s, co
         recordGtao(c, cmd, {in.depth, in.normal, *visibility, *bent, *mips}, k, 1, bentNormals);
         mark("gtao");
         computeBarrier(cmd);  // the blur reads the visibility
-        recordSeparableBilateral(c, cmd, {in.depth, in.normal, *logSpatial, *visibility, *scratch, *out}, blur);
+        recordSeparableBilateral(c, cmd, {in.depth, in.normal, *logSpatial, *visibility, *scratch, *out}, blur,
+                                 dispatch);
         mark("blur");
     };
     return setup;
@@ -179,13 +189,13 @@ CaseSetup gtaoHalfCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s
     // Both blurs by depth alone: the 2-D one measured as accurate as the separable one there (docs/QUALITY.md).
     half.blur.mode = s.halfBlur2D ? ssao::BlurMode::TwoD : ssao::BlurMode::Separable;
     half.blur.normalWeight = ssao::NormalWeight::Off;
-    auto passes = std::make_shared<GtaoHalfResolutionPasses>(c, settings, half, w, h, s.bentNormals);
+    auto passes = std::make_shared<GtaoHalfResolutionPasses>(c, settings, half, w, h, s.bentNormals, blurDispatch(s));
     CaseSetup setup;
     const std::string taps = std::to_string(2 * s.halfBlurRadius + 1);
     setup.description = "GTAO at half resolution (" + slicesText(settings) + radiusText(settings) + "), visibility" +
                         (s.bentNormals ? " + bent normal" : " only") +
                         (s.halfBlur2D ? " + 2-D bilateral there, " + taps + "x" + taps + " taps"
-                                      : " + separable bilateral there, " + taps + " taps per axis") +
+                                      : " + separable bilateral there, " + taps + " taps per axis" + tiledText(s)) +
                         ", depth only + depth-aware upsample";
     setup.bytes = double(passes->bytesPerFrame());
     setup.keepAlive = {passes};
@@ -237,6 +247,14 @@ void GpuBenchSettings::validate() const {
     check(alchemySamples >= 1 && alchemySamples <= 1024, "alchemy-samples", "[1, 1024]");
     check(blurRadius >= 1 && blurRadius <= ssao::kMaxBlurRadius, "blur-radius", "[1, 32] taps on each side");
     check(halfBlurRadius >= 1 && halfBlurRadius <= ssao::kMaxBlurRadius, "half-blur-radius", "[1, 32] taps on each side");
+    if (blurTiled) {
+        const std::string most = std::to_string(kBilateralTiledMaxRadius);
+        if (blurRadius > kBilateralTiledMaxRadius)
+            fail("gpu-bench-blur-tiled", "holds radii up to " + most + ", and --blur-radius is " + std::to_string(blurRadius));
+        if (!halfBlur2D && halfBlurRadius > kBilateralTiledMaxRadius)
+            fail("gpu-bench-blur-tiled",
+                 "holds radii up to " + most + ", and --half-blur-radius is " + std::to_string(halfBlurRadius));
+    }
     check(temporalSlices >= 1 && temporalSlices <= 64, "temporal-slices", "[1, 64]");
     check(gtaoRadius > 0.0f && gtaoRadius <= 1e4f, "ao-radius", "(0, 1e4] m");
     check(mipDistanceRatio >= 2.0f && mipDistanceRatio <= 64.0f, "gtao-mip-ratio", "[2, 64]");

@@ -3,6 +3,7 @@
 // gpu::computeGtaoHalfResolution, which uploads, records one frame and downloads).
 #pragma once
 
+#include "gpu/bilateral_pass.h"
 #include "gpu/buffer.h"
 #include "gpu/context.h"
 
@@ -23,7 +24,8 @@ public:
     // Assumes validated settings and width, height >= 1. Without bentNormals only the visibility is computed
     // (kGtaoSpecBentNormal 0) and bentNormal() is not to be read.
     GtaoHalfResolutionPasses(Context::Impl& context, const ssao::GtaoSettings& settings,
-                             const ssao::GtaoHalfResolutionSettings& half, int width, int height, bool bentNormals);
+                             const ssao::GtaoHalfResolutionSettings& half, int width, int height, bool bentNormals,
+                             BlurDispatch blurDispatch = BlurDispatch::TwoPasses);
 
     // Records the frame for `camera` (of the passes' size) and frameIndex (ssao::gtaoConstants') from depth
     // (width * height) and view normals (3 floats each), visible to compute shaders, with a barrier between
@@ -48,6 +50,7 @@ private:
     int width_, height_, gridWidth_, gridHeight_;
     bool bentNormals_;
     SeparableBilateral blur_;          // the grid's constants, guide at a stride of 2 in the full planes
+    BlurDispatch blurDispatch_;        // of the separable blur
     std::vector<float> kernel2D_;      // the 2-D blur's half kernel
     Buffer blurWeights_;               // logSpatial (separable) or the half kernel (2-D)
     Buffer rawVisibility_, rawBent_;   // grid: the GTAO pass's output

@@ -29,6 +29,7 @@ extern const Spirv upsample_depth_aware;     // upsample_depth_aware.comp
 extern const Spirv gtao_temporal;            // gtao_temporal.comp
 extern const Spirv gtao_mips;                // gtao_mips.comp
 extern const Spirv alchemy_blur_row;         // alchemy_blur_row.comp
+extern const Spirv bilateral_tiled;          // bilateral_tiled.comp
 } // namespace shaders
 
 // The descriptor type of a binding: a storage buffer (std430 block) or a combined image sampler

@@ -402,6 +402,37 @@ TEST_F(GpuCommands, BenchGpuReportsEveryCase) {
     }
 }
 
+// --blur-tiled: the separable blurs of the alchemy, gtao and gtao-half cases in one dispatch (the fused
+// alchemy case keeps its own), said in the report and the descriptions, with half the blur's bytes; radii the
+// tile cannot hold fail in one line naming the flag.
+TEST_F(GpuCommands, BenchGpuBlurTiled) {
+    const std::string args = "bench --gpu --sizes 40x24 --frames 2 --warmup 0 --inputs 1 --json "
+                             "--cases alchemy,alchemy-fused,gtao,gtao-half";
+    const CliResult two = runGpu(args);
+    const CliResult tiled = runGpu(args + " --blur-tiled");
+    const nlohmann::json a = nlohmann::json::parse(two.out), b = nlohmann::json::parse(tiled.out);
+    EXPECT_EQ(a["blur_tiled"], false);
+    EXPECT_EQ(b["blur_tiled"], true);
+    ASSERT_EQ(b["cases"].size(), 4u);
+    for (int i = 0; i < 4; ++i) {
+        const std::string name = b["cases"][i]["case"];
+        const std::string description = b["cases"][i]["description"];
+        const bool applies = name != "alchemy-fused";
+        EXPECT_EQ(description.find("one tiled dispatch") != std::string::npos, applies) << description;
+        EXPECT_EQ(a["cases"][i]["description"].get<std::string>().find("tiled"), std::string::npos);
+        // One dispatch of the blur's two moves depth + AO in and AO out (4 + 4 + 4 bytes per pixel it blurs).
+        const double blurred = name == "gtao-half" ? 20.0 * 12.0 : 40.0 * 24.0;
+        EXPECT_DOUBLE_EQ(a["cases"][i]["bytes_per_frame"].get<double>() - b["cases"][i]["bytes_per_frame"].get<double>(),
+                         applies ? blurred * 12.0 : 0.0)
+            << name;
+        std::set<std::string> passes;
+        for (const auto& p : b["cases"][i]["passes"]) passes.insert(p["name"].get<std::string>());
+        EXPECT_EQ(passes.count(applies ? "blur" : "blur-columns"), 1u) << name;
+    }
+    expectFailure("bench --gpu --blur-tiled --blur-radius 9", {"--blur-tiled", "up to 8", "--blur-radius is 9"});
+    expectFailure("bench --gpu --blur-tiled --half-blur-radius 12", {"--blur-tiled", "--half-blur-radius is 12"});
+}
+
 // --pipeline-stats and --pipeline-internals: what the driver says of each pipeline the cases compiled, or,
 // where it lacks VK_KHR_pipeline_executable_properties (lavapipe in Mesa 22.3), a note naming the device while
 // the timings still come; a folder that cannot be made fails in one line before any work.

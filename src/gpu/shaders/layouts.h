@@ -59,6 +59,15 @@ OBSCURA_CONST int kBilateralHorizontalTileX = 256;
 OBSCURA_CONST int kBilateralHorizontalTileY = 1;
 OBSCURA_CONST int kBilateralVerticalTileX = 8;
 OBSCURA_CONST int kBilateralVerticalTileY = 32;
+// bilateral_tiled.comp: both passes in one dispatch, from shared memory. A workgroup of
+// kBilateralTiledWorkgroupX x kBilateralTiledWorkgroupY invocations loads a square of kBilateralTiledTile
+// pixels with `radius` more on each side, blurs its rows, then its columns, and writes the square; its
+// bindings and push constants are bilateral_separable's (axis unused). For radius <= kBilateralTiledMaxRadius;
+// dispatch ceil(width / Tile) x ceil(height / Tile) workgroups.
+OBSCURA_CONST int kBilateralTiledWorkgroupX = 32;
+OBSCURA_CONST int kBilateralTiledWorkgroupY = 8;
+OBSCURA_CONST int kBilateralTiledTile = 32;
+OBSCURA_CONST int kBilateralTiledMaxRadius = 8;
 // bilateral_2d.comp: one invocation per pixel, dispatched over width x height.
 OBSCURA_CONST int kBilateral2DWorkgroupX = 8;
 OBSCURA_CONST int kBilateral2DWorkgroupY = 8;
@@ -146,6 +155,10 @@ static_assert(kBilateralHorizontalTileX * kBilateralHorizontalTileY == kBilatera
                   kBilateralVerticalTileX * kBilateralVerticalTileY == kBilateralWorkgroupX * kBilateralWorkgroupY &&
                   kBilateralWorkgroupY == 1 && kBilateralWorkgroupX >= 2 * kBilateralMaxRadius + 1,
               "each pass's tile has one pixel per invocation, and one row of invocations loads the weights");
+static_assert(kBilateralTiledWorkgroupX == kBilateralTiledTile && kBilateralTiledTile % kBilateralTiledWorkgroupY == 0 &&
+                  kBilateralTiledWorkgroupX * kBilateralTiledWorkgroupY >= 2 * kBilateralTiledMaxRadius + 1,
+              "bilateral_tiled.comp: a row of invocations spans the tile, whose rows the workgroup's rows share out, "
+              "and the workgroup loads the weights");
 static_assert(sizeof(GtaoMipConstants) == kGtaoMipsPushConstantBytes, "GtaoMipConstants keeps its std430 layout");
 static_assert(kAlchemyPushConstantBytes + kBilateralPushConstantBytes == kAlchemyBlurPushConstantBytes &&
                   kAlchemyBlurPushConstantBytes <= 128,
