@@ -92,4 +92,24 @@ if "$src/scripts/gpu-ab" --obscura "$tool" embedded "gone=$work/missing" >"$work
   fail "gpu-ab ran with a missing folder"
 fi
 grep -q "gone: $work/missing is not a folder" "$work/ab.err" || fail "$(cat "$work/ab.err")"
+# gpu-waiting: every part, each into its file, at a tiny size, with one round.
+"$src/scripts/gpu-waiting" --obscura "$tool" --candidates "$work/spv" --rounds 1 --small "$work/waiting" \
+  -- --sizes 48x32 --frames 2 --warmup 0 --inputs 1 2>"$work/waiting.err" || fail "gpu-waiting: $(cat "$work/waiting.err")"
+for f in verify.txt tiled-ab.txt tiled-ab.json pipelines.json internals; do
+  [ -e "$work/waiting/$f" ] || fail "gpu-waiting wrote no $f: $(ls "$work/waiting")"
+done
+if [ ${#patches[@]} -gt 0 ]; then
+  for n in $(ls "$work/spv"); do
+    for f in "verify-$n.txt" "pipelines-$n.json"; do
+      [ -s "$work/waiting/$f" ] || fail "gpu-waiting wrote no $f"
+    done
+  done
+  grep -q "^alchemy " "$work/waiting/candidates-ab.txt" || fail "candidates-ab.txt: $(cat "$work/waiting/candidates-ab.txt")"
+fi
+grep -q "^gtao-half " "$work/waiting/tiled-ab.txt" || fail "tiled-ab.txt: $(cat "$work/waiting/tiled-ab.txt")"
+grep -q "gpu-verify: ok\|max" "$work/waiting/verify.txt" || fail "verify.txt: $(cat "$work/waiting/verify.txt")"
+if "$src/scripts/gpu-waiting" --obscura "$tool" --candidates "$work/missing" "$work/w2" 2>"$work/waiting.err"; then
+  fail "gpu-waiting ran with a missing candidates folder"
+fi
+grep -q "is not a folder" "$work/waiting.err" || fail "$(cat "$work/waiting.err")"
 echo "gpu_candidates_check: ok ($count candidates)"

@@ -129,6 +129,11 @@ Image alchemyAOBlurred(Context& context, const GBuffer& gbuffer, const ssao::Alc
 // equal to the CPU filter to within 2e-3 (tests/gpu measure it).
 Image bilateralFilter(Context& context, const Image& ao, const GBuffer& gbuffer,
                       const ssao::BilateralSettings& settings);
+// The same with BlurMode::Separable's two passes in one dispatch (src/gpu/shaders/bilateral_tiled.comp: rows,
+// then columns, of each 32x32 tile from shared memory): the same bits where the device rounds both alike
+// (lavapipe). Throws obscura::Error, besides bilateralFilter's errors, for another mode or a radius above 8.
+Image bilateralFilterTiled(Context& context, const Image& ao, const GBuffer& gbuffer,
+                           const ssao::BilateralSettings& settings);
 
 // ssao::computeGtao on the GPU (src/gpu/shaders/gtao.comp mirrors ssao::gtaoPixel): the same constants or
 // settings, validation, errors and output (visibility, sky 1; view-space bent normals, sky 0). Every option

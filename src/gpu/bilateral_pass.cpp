@@ -71,11 +71,10 @@ void recordSeparableBilateral(Context::Impl& c, VkCommandBuffer cmd, const Separ
     recordSeparableBilateralAxis(c, cmd, {b.depth, b.normal, b.logSpatial, b.scratch, b.scratch, b.output}, f, 1);
 }
 
-Image bilateralFilter(Context& context, const Image& ao, const GBuffer& g, const ssao::BilateralSettings& s) {
-    ssao::checkBilateralInputs(ao, g, s);  // ssao::bilateralFilter's checks and messages
-    if (s.mode == ssao::BlurMode::None) return ao;
-    if (s.mode == ssao::BlurMode::TwoD) return bilateral2D(context.impl(), ao, g, s);
+namespace {
 
+Image separableOnDevice(Context& context, const Image& ao, const GBuffer& g, const ssao::BilateralSettings& s,
+                        BlurDispatch dispatch) {
     const SeparableBilateral f = separableBilateral(s, g.width(), g.height());
     Context::Impl& c = context.impl();
     const std::size_t pixels = g.depth.pixelCount();
@@ -85,11 +84,28 @@ Image bilateralFilter(Context& context, const Image& ao, const GBuffer& g, const
     const Buffer input = upload(c, ao.pixels.data(), pixels * sizeof(float));
     const Buffer horizontal(c, pixels * sizeof(float), MemoryUse::Device);
     const Buffer result(c, pixels * sizeof(float), MemoryUse::Device);
-    c.submit([&](VkCommandBuffer cmd) { recordSeparableBilateral(c, cmd, {depth, normal, spatial, input, horizontal, result}, f); },
+    c.submit([&](VkCommandBuffer cmd) {
+        recordSeparableBilateral(c, cmd, {depth, normal, spatial, input, horizontal, result}, f, dispatch);
+    },
              true);
     Image out(g.width(), g.height(), 1);
     download(c, result, out.pixels.data(), pixels * sizeof(float));
     return out;
+}
+
+} // namespace
+
+Image bilateralFilter(Context& context, const Image& ao, const GBuffer& g, const ssao::BilateralSettings& s) {
+    ssao::checkBilateralInputs(ao, g, s);  // ssao::bilateralFilter's checks and messages
+    if (s.mode == ssao::BlurMode::None) return ao;
+    if (s.mode == ssao::BlurMode::TwoD) return bilateral2D(context.impl(), ao, g, s);
+    return separableOnDevice(context, ao, g, s, BlurDispatch::TwoPasses);
+}
+
+Image bilateralFilterTiled(Context& context, const Image& ao, const GBuffer& g, const ssao::BilateralSettings& s) {
+    ssao::checkBilateralInputs(ao, g, s);
+    if (s.mode != ssao::BlurMode::Separable) fail("the tiled blur", "is the separable blur's (--blur separable)");
+    return separableOnDevice(context, ao, g, s, BlurDispatch::Tiled);
 }
 
 } // namespace obscura::gpu

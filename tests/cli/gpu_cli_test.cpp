@@ -101,6 +101,33 @@ TEST_F(GpuCommands, RenderAlchemyFusedBlurMatchesTheSeparatePasses) {
     EXPECT_FALSE(std::filesystem::exists(path("c.png")));
 }
 
+// --gpu-tiled-blur: the blur's two passes in one tiled dispatch give the frame and the AO of the two
+// dispatches (the same bits on lavapipe; 1e-6 elsewhere), with the normal weight too, and say so; it fails in
+// one line without --gpu, with another blur, a radius its tile cannot hold, or beside --gpu-fused-blur.
+TEST_F(GpuCommands, RenderAlchemyTiledBlurMatchesTheTwoPasses) {
+    for (const char* extra : {"", " --blur-normal-weight on --blur-radius 8"}) {
+        const std::string base = std::string("render cabinet --size 77x45 --ao alchemy -q") + extra;
+        runGpu(base + " -o " + path("a.exr") + " --aov-dir " + path("a"));
+        const CliResult tiled = runGpu(base + " --gpu-tiled-blur -o " + path("b.exr") + " --aov-dir " + path("b"));
+        EXPECT_NE(tiled.out.find("both passes in one tiled dispatch"), std::string::npos) << tiled.out;
+        const bool lavapipe = tiled.out.find("llvmpipe") != std::string::npos;
+        for (const auto& [x, y] : {std::pair{"a.exr", "b.exr"}, std::pair{"a/ao.exr", "b/ao.exr"}}) {
+            const obscura::Image p = obscura::readExr(path(x)), q = obscura::readExr(path(y));
+            ASSERT_EQ(p.pixels.size(), q.pixels.size());
+            float worst = 0.0f;
+            for (std::size_t i = 0; i < p.pixels.size(); ++i) worst = std::max(worst, std::fabs(p.pixels[i] - q.pixels[i]));
+            EXPECT_LE(worst, lavapipe ? 0.0f : 1e-6f) << x << extra;
+        }
+    }
+    expectFailure("render --ao alchemy --gpu-tiled-blur -o " + path("c.png"), {"--gpu-tiled-blur", "--gpu"});
+    expectFailure("render --ao alchemy --gpu --gpu-tiled-blur --blur 2d -o " + path("c.png"), {"--gpu-tiled-blur"});
+    expectFailure("render --ao alchemy --gpu --gpu-tiled-blur --blur-radius 9 -o " + path("c.png"),
+                  {"--gpu-tiled-blur", "up to 8"});
+    expectFailure("render --ao alchemy --gpu --gpu-tiled-blur --gpu-fused-blur -o " + path("c.png"),
+                  {"--gpu-tiled-blur", "--gpu-fused-blur"});
+    EXPECT_FALSE(std::filesystem::exists(path("c.png")));
+}
+
 // The bound: `render --gpu --ao gtao` and the CPU path give frames whose mean absolute difference is
 // at most 1e-3 (linear radiance, which is about 0.1-1 on these views). Measured on lavapipe (Mesa 22.3.6,
 // LLVM 15.0.6), 2026-11-25, in the order below, frame mean / AO max: 2.3e-6 / 8.7e-5, 7.8e-7 / 9.3e-5,

@@ -49,6 +49,7 @@ struct RenderOptions {
     GtaoOptions gtao;
     GpuFlags gpu;
     bool fusedBlur = false;  // --gpu-fused-blur
+    bool tiledBlur = false;  // --gpu-tiled-blur
 };
 
 const std::map<std::string, trace::Falloff> kFalloffs = {
@@ -90,6 +91,10 @@ void run(const RenderOptions& o) {
     if (o.fusedBlur && !(o.gpu.gpu && o.ao == "alchemy" && blur.mode == ssao::BlurMode::Separable && !blur.usesNormals()))
         fail("--gpu-fused-blur", "needs --gpu, --ao alchemy and the separable blur by depth alone (--blur separable, "
                                  "no normal weight)");
+    if (o.tiledBlur && !(o.gpu.gpu && o.ao == "alchemy" && blur.mode == ssao::BlurMode::Separable && blur.radius <= 8))
+        fail("--gpu-tiled-blur", "needs --gpu, --ao alchemy and the separable blur (--blur separable) with "
+                                 "--blur-radius up to 8");
+    if (o.tiledBlur && o.fusedBlur) fail("--gpu-tiled-blur", "and --gpu-fused-blur are two ways to run the blur: give one");
 
     ThreadLimit limit(o.threads);
     const std::unique_ptr<gpu::Context> context = o.gpu.open();
@@ -131,7 +136,9 @@ void run(const RenderOptions& o) {
     } else if (o.ao == "alchemy") {
         Image raw = context ? gpu::alchemyAO(*context, gbuffer, alchemy) : ssao::alchemyAO(gbuffer, alchemy);
         gbuffer = ssao::cropGuardBand(gbuffer, camera, alchemy.guardBand);
-        ao = context ? gpu::bilateralFilter(*context, raw, gbuffer, blur) : ssao::bilateralFilter(raw, gbuffer, blur);
+        ao = o.tiledBlur ? gpu::bilateralFilterTiled(*context, raw, gbuffer, blur)
+             : context   ? gpu::bilateralFilter(*context, raw, gbuffer, blur)
+                         : ssao::bilateralFilter(raw, gbuffer, blur);
     }
     GtaoFrame gtao;
     if (o.ao == "gtao") {
@@ -173,7 +180,9 @@ void run(const RenderOptions& o) {
         std::printf(" (%s, r = %g m, intensity %g, contrast %g, %d samples, blur %s%s)",
                     alchemy.formulation == ssao::AlchemyFormulation::Paper ? "paper" : "chapter", double(alchemy.radius),
                     double(alchemy.intensity), double(alchemy.contrast), alchemy.samples, o.blur.mode.c_str(),
-                    o.fusedBlur ? ", rows fused into the estimator" : "");
+                    o.fusedBlur   ? ", rows fused into the estimator"
+                    : o.tiledBlur ? ", both passes in one tiled dispatch"
+                                  : "");
     if (o.ao == "gtao") {
         const ssao::GtaoSettings g = o.gtao.settings(aoSettings.radius);
         std::printf(" (%s: %d slice(s) x %d steps%s, r = %s m, %d frame(s)%s)", o.gtao.quality.c_str(), g.sliceCount,
@@ -230,6 +239,10 @@ void addRenderCommand(CLI::App& app) {
                   "With --gpu --ao alchemy and the separable blur by depth alone: evaluate the estimator and the "
                   "blur's horizontal pass in one dispatch, so the raw AO never goes through memory (the same "
                   "result; `bench --gpu --cases alchemy,alchemy-fused` times both)");
+    cmd->add_flag("--gpu-tiled-blur", o->tiledBlur,
+                  "With --gpu --ao alchemy and the separable blur (radius up to 8): run the blur's two passes in one "
+                  "dispatch, rows then columns of each 32x32 tile from shared memory (the same result; `bench --gpu "
+                  "--blur-tiled` times it)");
     cmd->callback([o] { run(*o); });
 }
 
