@@ -108,6 +108,13 @@ if [ ${#patches[@]} -gt 0 ]; then
 fi
 grep -q "^gtao-half " "$work/waiting/tiled-ab.txt" || fail "tiled-ab.txt: $(cat "$work/waiting/tiled-ab.txt")"
 grep -q "gpu-verify: ok\|max" "$work/waiting/verify.txt" || fail "verify.txt: $(cat "$work/waiting/verify.txt")"
+# A part that fails is named and the others still run: a bad --frames fails both timings, not the statistics
+# (one frame of their own) nor gpu-verify; the exit status says so.
+if "$src/scripts/gpu-waiting" --obscura "$tool" --small "$work/w3" -- --sizes 16x8 --frames 0 2>"$work/waiting.err"; then
+  fail "gpu-waiting exited 0 with a failing part"
+fi
+grep -q "tiled blur's timing FAILED" "$work/waiting.err" || fail "no failure named: $(cat "$work/waiting.err")"
+for f in pipelines.json verify.txt; do [ -s "$work/w3/$f" ] || fail "after a failed part, no $f: $(ls "$work/w3")"; done
 if "$src/scripts/gpu-waiting" --obscura "$tool" --candidates "$work/missing" "$work/w2" 2>"$work/waiting.err"; then
   fail "gpu-waiting ran with a missing candidates folder"
 fi
