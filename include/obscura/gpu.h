@@ -131,7 +131,9 @@ Image bilateralFilter(Context& context, const Image& ao, const GBuffer& gbuffer,
                       const ssao::BilateralSettings& settings);
 // The same with BlurMode::Separable's two passes in one dispatch (src/gpu/shaders/bilateral_tiled.comp: rows,
 // then columns, of each 32x32 tile from shared memory): the same bits where the device rounds both alike
-// (lavapipe). Throws obscura::Error, besides bilateralFilter's errors, for another mode or a radius above 8.
+// (lavapipe). Throws obscura::Error, besides bilateralFilter's errors, for another mode or a radius above
+// kTiledBlurMaxRadius (the tile's apron).
+inline constexpr int kTiledBlurMaxRadius = 8;
 Image bilateralFilterTiled(Context& context, const Image& ao, const GBuffer& gbuffer,
                            const ssao::BilateralSettings& settings);
 

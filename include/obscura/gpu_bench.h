@@ -37,7 +37,7 @@ struct GpuBenchSettings {
                               // (both by depth alone; the same error on the built-in views)
     bool blurTiled = false;   // the separable blurs of the alchemy, gtao and gtao-half cases as one dispatch
                               // (bilateral_tiled.comp: both passes per tile from shared memory, the same bits);
-                              // their radii must then be <= 8
+                              // their radii must then be <= kTiledBlurMaxRadius (obscura/gpu.h)
     ssao::GtaoQuality quality = ssao::GtaoQuality::High;  // the GTAO cases' preset (slices x steps)
     // Counts over the preset's: slices of the gtao and gtao-spatial cases (the temporal ones take
     // temporalSlices), steps of every GTAO case; jitter rotates the gtao case's slices per pixel, noise its

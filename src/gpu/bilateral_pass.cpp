@@ -21,6 +21,7 @@ namespace obscura::gpu {
 
 // validate() accepts radii up to ssao::kMaxBlurRadius; the shader's shared-memory lines must hold as many.
 static_assert(kBilateralMaxRadius >= ssao::kMaxBlurRadius, "bilateral_separable.comp's tile holds every radius");
+static_assert(kBilateralTiledMaxRadius == kTiledBlurMaxRadius, "bilateral_tiled.comp's apron is the public limit");
 
 SeparableBilateral separableBilateral(const ssao::BilateralSettings& s, int width, int height) {
     s.validate();

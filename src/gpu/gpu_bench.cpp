@@ -248,10 +248,10 @@ void GpuBenchSettings::validate() const {
     check(blurRadius >= 1 && blurRadius <= ssao::kMaxBlurRadius, "blur-radius", "[1, 32] taps on each side");
     check(halfBlurRadius >= 1 && halfBlurRadius <= ssao::kMaxBlurRadius, "half-blur-radius", "[1, 32] taps on each side");
     if (blurTiled) {
-        const std::string most = std::to_string(kBilateralTiledMaxRadius);
-        if (blurRadius > kBilateralTiledMaxRadius)
+        const std::string most = std::to_string(kTiledBlurMaxRadius);
+        if (blurRadius > kTiledBlurMaxRadius)
             fail("gpu-bench-blur-tiled", "holds radii up to " + most + ", and --blur-radius is " + std::to_string(blurRadius));
-        if (!halfBlur2D && halfBlurRadius > kBilateralTiledMaxRadius)
+        if (!halfBlur2D && halfBlurRadius > kTiledBlurMaxRadius)
             fail("gpu-bench-blur-tiled",
                  "holds radii up to " + most + ", and --half-blur-radius is " + std::to_string(halfBlurRadius));
     }

@@ -18,15 +18,16 @@ std::string text(const char (&field)[N]) {
 // VK_INCOMPLETE cannot happen with the count just read, but is taken as success with what came.
 bool ok(VkResult r) { return r == VK_SUCCESS || r == VK_INCOMPLETE; }
 
-// The spec's two-call idiom: query(&n, nullptr) for the count, then query(&n, items) for the items, each
-// item's sType set first. Returns the first result that is not ok, else the last.
-template <class T, class Query>
-VkResult enumerate(Query query, VkStructureType type, std::vector<T>& items) {
+// The spec's two-call idiom for each of the three queries, query(device, info, &n, items): the count, then
+// the items, each item's sType set first. Returns the first result that is not ok, else the last.
+template <class T, class Info>
+VkResult enumerate(VkResult (*query)(VkDevice, const Info*, std::uint32_t*, T*), VkDevice device, const Info* info,
+                   VkStructureType type, std::vector<T>& items) {
     std::uint32_t n = 0;
-    if (VkResult r = query(&n, nullptr); !ok(r)) return r;
+    if (VkResult r = query(device, info, &n, nullptr); !ok(r)) return r;
     items.assign(n, T{});
     for (T& item : items) item.sType = type;
-    const VkResult r = query(&n, items.data());
+    const VkResult r = query(device, info, &n, items.data());
     items.resize(std::min<std::size_t>(n, items.size()));
     return r;
 }
@@ -45,10 +46,8 @@ std::vector<PipelineExecutable> describeExecutables(VkDevice device, VkPipeline 
     info.sType = VK_STRUCTURE_TYPE_PIPELINE_INFO_KHR;
     info.pipeline = pipeline;
     std::vector<VkPipelineExecutablePropertiesKHR> properties;
-    const auto listProperties = [&](std::uint32_t* n, VkPipelineExecutablePropertiesKHR* p) {
-        return q.properties(device, &info, n, p);
-    };
-    if (VkResult r = enumerate(listProperties, VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_PROPERTIES_KHR, properties); !ok(r))
+    if (VkResult r = enumerate(q.properties, device, &info, VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_PROPERTIES_KHR, properties);
+        !ok(r))
         return failed("vkGetPipelineExecutablePropertiesKHR", r);
     for (std::uint32_t e = 0; e < properties.size(); ++e) {
         PipelineExecutable x;
@@ -60,10 +59,8 @@ std::vector<PipelineExecutable> describeExecutables(VkDevice device, VkPipeline 
         executable.pipeline = pipeline;
         executable.executableIndex = e;
         std::vector<VkPipelineExecutableStatisticKHR> statistics;
-        const auto listStatistics = [&](std::uint32_t* n, VkPipelineExecutableStatisticKHR* p) {
-            return q.statistics(device, &executable, n, p);
-        };
-        if (VkResult r = enumerate(listStatistics, VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_STATISTIC_KHR, statistics);
+        if (VkResult r = enumerate(q.statistics, device, &executable, VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_STATISTIC_KHR,
+                                   statistics);
             !ok(r))
             return failed("vkGetPipelineExecutableStatisticsKHR", r);
         for (const VkPipelineExecutableStatisticKHR& s : statistics) {
@@ -80,10 +77,8 @@ std::vector<PipelineExecutable> describeExecutables(VkDevice device, VkPipeline 
         if (withInternals) {
             // Three calls: the count, the sizes, then the data into buffers of those sizes.
             std::vector<VkPipelineExecutableInternalRepresentationKHR> reps;
-            const auto listInternals = [&](std::uint32_t* n, VkPipelineExecutableInternalRepresentationKHR* p) {
-                return q.internals(device, &executable, n, p);
-            };
-            if (VkResult r = enumerate(listInternals, VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_INTERNAL_REPRESENTATION_KHR, reps);
+            if (VkResult r = enumerate(q.internals, device, &executable,
+                                       VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_INTERNAL_REPRESENTATION_KHR, reps);
                 !ok(r))
                 return failed("vkGetPipelineExecutableInternalRepresentationsKHR", r);
             std::uint32_t count = std::uint32_t(reps.size());

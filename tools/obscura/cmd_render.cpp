@@ -91,9 +91,10 @@ void run(const RenderOptions& o) {
     if (o.fusedBlur && !(o.gpu.gpu && o.ao == "alchemy" && blur.mode == ssao::BlurMode::Separable && !blur.usesNormals()))
         fail("--gpu-fused-blur", "needs --gpu, --ao alchemy and the separable blur by depth alone (--blur separable, "
                                  "no normal weight)");
-    if (o.tiledBlur && !(o.gpu.gpu && o.ao == "alchemy" && blur.mode == ssao::BlurMode::Separable && blur.radius <= 8))
+    if (o.tiledBlur && !(o.gpu.gpu && o.ao == "alchemy" && blur.mode == ssao::BlurMode::Separable &&
+                         blur.radius <= gpu::kTiledBlurMaxRadius))
         fail("--gpu-tiled-blur", "needs --gpu, --ao alchemy and the separable blur (--blur separable) with "
-                                 "--blur-radius up to 8");
+                                 "--blur-radius up to " + std::to_string(gpu::kTiledBlurMaxRadius));
     if (o.tiledBlur && o.fusedBlur) fail("--gpu-tiled-blur", "and --gpu-fused-blur are two ways to run the blur: give one");
 
     ThreadLimit limit(o.threads);
@@ -240,9 +241,10 @@ void addRenderCommand(CLI::App& app) {
                   "blur's horizontal pass in one dispatch, so the raw AO never goes through memory (the same "
                   "result; `bench --gpu --cases alchemy,alchemy-fused` times both)");
     cmd->add_flag("--gpu-tiled-blur", o->tiledBlur,
-                  "With --gpu --ao alchemy and the separable blur (radius up to 8): run the blur's two passes in one "
-                  "dispatch, rows then columns of each 32x32 tile from shared memory (the same result; `bench --gpu "
-                  "--blur-tiled` times it)");
+                  "With --gpu --ao alchemy and the separable blur (radius up to " +
+                      std::to_string(gpu::kTiledBlurMaxRadius) +
+                      "): run the blur's two passes in one dispatch, rows then columns of each 32x32 tile from shared "
+                      "memory (the same result; `bench --gpu --blur-tiled` times it)");
     cmd->callback([o] { run(*o); });
 }
 
