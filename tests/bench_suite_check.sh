@@ -21,7 +21,7 @@ expect ao-nearest.json '"bent_normals": false' '"gtao_sampling": "nearest"' 'nea
 expect ao-mip.json '"bent_normals": false' '"gtao_sampling": "mip"' ', depth MIP samples'
 expect ao-planar-mip.json '"bent_normals": false' '"gtao_sampling": "planar-mip"' 'planar + depth MIP samples'
 expect ao-planar-nearest.json '"bent_normals": false' '"gtao_sampling": "planar-nearest"' 'planar samples within 14 px'
-expect ao-lightest.json '"packed_history": true' '"keep_previous_depth": true' '"case": "gtao-temporal"'
+expect ao-lightest.json '"packed_history": true' '"keep_previous_depth": true' '"case": "gtao-temporal"' '"case": "gtao-temporal-grid"'
 if grep -q '"case": "alchemy"' "$work/out/ao-lightest.json"; then fail "ao-lightest ran more than the temporal cases"; fi
 expect ao-half-2d.json '"half_blur": "2d"' '"case": "gtao-half"' '2-D bilateral there'
 if grep -q '"case": "gtao"' "$work/out/ao-half-2d.json"; then fail "ao-half-2d ran more than the gtao-half case"; fi

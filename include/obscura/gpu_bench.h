@@ -89,7 +89,8 @@ struct GpuBenchCaseInfo {
 };
 // The cases: alchemy (estimator + separable 13-tap blur), gtao (full GTAO + separable blur), gtao-spatial
 // (4x4 interleaved GTAO + its reconstruction), gtao-temporal (interleaved + reconstruction + reprojected
-// history), gtao-temporal-half (the same at half resolution, with the depth-aware upsample).
+// history), gtao-temporal-half (the same at half resolution, with the depth-aware upsample),
+// gtao-temporal-grid (gtao-temporal-half with the history on the half-resolution grid, upsampled last).
 std::vector<GpuBenchCaseInfo> gpuBenchCases();
 
 // Times one case on `inputs`: G-buffers (depth and view normals; albedo unused) of one size whose cameras

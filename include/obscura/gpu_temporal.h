@@ -6,7 +6,10 @@
 // the depth-aware upsampling at half resolution, and the reprojected accumulation. On the GPU it is two
 // passes at full resolution: gtao.comp, then gtao_temporal.comp, which reconstructs its own pixel before
 // accumulating; and three at half: gtao.comp on every other pixel, reconstruct_interleaved.comp on that
-// grid, then gtao_temporal.comp, which upsamples its own pixel. The filtered planes never reach memory. The
+// grid, then gtao_temporal.comp, which upsamples its own pixel. With GtaoTemporalSettings::gridHistory
+// (half resolution, the history on the grid) also three: gtao.comp on every other pixel, gtao_temporal.comp on
+// the grid, which reconstructs its own grid pixel before accumulating, then upsample_depth_aware.comp. The
+// filtered planes never reach memory. The
 // history stays on the GPU between frames. reconstructInterleaved and upsampleDepthAware below run a filter
 // as a pass of its own (reconstruct_interleaved.comp, upsample_depth_aware.comp).
 //
@@ -60,6 +63,7 @@ public:
     // must stay.
     const ssao::GtaoResult& frame(const GBuffer& gbuffer);
     // Frames accumulated per pixel in the last result (downloaded on each call); empty before the first.
+    // With gridHistory, per grid pixel, as ssao::GtaoTemporal::historyLength.
     Image historyLength() const;
     int framesRendered() const;
 

@@ -2,7 +2,9 @@
 // a 4x4 interleave pattern and by one of 6 per-frame rotations; a depth- and normal-aware 4x4
 // reconstruction gathers the 16 pattern directions, and an exponential accumulation buffer, reprojected
 // from the previous frame with disocclusion rejection, gathers the 6 rotations: 96 directions per slice.
-// Also a spatial-only mode (no history) and half-resolution evaluation with depth-aware upsampling.
+// Also a spatial-only mode (no history) and half-resolution evaluation with depth-aware upsampling, whose
+// history is kept at full resolution (the accumulation runs after the upsampling) or, with gridHistory, on
+// the half-resolution grid (the accumulation runs before it).
 //
 // Reprojection is computed from the two cameras and the current depth, which is exact for static scenes
 // (moving objects would need the G-buffer's motion vectors). Rejection tests the reprojected depth against
@@ -31,6 +33,10 @@ struct GtaoTemporalSettings {
                                   // normal and bent normal octahedral in one word each (with depth, 4
                                   // words per pixel instead of 9 floats);
                                   // the returned visibility is the stored one
+    bool gridHistory = false;     // with halfResolution: reproject and accumulate on the half-resolution
+                                  // grid and upsample the accumulated result, so the history, its reads
+                                  // and its writes are a quarter of the full-resolution ones; the
+                                  // history planes (and historyLength()) are the grid's size
 
     void validate() const;        // throws obscura::Error("gtao-<field>: ...")
 };
@@ -53,7 +59,8 @@ public:
     // Computes the next frame from its G-buffer (the camera may move; the size must stay) and returns the
     // accumulated result (visibility and view-space bent normal).
     const GtaoResult& frame(const GBuffer& gbuffer);
-    // Frames accumulated per pixel in the last result: 1 where history was rejected or absent.
+    // Frames accumulated per pixel in the last result: 1 where history was rejected or absent. With
+    // gridHistory, per grid pixel: ceil(width / 2) x ceil(height / 2), grid pixel (x, y) at pixel (2x, 2y).
     const Image& historyLength() const { return historyLength_; }
     int framesRendered() const { return frame_; }
 
@@ -62,10 +69,11 @@ private:
     GtaoTemporalSettings temporal_;
     int frame_ = 0;
     GtaoResult result_;
+    Image accumulated_;  // the accumulated visibility on the history's lattice (the result, or the grid's)
     Image bentWorld_;  // accumulated bent normals in world space, so they survive camera motion
     Image historyLength_;
     Camera previousCamera_;
-    Image previousDepth_, previousNormalWorld_;
+    Image previousDepth_, previousNormalWorld_;  // of the history's lattice: the image, or the grid
 };
 
 } // namespace obscura::ssao

@@ -206,7 +206,8 @@ CaseSetup gtaoHalfCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s
     return setup;
 }
 
-CaseSetup temporalCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s, bool temporal, bool half) {
+CaseSetup temporalCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s, bool temporal, bool half,
+                       bool gridHistory) {
     ssao::GtaoSettings settings = gtaoSettings(s);
     if (temporal) settings.sliceCount = s.temporalSlices;
     settings.jitter = false;  // the interleave rotates the slices instead
@@ -214,13 +215,16 @@ CaseSetup temporalCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s
     t.temporal = temporal;
     t.halfResolution = half;
     t.packedHistory = s.packedHistory;
+    t.gridHistory = gridHistory;
     auto passes = std::make_shared<GtaoTemporalPasses>(c, settings, t, w, h,
                                                        GtaoTemporalVariant{s.bentNormals, s.callerKeepsDepth});
     CaseSetup setup;
     setup.description = std::string(temporal ? "spatio-temporal" : "spatial") + " GTAO" +
                         (half ? " at half resolution" : "") + " (" + slicesText(settings) +
-                        ", 4x4 interleave" + radiusText(settings) + ") + 5x5 reconstruction" + (half ? " + depth-aware upsample" : "") +
+                        ", 4x4 interleave" + radiusText(settings) + ") + 5x5 reconstruction" +
+                        (half && !gridHistory ? " + depth-aware upsample" : "") +
                         (temporal ? (s.packedHistory ? " + reprojected packed history" : " + reprojected history") : "") +
+                        (gridHistory ? " on the grid + depth-aware upsample" : "") +
                         (s.bentNormals ? "" : ", visibility only") +
                         (temporal && s.callerKeepsDepth ? ", previous depth kept by the caller" : "");
     setup.bytes = double(passes->bytesPerFrame());
@@ -273,6 +277,8 @@ std::vector<GpuBenchCaseInfo> gpuBenchCases() {
             {"gtao-spatial", "GTAO with the 4x4 interleave + its depth- and normal-aware reconstruction"},
             {"gtao-temporal", "interleaved GTAO + reconstruction + reprojected exponential history"},
             {"gtao-temporal-half", "gtao-temporal at half resolution + depth-aware upsample"},
+            {"gtao-temporal-grid", "gtao-temporal-half with the history on the half-resolution grid, upsampled after "
+                                   "the accumulation"},
             {"gtao-half", "GTAO at half resolution (2 interleaved slices x 4 steps) + 5-tap blur there + depth-aware "
                           "upsample"}};
 }
@@ -308,7 +314,8 @@ GpuBenchCase benchGpuCase(Context& context, const std::string& name, const std::
                             : name == "gtao"      ? gtaoCase(c, w, h, settings, inputs[0].camera)
                             : name == "gtao-half" ? gtaoHalfCase(c, w, h, settings)
                                               : temporalCase(c, w, h, settings, name != "gtao-spatial",
-                                                             name == "gtao-temporal-half");
+                                                             name == "gtao-temporal-half" || name == "gtao-temporal-grid",
+                                                             name == "gtao-temporal-grid");
 
     GpuBenchCase result;
     result.name = name;

@@ -74,11 +74,13 @@ void recordReconstruct(Context::Impl& c, VkCommandBuffer cmd, const ReconstructB
 }
 
 void recordUpsample(Context::Impl& c, VkCommandBuffer cmd, const UpsampleBuffers& b, const UpsampleConstants& k,
-                    int channels) {
+                    int channels, bool packedLow) {
     assert(channels == 1 || channels == 3);
+    assert(!packedLow || channels == 1);
     ComputePipeline& pipeline =
         c.pipeline("upsample_depth_aware", shaders::upsample_depth_aware, storageBuffers(kUpsampleBindingCount),
-                   kUpsamplePushConstantBytes, kTemporalWorkgroupX, kTemporalWorkgroupY, {channels});
+                   kUpsamplePushConstantBytes, kTemporalWorkgroupX, kTemporalWorkgroupY,
+                   {channels, packedLow ? 1 : 0});  // kUpsampleSpecChannels, PackedLow
     // In binding order: kUpsampleBindingLow, LowDepth, Depth, Output.
     // One invocation per 2x2 block of full-resolution pixels (the shader's main).
     pipeline.dispatchGrid(cmd, {&b.low, &b.lowDepth, &b.depth, &b.output}, &k, sizeof k, (k.width + 1) / 2,
@@ -90,29 +92,35 @@ GtaoTemporalPasses::GtaoTemporalPasses(Context::Impl& c, const ssao::GtaoSetting
                                        GtaoTemporalVariant variant)
     : context_(c), settings_(settings), temporal_(temporal), width_(width), height_(height),
       step_(temporal.halfResolution ? 2 : 1), gridWidth_((width + step_ - 1) / step_),
-      gridHeight_((height + step_ - 1) / step_), variant_(variant), unused_(deviceFloats(c, 4)) {
+      gridHeight_((height + step_ - 1) / step_), gridHistory_(step_ == 2 && temporal.gridHistory), variant_(variant),
+      unused_(deviceFloats(c, 4)) {
     const bool bentNormals = variant.bentNormals;
     assert(width >= 1 && height >= 1);
     const std::size_t pixels = std::size_t(width) * std::size_t(height);
     const std::size_t grid = std::size_t(gridWidth_) * std::size_t(gridHeight_);
+    const std::size_t lattice = gridHistory_ ? grid : pixels;  // the history's
     for (int set = 0; set < rawSets(); ++set) {
         rawVisibility_[set] = deviceFloats(c, grid);
         if (bentNormals) rawBent_[set] = deviceFloats(c, 3 * grid);
     }
-    if (step_ == 2) {
+    if (step_ == 2 && !gridHistory_) {
         visibility_ = deviceFloats(c, grid);
         if (bentNormals) bent_ = deviceFloats(c, 3 * grid);
     }
     if (bentNormals) bentView_ = deviceFloats(c, 3 * pixels);
+    if (gridHistory_) {
+        upsampled_ = deviceFloats(c, pixels);
+        if (bentNormals) bentGrid_ = deviceFloats(c, 3 * grid);
+    }
     depthMips_ = gtaoDepthMipsBuffer(c, width, height, ssao::gtaoDepthMipLevels(settings));
     // Packed: one word per normal, and the length in the visibility's word (obscura/history_packing.h).
     const std::size_t vector = temporal.packedHistory ? 1 : 3;
     for (History& h : history_) {
-        if (!variant.callerKeepsDepth) h.depth = deviceFloats(c, pixels);
-        h.normalWorld = deviceFloats(c, vector * pixels);
-        h.visibility = deviceFloats(c, pixels);
-        if (bentNormals) h.bentWorld = deviceFloats(c, vector * pixels);
-        if (!temporal.packedHistory) h.length = deviceFloats(c, pixels);
+        if (!variant.callerKeepsDepth) h.depth = deviceFloats(c, lattice);
+        h.normalWorld = deviceFloats(c, vector * lattice);
+        h.visibility = deviceFloats(c, lattice);
+        if (bentNormals) h.bentWorld = deviceFloats(c, vector * lattice);
+        if (!temporal.packedHistory) h.length = deviceFloats(c, lattice);
     }
 }
 
@@ -151,7 +159,7 @@ void GtaoTemporalPasses::record(VkCommandBuffer cmd, const GtaoTemporalFrameInpu
     // normals are the G-buffer's at every other pixel. At full resolution the accumulation gathers them for
     // its own pixel instead, and the upsampling (3.) is the accumulation's too.
     const Buffer* grid[2] = {&rawVisibility, &rawBent};
-    if (step_ == 2) {
+    if (step_ == 2 && !gridHistory_) {
         const ReconstructConstants rk =
             reconstructConstants(gridWidth_, gridHeight_, width_, step_, temporal_.depthSigma);
         recordReconstruct(c, cmd, {rawVisibility, in.depth, in.normal, visibility_}, rk, 1);
@@ -171,8 +179,8 @@ void GtaoTemporalPasses::record(VkCommandBuffer cmd, const GtaoTemporalFrameInpu
         c.pipeline("gtao_temporal", shaders::gtao_temporal, storageBuffers(kTemporalBindingCount),
                    kTemporalPushConstantBytes, kTemporalWorkgroupX, kTemporalWorkgroupY,
                    {step_, std::bit_cast<std::int32_t>(temporal_.depthSigma), variant_.bentNormals ? 1 : 0,
-                    temporal_.packedHistory ? 1 : 0, variant_.callerKeepsDepth ? 0 : 1});
-    // (kTemporalSpecGridStep, DepthSigma, BentNormal, PackedHistory, DepthCopy.) The previous depth is the
+                    temporal_.packedHistory ? 1 : 0, variant_.callerKeepsDepth ? 0 : 1, gridHistory_ ? 2 : 1});
+    // (kTemporalSpecGridStep, DepthSigma, BentNormal, PackedHistory, DepthCopy, HistoryStep.) The previous depth is the
     // history's copy, or the caller's buffer of the last frame, which unused_ stands for on a first frame.
     const Buffer& previousDepth = !variant_.callerKeepsDepth ? previous.depth
                                   : useHistory                     ? *in.previousDepth
@@ -185,9 +193,20 @@ void GtaoTemporalPasses::record(VkCommandBuffer cmd, const GtaoTemporalFrameInpu
                           {&in.depth, &in.normal, grid[0], grid[1], &previousDepth, &previous.normalWorld,
                            &previous.visibility, &bent(previous.bentWorld), &length(previous.length), &depthOut,
                            &next.normalWorld, &next.visibility, &bent(next.bentWorld), &length(next.length),
-                           &bent(bentView_)},
-                          &tk, sizeof tk, width_, height_);
+                           &bent(gridHistory_ ? bentGrid_ : bentView_)},
+                          &tk, sizeof tk, historyWidth(), historyHeight());
     stage(temporal_.temporal ? "temporal" : "resolve");
+
+    // 3., after the accumulation with the grid's history: the accumulated grid to full resolution, guided by
+    // the grid's depth, which is the G-buffer's at every other pixel.
+    if (gridHistory_) {
+        computeBarrier(cmd);  // the upsampling reads the accumulated grid
+        const UpsampleConstants uk =
+            upsampleConstants(width_, height_, gridWidth_, gridHeight_, width_, step_, temporal_.depthSigma);
+        recordUpsample(c, cmd, {next.visibility, in.depth, in.depth, upsampled_}, uk, 1, temporal_.packedHistory);
+        if (variant_.bentNormals) recordUpsample(c, cmd, {bentGrid_, in.depth, in.depth, bentView_}, uk, 3);
+        stage("upsample");
+    }
 
     current_ = 1 - current_;
     previousCamera_ = in.camera;
@@ -205,7 +224,7 @@ std::size_t GtaoTemporalPasses::bytesPerFrame() const {
     const std::size_t chain = gtaoDepthMipsFloats(width_, height_, ssao::gtaoDepthMipLevels(settings_));
     if (chain > 0) bytes += f * (pixels + 2 * chain);
     // Half resolution: the reconstruction, 1 and b channels: values, guide depth and normals in, values out.
-    if (step_ == 2) bytes += f * grid * ((1 + 1 + 3 + 1) + (b > 0 ? b + 1 + 3 + b : 0));
+    if (step_ == 2 && !gridHistory_) bytes += f * grid * ((1 + 1 + 3 + 1) + (b > 0 ? b + 1 + 3 + b : 0));
     // Accumulation: the grid's 1 + b values (its depth and normals are those of the full planes at full
     // resolution, and at half resolution the upsampling reads only the depth: 1 more per grid pixel), depth,
     // normals and the history planes in; the next history planes and the view bent normals out. The
@@ -214,6 +233,14 @@ std::size_t GtaoTemporalPasses::bytesPerFrame() const {
     // The depth is written only where the history keeps its own copy.
     const std::size_t history = temporal_.packedHistory ? 1 + 1 + 1 + (b > 0 ? 1 : 0) : 1 + 3 + 1 + b + 1;
     const std::size_t written = history - (variant_.callerKeepsDepth ? 1 : 0);
+    if (gridHistory_) {
+        // The accumulation on the grid: the raw values, the grid's depth and normals, the history in; the next
+        // history and the grid's view bent normals out. Then the upsampling: the accumulated visibility and b
+        // bent-normal channels of the grid with its depth, and the full depth, in; 1 + b per pixel out.
+        bytes += f * grid * ((1 + b) + (1 + 3) + history + written + b);
+        bytes += f * (grid * (1 + b + 1) + pixels * (1 + 1 + b));
+        return bytes;
+    }
     bytes += f * (grid * (1 + b + (step_ == 2 ? 1 : 0)) + pixels * ((1 + 3) + history + written + b));
     return bytes;
 }
@@ -314,14 +341,17 @@ Image GtaoTemporal::historyLength() const {
 
 Image GtaoTemporal::historyPlane(bool length) const {
     Context::Impl& c = context_->impl();
-    Image image(passes_->width(), passes_->height(), 1);
-    if (!passes_->packedHistory()) {
+    // The visibility has the image's size; the length the history's (the grid's with gridHistory).
+    Image image = length ? Image(passes_->historyWidth(), passes_->historyHeight(), 1)
+                         : Image(passes_->width(), passes_->height(), 1);
+    const bool packed = length ? passes_->packedHistory() : passes_->visibilityPacked();
+    if (!packed) {
         download(c, length ? passes_->historyLength() : passes_->visibility(), image.pixels.data(),
                  image.pixels.size() * sizeof(float));
         return image;
     }
     std::vector<std::uint32_t> words(image.pixels.size());
-    download(c, passes_->visibility(), words.data(), words.size() * sizeof(std::uint32_t));
+    download(c, passes_->historyVisibility(), words.data(), words.size() * sizeof(std::uint32_t));
     for (std::size_t i = 0; i < words.size(); ++i)
         image.pixels[i] = length ? ssao::unpackLength(words[i]) : ssao::unpackVisibility(words[i]);
     return image;

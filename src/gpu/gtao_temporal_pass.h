@@ -40,8 +40,9 @@ struct UpsampleBuffers {
     const Buffer& depth;
     const Buffer& output;
 };
+// packedLow: `low` holds packed visibility-and-length words (1 channel; kUpsampleSpecPackedLow).
 void recordUpsample(Context::Impl& context, VkCommandBuffer cmd, const UpsampleBuffers& buffers,
-                    const UpsampleConstants& k, int channels);
+                    const UpsampleConstants& k, int channels, bool packedLow = false);
 
 // One frame's inputs, resident on the device and visible to compute shaders (the caller's barrier).
 struct GtaoTemporalFrameInputs {
@@ -83,17 +84,23 @@ public:
     // mip sampling only), "gtao", "denoise" (both
     // reconstructions, half resolution only: at full resolution the accumulation reconstructs its own pixel),
     // "temporal" (the upsampling at half resolution, the reconstruction at full, and the accumulation with
-    // temporal.temporal; else "resolve", the same pass without history). The history is used from the second
+    // temporal.temporal; else "resolve", the same pass without history). With temporal.gridHistory there is
+    // no "denoise": "temporal" (or "resolve") reconstructs and accumulates each grid pixel, and "upsample"
+    // brings the result to full resolution. The history is used from the second
     // recorded frame on (with temporal.temporal), reprojected from the previous record's camera. At most
     // ComputePipeline::kSetsPerSubmit frames per submission (each pipeline is dispatched once per frame).
     void record(VkCommandBuffer cmd, const GtaoTemporalFrameInputs& inputs,
                 const std::function<void(const char*)>& mark = {});
 
     // The last recorded frame's result, valid once its submission completes: width * height visibility and
-    // width * height * 3 view-space bent normals; and its history length (width * height frames). With
-    // temporal.packedHistory, visibility() holds packed words of visibility and length
-    // (ssao::unpackVisibility, ssao::unpackLength) and historyLength() is not to be read.
-    const Buffer& visibility() const { return history_[current_].visibility; }
+    // width * height * 3 view-space bent normals; and its history length (frames per element of the
+    // history's lattice, historyWidth() x historyHeight()). With temporal.packedHistory the history's
+    // visibility plane holds packed words of visibility and length (ssao::unpackVisibility,
+    // ssao::unpackLength), historyLength() is not to be read, and visibility() is that plane unless the
+    // history is the grid's (visibilityPacked()).
+    const Buffer& visibility() const { return gridHistory_ ? upsampled_ : history_[current_].visibility; }
+    bool visibilityPacked() const { return temporal_.packedHistory && !gridHistory_; }
+    const Buffer& historyVisibility() const { return history_[current_].visibility; }
     const Buffer& bentNormal() const {
         assert(variant_.bentNormals);
         return bentView_;
@@ -106,6 +113,8 @@ public:
     int framesRecorded() const { return recorded_; }
     int width() const { return width_; }
     int height() const { return height_; }
+    int historyWidth() const { return gridHistory_ ? gridWidth_ : width_; }
+    int historyHeight() const { return gridHistory_ ? gridHeight_ : height_; }
 
     // Bytes a frame's dispatches read and write: each dispatch reads each element of its input planes once
     // and writes each element of its outputs once (neighbourhood taps, the GTAO search and the bilinear
@@ -122,14 +131,16 @@ private:
     ssao::GtaoSettings settings_;
     ssao::GtaoTemporalSettings temporal_;
     int width_, height_, step_, gridWidth_, gridHeight_;
+    bool gridHistory_;  // the history is the grid's (temporal.gridHistory at half resolution)
     // Grid: the GTAO pass's output. At full resolution two sets, written in turn like the history, because the
     // last stage reads them and a frame recorded right after another must not overwrite what that one reads.
-    // At half resolution one: the reconstruction reads it, and the barrier before the accumulation orders that
-    // read before the next frame's GTAO pass.
+    // At half resolution one: the reconstruction (or, with the grid's history, the accumulation) reads it, and
+    // the barrier after that stage orders the read before the next frame's GTAO pass.
     int rawSets() const { return step_ == 2 ? 1 : 2; }
     Buffer rawVisibility_[2], rawBent_[2];
     Buffer visibility_, bent_;        // grid: reconstructed (half resolution only)
     Buffer bentView_;
+    Buffer upsampled_, bentGrid_;  // with the grid's history: full-resolution visibility, grid view bent normals
     Buffer depthMips_;  // GtaoSampling::(Planar)Mip's chain of the frame's depth (a placeholder otherwise)
     History history_[2];
     GtaoTemporalVariant variant_;

@@ -39,6 +39,7 @@ void GtaoTemporalSettings::validate() const {
     check(rejectDepth > 0.0f && rejectDepth <= 1.0f, "reject-depth", "(0, 1]");
     check(rejectNormalCos >= -1.0f && rejectNormalCos <= 1.0f, "reject-normal-cos", "[-1, 1]");
     check(maxHistory >= 1 && maxHistory <= 1024, "max-history", "[1, 1024]");
+    if (gridHistory && !halfResolution) fail("gtao-grid-history", "needs half resolution (the grid it keeps)");
 }
 
 Image reconstructInterleaved(const Image& values, const Image& depth, const Image& normal, float depthSigma) {
@@ -132,9 +133,9 @@ const GtaoResult& GtaoTemporal::frame(const GBuffer& g) {
     if (g.depth.width != w || g.depth.height != h || g.normal.width != w || g.normal.height != h ||
         g.normal.channels != 3)
         fail("gtao temporal", "G-buffer images do not match its camera's size");
-    if (frame_ > 0 && (w != previousDepth_.width || h != previousDepth_.height))
-        fail("gtao temporal", "frame size changed from " + std::to_string(previousDepth_.width) + "x" +
-                                  std::to_string(previousDepth_.height) + " to " + std::to_string(w) + "x" +
+    if (frame_ > 0 && (w != previousCamera_.width || h != previousCamera_.height))
+        fail("gtao temporal", "frame size changed from " + std::to_string(previousCamera_.width) + "x" +
+                                  std::to_string(previousCamera_.height) + " to " + std::to_string(w) + "x" +
                                   std::to_string(h));
 
     // 1. One interleaved evaluation per grid pixel (the full image, or every other pixel in x and y).
@@ -154,33 +155,41 @@ const GtaoResult& GtaoTemporal::frame(const GBuffer& g) {
         }
     });
 
-    // 2. Spatial gather of the 16 pattern directions; 3. back to full resolution.
+    // 2. Spatial gather of the 16 pattern directions; 3. back to full resolution, unless the history is the
+    // grid's (then after step 4).
+    const bool gridHistory = step == 2 && temporal_.gridHistory;
     Image visibility = reconstructInterleaved(rawVisibility, gridDepth, gridNormal, temporal_.depthSigma);
     Image bent = reconstructInterleaved(rawBent, gridDepth, gridNormal, temporal_.depthSigma);
-    if (step == 2) {
+    if (step == 2 && !gridHistory) {
         visibility = upsampleDepthAware(visibility, gridDepth, g, temporal_.depthSigma);
         bent = upsampleDepthAware(bent, gridDepth, g, temporal_.depthSigma);
     }
 
-    // 4. Reprojection and exponential accumulation, in world space for the bent normals.
+    // 4. Reprojection and exponential accumulation, in world space for the bent normals, over the history's
+    // lattice: every pixel, or with the grid's history every grid pixel (x, y), which stands at pixel
+    // (hs x, hs y) and whose neighbours in the previous frame are hs pixels apart.
+    const int hs = gridHistory ? 2 : 1;
+    const int lw = gridHistory ? gw : w, lh = gridHistory ? gh : h;
     const Mat4 worldFromView = g.camera.worldFromView();
     const Mat4 viewFromWorld = g.camera.viewFromWorld();
     const Mat4 previousViewFromWorld = previousCamera_.viewFromWorld();
     const bool useHistory = temporal_.temporal && frame_ > 0;
-    Image newBentWorld(w, h, 3, 0.0f), newLength(w, h, 1, 1.0f), normalWorld(w, h, 3, 0.0f);
-    forRows(h, [&](int y) {
-        for (int x = 0; x < w; ++x) {
-            if (g.isSky(x, y)) continue;
-            const Vec3 nWorld = normalize(transformVector(worldFromView, g.viewNormal(x, y)));
+    Image newBentWorld(lw, lh, 3, 0.0f), newLength(lw, lh, 1, 1.0f), normalWorld(lw, lh, 3, 0.0f);
+    forRows(lh, [&](int y) {
+        for (int x = 0; x < lw; ++x) {
+            const int px = hs * x, py = hs * y;
+            if (g.isSky(px, py)) continue;
+            const Vec3 nWorld = normalize(transformVector(worldFromView, g.viewNormal(px, py)));
             setVec3(normalWorld, x, y, nWorld);
             Vec3 currentBent = normalize(transformVector(worldFromView, vec3At(bent, x, y)));
             setVec3(newBentWorld, x, y, currentBent);
             if (!useHistory) continue;
-            const Vec3 world = transformPoint(worldFromView, g.viewPosition(x, y));
+            const Vec3 world = transformPoint(worldFromView, g.viewPosition(px, py));
             float expectedDepth = 0.0f;
             const Vec2 prev = previousCamera_.pixelFromView(transformPoint(previousViewFromWorld, world), &expectedDepth);
             if (!(expectedDepth > 0.0f)) continue;
-            const float gx = prev.x - 0.5f, gy = prev.y - 0.5f;
+            // Lattice pixel x' has its centre at pixel centre hs x' + 0.5 (a division by 1 is exact).
+            const float gx = (prev.x - 0.5f) / float(hs), gy = (prev.y - 0.5f) / float(hs);
             const int x0 = int(std::floor(gx)), y0 = int(std::floor(gy));
             const float fx = gx - float(x0), fy = gy - float(y0);
             float weightSum = 0.0f, historyVisibility = 0.0f, historyLength = 0.0f;
@@ -188,13 +197,13 @@ const GtaoResult& GtaoTemporal::frame(const GBuffer& g) {
             for (int t = 0; t < 4; ++t) {
                 const int tx = x0 + (t & 1), ty = y0 + (t >> 1);
                 const float bw = ((t & 1) ? fx : 1.0f - fx) * ((t >> 1) ? fy : 1.0f - fy);
-                if (bw <= 0.0f || tx < 0 || ty < 0 || tx >= w || ty >= h) continue;
+                if (bw <= 0.0f || tx < 0 || ty < 0 || tx >= lw || ty >= lh) continue;
                 const float pd = previousDepth_.at(tx, ty);
                 // Disocclusion: the previous frame saw another surface there, or one facing elsewhere.
                 if (!finiteDepth(pd) || std::fabs(pd - expectedDepth) > temporal_.rejectDepth * expectedDepth) continue;
                 if (dot(vec3At(previousNormalWorld_, tx, ty), nWorld) < temporal_.rejectNormalCos) continue;
                 weightSum += bw;
-                historyVisibility += bw * result_.visibility.at(tx, ty);
+                historyVisibility += bw * accumulated_.at(tx, ty);
                 historyBent += vec3At(bentWorld_, tx, ty) * bw;
                 historyLength += bw * historyLength_.at(tx, ty);
             }
@@ -211,29 +220,39 @@ const GtaoResult& GtaoTemporal::frame(const GBuffer& g) {
         }
     });
 
-    result_.visibility = std::move(visibility);
-    result_.bentNormal = Image(w, h, 3, 0.0f);
-    forRows(h, [&](int y) {
-        for (int x = 0; x < w; ++x)
-            if (!g.isSky(x, y))
-                setVec3(result_.bentNormal, x, y, normalize(transformVector(viewFromWorld, vec3At(newBentWorld, x, y))));
+    Image bentView(lw, lh, 3, 0.0f);
+    forRows(lh, [&](int y) {
+        for (int x = 0; x < lw; ++x)
+            if (!g.isSky(hs * x, hs * y))
+                setVec3(bentView, x, y, normalize(transformVector(viewFromWorld, vec3At(newBentWorld, x, y))));
     });
     if (temporal_.packedHistory) {
         // What the GPU's packed planes hold: the next frame reads these values, and the caller the visibility.
-        forRows(h, [&](int y) {
-            for (int x = 0; x < w; ++x) {
-                const std::uint32_t word = packVisibilityLength(result_.visibility.at(x, y), newLength.at(x, y));
-                result_.visibility.at(x, y) = unpackVisibility(word);
+        forRows(lh, [&](int y) {
+            for (int x = 0; x < lw; ++x) {
+                const std::uint32_t word = packVisibilityLength(visibility.at(x, y), newLength.at(x, y));
+                visibility.at(x, y) = unpackVisibility(word);
                 newLength.at(x, y) = unpackLength(word);
                 setVec3(normalWorld, x, y, unpackOctahedral(packOctahedral(vec3At(normalWorld, x, y))));
                 setVec3(newBentWorld, x, y, unpackOctahedral(packOctahedral(vec3At(newBentWorld, x, y))));
             }
         });
     }
+    if (gridHistory) {
+        // 3., after the accumulation: the history stays on the grid, the result goes to full resolution.
+        result_.visibility = upsampleDepthAware(visibility, gridDepth, g, temporal_.depthSigma);
+        result_.bentNormal = upsampleDepthAware(bentView, gridDepth, g, temporal_.depthSigma);
+        accumulated_ = std::move(visibility);
+        previousDepth_ = std::move(gridDepth);
+    } else {
+        accumulated_ = visibility;
+        result_.visibility = std::move(visibility);
+        result_.bentNormal = std::move(bentView);
+        previousDepth_ = g.depth;
+    }
     bentWorld_ = std::move(newBentWorld);
     historyLength_ = std::move(newLength);
     previousCamera_ = g.camera;
-    previousDepth_ = g.depth;
     previousNormalWorld_ = std::move(normalWorld);
     ++frame_;
     return result_;

@@ -145,6 +145,7 @@ TEST_F(GpuCommands, RenderGtaoMatchesTheCpu) {
         "stairs --size 81x47 --ao gtao --frames 3 --gtao-sampling planar-mip --gtao-half-res",  // temporal, half
         "demo --size 75x41 --ao gtao --gtao-half-res --gtao-slices 2 --gtao-steps 4 --gtao-interleave",  // full, half
         "well --size 70x40 --ao gtao --gtao-half-res --gtao-half-blur-radius 0",
+        "demo --size 97x55 --ao gtao --frames 3 --gtao-half-res --gtao-grid-history --gtao-packed-history",
     };
     for (const char* c : cases) {
         const Pair d = renderBoth(c);
@@ -218,7 +219,7 @@ TEST_F(GpuCommands, BenchGpuReportsEveryCase) {
     EXPECT_FALSE(j["device"].get<std::string>().empty());
     EXPECT_FALSE(j["driver"].get<std::string>().empty());
     EXPECT_EQ(j["frames"], 3);
-    ASSERT_EQ(j["cases"].size(), 14u);  // 7 cases x 2 sizes
+    ASSERT_EQ(j["cases"].size(), 16u);  // 8 cases x 2 sizes
     const std::map<std::string, std::set<std::string>> passes = {
         {"alchemy", {"alchemy", "blur"}},
         {"alchemy-fused", {"alchemy-rows", "blur-columns"}},
@@ -227,7 +228,9 @@ TEST_F(GpuCommands, BenchGpuReportsEveryCase) {
         // At full resolution the last pass reconstructs its own pixel; at half it upsamples its own pixel.
         {"gtao-spatial", {"gtao", "resolve"}},
         {"gtao-temporal", {"gtao", "temporal"}},
-        {"gtao-temporal-half", {"gtao", "denoise", "temporal"}}};
+        {"gtao-temporal-half", {"gtao", "denoise", "temporal"}},
+        // With the grid's history the accumulation reconstructs its grid pixel, and the upsampling comes last.
+        {"gtao-temporal-grid", {"gtao", "temporal", "upsample"}}};
     for (const auto& c : j["cases"]) {
         const std::string name = c["case"];
         ASSERT_TRUE(passes.count(name)) << name;
@@ -273,7 +276,7 @@ TEST_F(GpuCommands, BenchGpuReportsEveryCase) {
     EXPECT_EQ(j["frames_per_submit"], 1);
     EXPECT_EQ(bj["frames_per_submit"], 3);
     EXPECT_EQ(bj["validation"], true);
-    ASSERT_EQ(bj["cases"].size(), 7u);
+    ASSERT_EQ(bj["cases"].size(), 8u);
     for (const auto& c : bj["cases"]) {
         std::set<std::string> seen;
         for (const auto& p : c["passes"]) {

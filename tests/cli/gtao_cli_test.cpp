@@ -73,6 +73,8 @@ TEST_F(GtaoCli, BadInputFailsWithOneLine) {
                           {"--gtao-jitter --gtao-interleave", "--gtao-interleave"},
                           {"--gtao-packed-history --frames 1", "--gtao-packed-history"},
                           {"--gtao-packed-history --frames 3 --gtao-mode spatial", "--gtao-packed-history"},
+                          {"--gtao-grid-history --frames 3", "--gtao-grid-history"},
+                          {"--gtao-grid-history --gtao-half-res", "--gtao-grid-history"},  // the full mode
                           {"--gtao-slices 65", "--gtao-slices"},
                           {"--gtao-steps 257", "--gtao-steps"},
                           {"--gtao-jitter --frames 3", "--gtao-jitter"},

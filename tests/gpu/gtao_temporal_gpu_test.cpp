@@ -130,14 +130,13 @@ void expectMatch(Context& context, const Run& run, const ssao::GtaoTemporalSetti
     }
     EXPECT_EQ(gpu.framesRendered(), cpu.framesRendered());
     // Not vacuous: occluded pixels, and with history, pixels that kept it through every frame.
+    // The history length is per element of the history's lattice (the grid's with gridHistory).
     int occluded = 0, accumulated = 0;
-    for (std::size_t i = 0; i < lastVisibility.pixelCount(); ++i) {
-        occluded += lastVisibility.pixels[i] < 0.99f;
-        accumulated += cpu.historyLength().pixels[i] == float(frames);
-    }
+    for (float v : lastVisibility.pixels) occluded += v < 0.99f;
+    for (float l : cpu.historyLength().pixels) accumulated += l == float(frames);
     EXPECT_GT(occluded, pixels / 50) << name;
     if (t.temporal) {
-        EXPECT_GT(accumulated, pixels / 4) << name;
+        EXPECT_GT(accumulated, int(cpu.historyLength().pixelCount() / 4)) << name;
     }
     std::printf("[ measured ] %s %dx%d, %d frames: visibility max %.3g (%.3g within bounds), bent max %.3g (%.3g), "
                 "at most %d px beyond and %d px of other history length per frame; %d px occluded, %d px with %d "
@@ -146,10 +145,11 @@ void expectMatch(Context& context, const Run& run, const ssao::GtaoTemporalSetti
                 worst.bentRest, worst.beyond, worst.length, occluded, accumulated, frames, context.lastPassMs());
 }
 
-ssao::GtaoTemporalSettings mode(bool temporal, bool half) {
+ssao::GtaoTemporalSettings mode(bool temporal, bool half, bool gridHistory = false) {
     ssao::GtaoTemporalSettings t;
     t.temporal = temporal;
     t.halfResolution = half;
+    t.gridHistory = gridHistory;
     return t;
 }
 
@@ -274,6 +274,25 @@ TEST(GpuGtaoTemporal, PackedHistoryMatchesTheCpuReference) {
     EXPECT_EQ(testing::validationReport(context), "");
 }
 
+// The grid's history (GtaoTemporalSettings::gridHistory, kTemporalSpecHistoryStep 2): the accumulation
+// reconstructs and accumulates each grid pixel, and the upsampling (with kUpsampleSpecPackedLow when packed)
+// brings the result to full resolution. With and without history, floats and packed words.
+TEST(GpuGtaoTemporal, GridHistoryMatchesTheCpuReference) {
+    OBSCURA_GPU_CONTEXT(context);
+    expectMatch(context, {"demo", 333, 197, ssao::GtaoQuality::High}, mode(false, true, true), 2, 0,
+                "spatial, grid history");
+    for (bool packed : {false, true}) {
+        ssao::GtaoTemporalSettings t = mode(true, true, true);
+        t.packedHistory = packed;
+        const std::string m = packed ? "temporal, packed grid history" : "temporal, grid history";
+        expectMatch(context, {"demo", 333, 197, ssao::GtaoQuality::Medium}, t, 5, 0, m);
+        expectMatch(context, {"well", 96, 64, ssao::GtaoQuality::Low}, t, 5, 0, m);
+        expectMatch(context, {"stairs", 97, 63, ssao::GtaoQuality::High}, t, 5, 0, m);
+        expectMatch(context, {"corner", 96, 64, ssao::GtaoQuality::Low, ssao::GtaoSampling::PlanarMip}, t, 3, 0, m);
+    }
+    EXPECT_EQ(testing::validationReport(context), "");
+}
+
 // The benchmark's path: frames recorded back to back on resident buffers in one submission (the barrier at
 // the start of each frame orders them), with a mark after each stage, give the bits of GtaoTemporal's
 // frame-per-submission path. Also with mip sampling, whose chain each frame rewrites after the previous
@@ -282,12 +301,18 @@ TEST(GpuGtaoTemporal, RecordsFramesOnResidentBuffers) {
     OBSCURA_GPU_CONTEXT(context);
     const std::vector<GBuffer> gbuffers = path("stairs", 96, 64, 3);
     using ssao::GtaoSampling;
-    for (const auto& [sampling, half] : {std::pair{GtaoSampling::Planar, false}, std::pair{GtaoSampling::Planar, true},
-                                         std::pair{GtaoSampling::Mip, false}, std::pair{GtaoSampling::Mip, true}}) {
+    struct Case {
+        GtaoSampling sampling;
+        bool half, grid;
+    };
+    for (const auto& [sampling, half, grid] :
+         {Case{GtaoSampling::Planar, false, false}, Case{GtaoSampling::Planar, true, false},
+          Case{GtaoSampling::Mip, false, false}, Case{GtaoSampling::Mip, true, false},
+          Case{GtaoSampling::Planar, true, true}, Case{GtaoSampling::Mip, true, true}}) {
         ssao::GtaoSettings settings = preset(ssao::GtaoQuality::Low);
         settings.sampling = sampling;
         Context::Impl& c = context.impl();
-        GtaoTemporalPasses passes(c, settings, mode(true, half), 96, 64);
+        GtaoTemporalPasses passes(c, settings, mode(true, half, grid), 96, 64);
         std::vector<Buffer> depth, normal;
         for (const GBuffer& g : gbuffers) {
             depth.push_back(uploadChannels(c, g.depth, 1));
@@ -299,20 +324,22 @@ TEST(GpuGtaoTemporal, RecordsFramesOnResidentBuffers) {
                 passes.record(cmd, {depth[f], normal[f], gbuffers[f].camera, int(f)},
                               [&](const char* stage) { stages += std::string(stage) + " "; });
         });
-        // At full resolution the accumulation reconstructs its own pixel; at half it upsamples its own pixel.
+        // At full resolution the accumulation reconstructs its own pixel; at half it upsamples its own pixel,
+        // and with the grid's history it reconstructs its grid pixel and the upsampling follows.
         const std::string frame = std::string(sampling == GtaoSampling::Mip ? "mips " : "") +
-                                  (half ? "gtao denoise temporal " : "gtao temporal ");
+                                  (grid ? "gtao temporal upsample " : half ? "gtao denoise temporal " : "gtao temporal ");
         EXPECT_EQ(stages, frame + frame + frame);
         EXPECT_EQ(passes.framesRecorded(), 3);
         ssao::GtaoResult r{Image(96, 64, 1), Image(96, 64, 3)};
         download(c, passes.visibility(), r.visibility.pixels.data(), r.visibility.pixels.size() * sizeof(float));
         download(c, passes.bentNormal(), r.bentNormal.pixels.data(), r.bentNormal.pixels.size() * sizeof(float));
-        GtaoTemporal reference(context, settings, mode(true, half));
+        GtaoTemporal reference(context, settings, mode(true, half, grid));
         ssao::GtaoResult expected;
         for (const GBuffer& g : gbuffers) expected = reference.frame(g);
         EXPECT_EQ(r.visibility.pixels, expected.visibility.pixels);
         EXPECT_EQ(r.bentNormal.pixels, expected.bentNormal.pixels);
-        EXPECT_GT(passes.bytesPerFrame(), std::size_t(96 * 64 * 4 * 20));
+        // Not trivial: more than 20 floats per pixel, or 10 with the grid's history (a quarter of the history).
+        EXPECT_GT(passes.bytesPerFrame(), std::size_t(96 * 64 * 4 * (grid ? 10 : 20)));
     }
     EXPECT_EQ(testing::validationReport(context), "");
 }
@@ -328,24 +355,31 @@ TEST(GpuGtaoTemporal, VisibilityOnlyGivesTheSameVisibility) {
     const std::vector<GBuffer> gbuffers = path("demo", w, h, 4);
     const ssao::GtaoSettings settings = preset(ssao::GtaoQuality::Medium);
     const std::size_t pixels = std::size_t(w) * std::size_t(h);
-    for (const auto& [half, packed] : {std::pair{false, false}, std::pair{true, false}, std::pair{false, true}}) {
-        ssao::GtaoTemporalSettings t = mode(true, half);
-        t.packedHistory = packed;  // then the visibility plane holds visibility and length in one word
+    for (const auto& [half, packed, grid] : {std::tuple{false, false, false}, std::tuple{true, false, false},
+                                             std::tuple{false, true, false}, std::tuple{true, false, true},
+                                             std::tuple{true, true, true}}) {
+        ssao::GtaoTemporalSettings t = mode(true, half, grid);
+        t.packedHistory = packed;  // then the history's visibility plane holds visibility and length in one word
         GtaoTemporalPasses full(c, settings, t, w, h);
         GtaoTemporalPasses aoOnly(c, settings, t, w, h, {.bentNormals = false});
+        const std::size_t lattice = std::size_t(full.historyWidth()) * std::size_t(full.historyHeight());
         int differing = 0, occluded = 0;
         recordSideBySide(c, full, aoOnly, gbuffers, [&](std::size_t f) {
             const std::vector<std::uint32_t> a = downloadWords(c, full.visibility(), pixels);
             const std::vector<std::uint32_t> b = downloadWords(c, aoOnly.visibility(), pixels);
-            const std::vector<std::uint32_t> la = packed ? a : downloadWords(c, full.historyLength(), pixels);
-            const std::vector<std::uint32_t> lb = packed ? b : downloadWords(c, aoOnly.historyLength(), pixels);
+            const auto lengths = [&](const GtaoTemporalPasses& p) {
+                return downloadWords(c, packed ? p.historyVisibility() : p.historyLength(), lattice);
+            };
+            const std::vector<std::uint32_t> la = lengths(full), lb = lengths(aoOnly);
             for (std::size_t i = 0; i < pixels; ++i) {
-                differing += a[i] != b[i] || la[i] != lb[i];
-                const float v = packed ? ssao::unpackVisibility(a[i]) : std::bit_cast<float>(a[i]);
+                differing += a[i] != b[i];
+                const float v = full.visibilityPacked() ? ssao::unpackVisibility(a[i]) : std::bit_cast<float>(a[i]);
                 occluded += f + 1 == gbuffers.size() && v < 0.99f;
             }
+            for (std::size_t i = 0; i < lattice; ++i) differing += la[i] != lb[i];
         });
-        const std::string name = std::string(half ? "half resolution" : "full resolution") + (packed ? ", packed" : "");
+        const std::string name = std::string(grid ? "grid history" : half ? "half resolution" : "full resolution") +
+                                 (packed ? ", packed" : "");
         EXPECT_EQ(differing, 0) << name;
         EXPECT_GT(occluded, w * h / 50);  // not vacuous: there is occlusion to agree on
         // The bent normal's planes are gone from the traffic: per pixel 3 history floats in, 3 out (packed, a
@@ -356,7 +390,10 @@ TEST(GpuGtaoTemporal, VisibilityOnlyGivesTheSameVisibility) {
         std::printf("[ measured ] visibility only, %s: %zu -> %zu bytes per frame (%.2f floats per pixel less)\n",
                     name.c_str(), full.bytesPerFrame(), aoOnly.bytesPerFrame(), saved);
         const double history = packed ? 1 + 1 + 3 : 3 + 3 + 3;  // packed: one word in, one out
-        EXPECT_NEAR(saved, history + (half ? (3 + 3 + 10) / 4.0 : 3 + 3), 0.2) << name;
+        // With the grid's history: 3 view floats out per pixel; per grid pixel the raw 3 written and read, the
+        // grid's view bent normal 3 written and read by its upsampling, and the history's in and out.
+        const double gridSaved = 3 + (3 + 3 + 3 + 3 + (packed ? 2 : 6)) / 4.0;
+        EXPECT_NEAR(saved, grid ? gridSaved : history + (half ? (3 + 3 + 10) / 4.0 : 3 + 3), 0.2) << name;
     }
     EXPECT_EQ(testing::validationReport(context), "");
 }
@@ -369,11 +406,14 @@ TEST(GpuGtaoTemporal, CallerKeptDepthGivesTheSameFrames) {
     const int w = 90, h = 57;
     const std::vector<GBuffer> gbuffers = path("stairs", w, h, 4);
     const std::size_t pixels = std::size_t(w) * std::size_t(h);
-    for (bool packed : {false, true}) {
-        ssao::GtaoTemporalSettings t = mode(true, false);
+    for (const auto& [packed, grid] : {std::pair{false, false}, std::pair{true, false}, std::pair{false, true},
+                                       std::pair{true, true}}) {
+        ssao::GtaoTemporalSettings t = mode(true, grid, grid);
         t.packedHistory = packed;
         GtaoTemporalPasses copying(c, preset(ssao::GtaoQuality::Medium), t, w, h);
         GtaoTemporalPasses keeping(c, preset(ssao::GtaoQuality::Medium), t, w, h, {.callerKeepsDepth = true});
+        // With the grid's history the copy is of the grid's depth; the caller's buffer is read at (2x, 2y).
+        const std::size_t lattice = std::size_t(copying.historyWidth()) * std::size_t(copying.historyHeight());
         int differing = 0;
         recordSideBySide(c, copying, keeping, gbuffers, [&](std::size_t) {
             const auto same = [&](const Buffer& a, const Buffer& b, std::size_t count) {
@@ -381,10 +421,11 @@ TEST(GpuGtaoTemporal, CallerKeptDepthGivesTheSameFrames) {
             };
             differing += !same(copying.visibility(), keeping.visibility(), pixels);
             differing += !same(copying.bentNormal(), keeping.bentNormal(), 3 * pixels);
-            if (!packed) differing += !same(copying.historyLength(), keeping.historyLength(), pixels);
+            differing += !same(copying.historyVisibility(), keeping.historyVisibility(), lattice);
+            if (!packed) differing += !same(copying.historyLength(), keeping.historyLength(), lattice);
         });
-        EXPECT_EQ(differing, 0) << packed;
-        EXPECT_EQ(copying.bytesPerFrame() - keeping.bytesPerFrame(), pixels * sizeof(float)) << packed;
+        EXPECT_EQ(differing, 0) << packed << grid;
+        EXPECT_EQ(copying.bytesPerFrame() - keeping.bytesPerFrame(), lattice * sizeof(float)) << packed << grid;
     }
     // A history frame without the previous depth is refused in words before anything is recorded.
     GtaoTemporalPasses keeping(c, preset(ssao::GtaoQuality::Low), mode(true, false), w, h, {.callerKeepsDepth = true});

@@ -44,7 +44,8 @@ std::string apiText(std::uint32_t v) {
 struct GpuBenchOptions {
     bool gpu = false;
     std::string sizes = "1280x720,1920x1080,3840x2160";
-    std::string cases = "alchemy,alchemy-fused,gtao,gtao-half,gtao-spatial,gtao-temporal,gtao-temporal-half";
+    std::string cases =
+        "alchemy,alchemy-fused,gtao,gtao-half,gtao-spatial,gtao-temporal,gtao-temporal-half,gtao-temporal-grid";
     int frames = 200;
     int warmup = 20;
     int framesPerSubmit = 1;
@@ -78,7 +79,8 @@ void GpuBenchOptions::add(CLI::App& bench) {
                    "--warmup), Mpixel/s, bytes per frame and their share of --peak-gbps");
     bench.add_option("--sizes", sizes, "--gpu: comma-separated WxH sizes")->capture_default_str();
     bench.add_option("--cases", cases,
-                     "--gpu: comma-separated cases: alchemy, alchemy-fused, gtao, gtao-half, gtao-spatial, gtao-temporal, gtao-temporal-half")
+                     "--gpu: comma-separated cases: alchemy, alchemy-fused, gtao, gtao-half, gtao-spatial, gtao-temporal, "
+                     "gtao-temporal-half, gtao-temporal-grid")
         ->capture_default_str();
     bench.add_option("--frames", frames, "--gpu: timed frames per case and size, [1, 100000]")->capture_default_str();
     bench.add_option("--warmup", warmup, "--gpu: untimed frames before them, [0, 10000]")->capture_default_str();

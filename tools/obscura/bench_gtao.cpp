@@ -80,11 +80,14 @@ void runGtaoBench(const GtaoBenchOptions& o) {
     one.radius = o.radius;
     one.sliceCount = 1;
     one.stepsPerSide = 3;
-    for (bool half : {false, true}) {
+    // Full resolution, half, and half with the history on the grid (the accumulation on a quarter of the pixels).
+    for (int variant = 0; variant < 3; ++variant) {
         ssao::GtaoTemporalSettings t;
-        t.halfResolution = half;
+        t.halfResolution = variant > 0;
+        t.gridHistory = variant == 2;
         ssao::GtaoTemporal temporal(one, t);
-        record(std::string("temporal 1x3") + (half ? " half-res" : ""), timeRuns(o.repeat, [&] { temporal.frame(g); }));
+        record(std::string("temporal 1x3") + (variant == 2 ? " half-res, grid history" : variant == 1 ? " half-res" : ""),
+               timeRuns(o.repeat, [&] { temporal.frame(g); }));
     }
     ssao::GtaoSettings high;
     high.radius = o.radius;

@@ -151,6 +151,10 @@ void GtaoOptions::add(CLI::App& app) {
     app.add_flag("--gtao-packed-history", packedHistory,
                  "GTAO temporal: keep the history in packed words (visibility to 1/65535, octahedral normals), "
                  "4 words per pixel instead of 9 floats, as a GPU would");
+    app.add_flag("--gtao-grid-history", gridHistory,
+                 "GTAO spatial and temporal modes with --gtao-half-res: reproject and accumulate on the half-resolution "
+                 "grid and upsample afterwards, so the history is a quarter of the full-resolution one (the same "
+                 "error against ray tracing to 4 digits on the static views of docs/QUALITY.md)");
     app.add_option("--gtao-thickness", thickness, "GTAO thin occluders: none, heuristic (eq. 9), bitmask")
         ->check(CLI::IsMember({"none", "heuristic", "bitmask"}))
         ->capture_default_str();
@@ -201,6 +205,9 @@ void GtaoOptions::validate(const std::string& aovDir) const {
         fail("--gtao-half-blur-radius", "needs --gtao-half-res in the full mode (--gtao-mode full, or auto with one frame)");
     if (packedHistory && !temporal)
         fail("--gtao-packed-history", "needs a history: --gtao-mode temporal, or auto with --frames > 1");
+    if (gridHistory && (!halfResolution || !(mode == "spatial" || temporal)))
+        fail("--gtao-grid-history", "needs --gtao-half-res in the spatial or temporal mode (--gtao-mode spatial or "
+                                    "temporal, or auto with --frames > 1)");
     if (sliceFlags.value.jitter && (mode == "spatial" || temporal))
         fail("--gtao-jitter", "needs --gtao-mode full (or auto with one frame): the interleave rotates the slices of the "
                               "spatial and temporal modes");
@@ -215,6 +222,7 @@ GtaoFrame renderGtaoFrames(const GtaoOptions& o, float radius, const trace::Trac
     temporalSettings.temporal = mode == "temporal";
     temporalSettings.halfResolution = o.halfResolution;
     temporalSettings.packedHistory = o.packedHistory;
+    temporalSettings.gridHistory = o.gridHistory;
     ssao::GtaoHalfResolutionSettings half;  // the full mode's, with --gtao-half-res
     half.blur.mode = o.halfBlurRadius > 0 ? ssao::BlurMode::Separable : ssao::BlurMode::None;
     half.blur.radius = std::max(o.halfBlurRadius, 1);

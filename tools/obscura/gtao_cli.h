@@ -41,6 +41,7 @@ struct GtaoOptions {
     bool halfResolution = false;
     int halfBlurRadius = 2;  // full mode at half resolution: taps on each side of the grid's blur; 0: none
     bool packedHistory = false;
+    bool gridHistory = false;  // spatial/temporal modes at half resolution: accumulate on the grid
     std::string thickness = "none";
     float falloffStart = 1.0f;
     std::string beyondRadius = "column";

@@ -29,6 +29,7 @@ layout(constant_id = kTemporalSpecDepthSigma) const float kDepthSigma = 0.05;
 layout(constant_id = kTemporalSpecBentNormal) const int kBentNormal = 1;
 layout(constant_id = kTemporalSpecPackedHistory) const int kPackedHistory = 0;
 layout(constant_id = kTemporalSpecDepthCopy) const int kDepthCopy = 1;
+layout(constant_id = kTemporalSpecHistoryStep) const int kHistoryStep = 1;
 
 layout(push_constant, std430) uniform Constants { GtaoTemporalConstants k; };
 layout(std430, binding = kTemporalBindingDepth) readonly buffer DepthPlane { float depthPlane[]; };
@@ -59,6 +60,14 @@ layout(std430, binding = kTemporalBindingBentViewOut) writeonly buffer BentViewO
 const int kGridChannels = kBentNormal != 0 ? 4 : 1;
 int gridWidth() { return (k.width + kGridStep - 1) / kGridStep; }
 int gridHeight() { return (k.height + kGridStep - 1) / kGridStep; }
+// The history's lattice, which the invocations cover: every pixel, or with kHistoryStep 2 the grid
+// (temporal_layouts.h). The filter reconstructs a lattice pixel from the raw grid when the two are one,
+// and upsamples it from the reconstructed grid when the lattice is the full image over a half-resolution grid.
+const bool kReconstructs = kGridStep == kHistoryStep;
+int latticeWidth() { return (k.width + kHistoryStep - 1) / kHistoryStep; }
+int latticeHeight() { return (k.height + kHistoryStep - 1) / kHistoryStep; }
+// The full-resolution pixel where lattice pixel (x, y) stands, as an index into the G-buffer's planes.
+uint pixelIndex(int x, int y) { return uint(y * kHistoryStep) * uint(k.width) + uint(x * kHistoryStep); }
 // The grid's depth and normals are the G-buffer's at every kGridStep-th pixel (temporal_layouts.h).
 uint guide(int x, int y) { return uint(y * kGridStep) * uint(k.width) + uint(x * kGridStep); }
 float gridDepthAt(int x, int y) { return depthPlane[guide(x, y)]; }
@@ -70,15 +79,15 @@ float gridValueAt(int x, int y, int c) {
     const uint i = uint(y) * uint(gridWidth()) + uint(x);
     return c == 0 ? gridVisibility[i] : gridBent[3 * i + uint(c - 1)];
 }
-// At full resolution the reconstruction reads the grid from a shared-memory tile (grid_tile.glsl): on an H100
-// (2026-11-25, visibility only, 1920x1080) the pass took 0.086 ms instead of 0.136 without history (the
-// spatial variant) and 0.115 instead of 0.159 with it. The half-resolution upsampling reads 4 grid pixels
-// straight from memory, with a tile of one slot.
-#define GRID_TILE_SLOTS (kGridStep == 1 ? kGridTileHeight * kGridTileStride : 1)
+// The reconstruction reads the grid from a shared-memory tile (grid_tile.glsl): on an H100 (2026-11-25,
+// visibility only, 1920x1080, full resolution) the pass took 0.086 ms instead of 0.136 without history (the
+// spatial variant) and 0.115 instead of 0.159 with it. The upsampling reads 4 grid pixels straight from
+// memory, with a tile of one slot.
+#define GRID_TILE_SLOTS (kReconstructs ? kGridTileHeight * kGridTileStride : 1)
 #include "grid_tile.glsl"
-float gridDepth(int x, int y) { return kGridStep == 1 ? gridTileDepth(x, y) : gridDepthAt(x, y); }
-vec3 gridNormal(int x, int y) { return kGridStep == 1 ? gridTileNormal(x, y) : gridNormalAt(x, y); }
-float gridValue(int x, int y, int c) { return kGridStep == 1 ? gridTileValue(x, y, c) : gridValueAt(x, y, c); }
+float gridDepth(int x, int y) { return kReconstructs ? gridTileDepth(x, y) : gridDepthAt(x, y); }
+vec3 gridNormal(int x, int y) { return kReconstructs ? gridTileNormal(x, y) : gridNormalAt(x, y); }
+float gridValue(int x, int y, int c) { return kReconstructs ? gridTileValue(x, y, c) : gridValueAt(x, y, c); }
 
 #include "temporal_filters.glsl"
 #include "obscura/history_packing.h"
@@ -120,9 +129,13 @@ vec2 previousPixelFromView(vec3 p, out float depth) {
 }
 
 // ---- src/ssao/gtao_temporal.cpp: the history images, read from their planes ----
-// previousDepth_, previousNormalWorld_, result_.visibility, bentWorld_ and historyLength_ at pixel i. With
+// previousDepth_, previousNormalWorld_, accumulated_, bentWorld_ and historyLength_ at lattice pixel i. With
 // kPackedHistory the CPU stores the values the packed words decode to, so both read the same floats.
-float previousDepthAt(uint i) { return uintBitsToFloat(previousDepth[i]); }
+// previousDepth_ is the history's copy (kDepthCopy), of the lattice's size, or the caller's depth buffer of
+// the last frame, of the full size, read where lattice pixel (x, y) stands.
+float previousDepthAt(uint i, int x, int y) {
+    return uintBitsToFloat(previousDepth[kDepthCopy != 0 ? i : pixelIndex(x, y)]);
+}
 vec3 previousNormalWorldAt(uint i) {
     if (kPackedHistory != 0) return unpackOctahedral(previousNormalWorld[i]);
     return uintBitsToFloat(uvec3(previousNormalWorld[3 * i], previousNormalWorld[3 * i + 1], previousNormalWorld[3 * i + 2]));
@@ -141,23 +154,24 @@ float previousLengthAt(uint i) {
 // Pixel (x, y) of the loop: `visibility` comes in as the spatial result and leaves accumulated, `bent` is
 // the spatial result's view bent normal; the other three come in as the CPU's initial values (0, 1, 0).
 // Without bent normals (kBentNormal 0) their lines are skipped; nothing else reads them.
+// (x, y) is a lattice pixel, standing at pixel (px, py) = (kHistoryStep x, kHistoryStep y).
 void temporalPixel(int x, int y, vec3 bent, inout float visibility, inout vec3 newBentWorld, inout float newLength,
                    inout vec3 normalWorld) {
-    const int w = k.width, h = k.height;
-    const uint i = uint(y) * uint(w) + uint(x);
-    const float depth = depthPlane[i];
-    if (!finiteDepth(depth)) return;  // g.isSky(x, y)
-    const vec3 viewNormal = vec3(normalPlane[3 * i], normalPlane[3 * i + 1], normalPlane[3 * i + 2]);
+    const int w = latticeWidth(), h = latticeHeight();
+    const uint pi = pixelIndex(x, y);
+    const float depth = depthPlane[pi];
+    if (!finiteDepth(depth)) return;  // g.isSky(px, py)
+    const vec3 viewNormal = vec3(normalPlane[3 * pi], normalPlane[3 * pi + 1], normalPlane[3 * pi + 2]);
     const vec3 nWorld = normalize3(transformVector(k.worldFromView, viewNormal));
     normalWorld = nWorld;
     vec3 currentBent = normalize3(transformVector(k.worldFromView, bent));
     newBentWorld = currentBent;
     if (k.maxHistory == 0.0) return;  // !useHistory
-    const vec3 world = transformPoint(k.worldFromView, viewPosition(x, y, depth));
+    const vec3 world = transformPoint(k.worldFromView, viewPosition(kHistoryStep * x, kHistoryStep * y, depth));
     float expectedDepth = 0.0;
     const vec2 prev = previousPixelFromView(transformPoint(k.previousViewFromWorld, world), expectedDepth);
     if (!(expectedDepth > 0.0)) return;
-    const float gx = prev.x - 0.5, gy = prev.y - 0.5;
+    const float gx = (prev.x - 0.5) / float(kHistoryStep), gy = (prev.y - 0.5) / float(kHistoryStep);
     const int x0 = int(floor(gx)), y0 = int(floor(gy));
     const float fx = gx - float(x0), fy = gy - float(y0);
     float weightSum = 0.0, historyVisibility = 0.0, historyLength = 0.0;
@@ -167,7 +181,7 @@ void temporalPixel(int x, int y, vec3 bent, inout float visibility, inout vec3 n
         const float bw = ((t & 1) != 0 ? fx : 1.0 - fx) * ((t >> 1) != 0 ? fy : 1.0 - fy);
         if (bw <= 0.0 || tx < 0 || ty < 0 || tx >= w || ty >= h) continue;
         const uint ti = uint(ty) * uint(w) + uint(tx);
-        const float pd = previousDepthAt(ti);
+        const float pd = previousDepthAt(ti, tx, ty);
         // Disocclusion: the previous frame saw another surface there, or one facing elsewhere.
         if (!finiteDepth(pd) || abs(pd - expectedDepth) > k.rejectDepth * expectedDepth) continue;
         if (dot3(previousNormalWorldAt(ti), nWorld) < k.rejectNormalCos) continue;
@@ -192,15 +206,16 @@ void temporalPixel(int x, int y, vec3 bent, inout float visibility, inout vec3 n
 
 void main() {
     const ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-    if (kGridStep == 1) loadGridTile(k.width, k.height);
-    if (p.x >= k.width || p.y >= k.height) return;
-    const uint i = uint(p.y) * uint(k.width) + uint(p.x);
-    const float depth = depthPlane[i];
-    // Step 2 (full resolution) or 3 (half) of the CPU frame, for this pixel alone: its filtered visibility and
-    // view bent normal.
+    const int w = latticeWidth(), h = latticeHeight();
+    if (kReconstructs) loadGridTile(w, h);
+    if (p.x >= w || p.y >= h) return;
+    const uint i = uint(p.y) * uint(w) + uint(p.x);
+    const float depth = depthPlane[pixelIndex(p.x, p.y)];
+    // Step 2 (full resolution, or the grid's history) or 3 (half) of the CPU frame, for this lattice pixel
+    // alone: its filtered visibility and view bent normal.
     float spatial[4];
-    if (kGridStep == 1)
-        reconstructInterleaved(p.x, p.y, k.width, k.height, kDepthSigma, spatial);
+    if (kReconstructs)
+        reconstructInterleaved(p.x, p.y, w, h, kDepthSigma, spatial);
     else
         upsampleDepthAware(p.x, p.y, depth, gridWidth(), gridHeight(), kDepthSigma, spatial);
     float visibility = spatial[0];
@@ -210,7 +225,7 @@ void main() {
                   normalWorld);
     // result_.bentNormal: sky pixels 0, the others back in view space.
     const vec3 bentView = finiteDepth(depth) ? normalize3(viewFromWorldVector(newBentWorld)) : vec3(0.0);
-    if (kDepthCopy != 0) depthOut[i] = floatBitsToUint(depth);  // previousDepth_ = g.depth
+    if (kDepthCopy != 0) depthOut[i] = floatBitsToUint(depth);  // previousDepth_ = g.depth, or the grid's depth
     if (kBentNormal != 0)
         for (uint c = 0; c < 3; ++c) bentViewOut[3 * i + c] = bentView[c];
     if (kPackedHistory != 0) {

@@ -56,6 +56,10 @@ OBSCURA_CONST int kReconstructPushConstantBytes = 32;
 // ---- upsample_depth_aware.comp: ssao::upsampleDepthAware ----
 // constant_id of the channel count (1 or 3), as above.
 OBSCURA_CONST int kUpsampleSpecChannels = 0;
+// constant_id of the low-resolution values' encoding: 0 (the default) floats; 1, one channel of the packed
+// visibility-and-length words of obscura/history_packing.h (the accumulation's visibility plane with
+// kTemporalSpecPackedHistory and kTemporalSpecHistoryStep 2), upsampled as the visibility they decode to.
+OBSCURA_CONST int kUpsampleSpecPackedLow = 1;
 struct UpsampleConstants {
     int width;         // full-resolution size, px
     int height;
@@ -99,6 +103,13 @@ OBSCURA_CONST int kTemporalSpecPackedHistory = 3;
 // the next frame; 0 leaves DepthOut untouched, and kTemporalBindingPreviousDepth is then the previous
 // frame's own depth buffer, which the caller keeps unchanged until this frame has run.
 OBSCURA_CONST int kTemporalSpecDepthCopy = 4;
+// constant_id of the history's lattice (GtaoTemporalSettings::gridHistory): 1 (the default), the history
+// has a pixel per G-buffer pixel; 2, with grid step 2, it is the half-resolution grid's: the invocations
+// cover the grid, each reconstructs its grid pixel from the raw GTAO output (as at full resolution) and
+// accumulates it there, and every history plane and BentViewOut below has one element per grid pixel
+// where the list says width * height. upsample_depth_aware.comp then brings the visibility plane (with
+// kUpsampleSpecPackedLow when packed) and BentViewOut to full resolution.
+OBSCURA_CONST int kTemporalSpecHistoryStep = 5;
 // The previous camera's size, and so its aspect, are the current one's: the frame rejects a size change.
 // 128 bytes, Vulkan's guaranteed push-constant size (lavapipe's too).
 struct GtaoTemporalConstants {

@@ -12,9 +12,11 @@
 layout(local_size_x = kTemporalWorkgroupX, local_size_y = kTemporalWorkgroupY, local_size_z = 1) in;
 
 layout(constant_id = kUpsampleSpecChannels) const int kGridChannels = 1;
+layout(constant_id = kUpsampleSpecPackedLow) const int kPackedLow = 0;
 
 layout(push_constant, std430) uniform Constants { UpsampleConstants k; };
-layout(std430, binding = kUpsampleBindingLow) readonly buffer Low { float low[]; };
+// Words: floats' bits, or with kPackedLow the packed visibility of obscura/history_packing.h.
+layout(std430, binding = kUpsampleBindingLow) readonly buffer Low { uint low[]; };
 layout(std430, binding = kUpsampleBindingLowDepth) readonly buffer LowDepth { float lowDepthPlane[]; };
 layout(std430, binding = kUpsampleBindingDepth) readonly buffer DepthPlane { float depthPlane[]; };
 layout(std430, binding = kUpsampleBindingOutput) writeonly buffer Output { float outValues[]; };
@@ -37,14 +39,17 @@ float gridValue(int x, int y, int c) {
     return (down ? (right ? value11 : value01) : (right ? value10 : value00))[c];
 }
 float lowDepth(int x, int y) { return lowDepthPlane[uint(y * k.guideStep) * uint(k.guideWidth) + uint(x * k.guideStep)]; }
-vec3 lowValues(int x, int y) {
-    const uint base = (uint(y) * uint(k.lowWidth) + uint(x)) * uint(kGridChannels);
-    vec3 v = vec3(0.0);
-    for (int c = 0; c < kGridChannels; ++c) v[c] = low[base + uint(c)];
-    return v;
-}
 
 #include "temporal_filters.glsl"
+#include "obscura/history_packing.h"
+
+vec3 lowValues(int x, int y) {
+    const uint base = (uint(y) * uint(k.lowWidth) + uint(x)) * uint(kGridChannels);
+    if (kPackedLow != 0) return vec3(unpackVisibility(low[base]), 0.0, 0.0);
+    vec3 v = vec3(0.0);
+    for (int c = 0; c < kGridChannels; ++c) v[c] = uintBitsToFloat(low[base + uint(c)]);
+    return v;
+}
 
 void main() {
     block = ivec2(gl_GlobalInvocationID.xy);
