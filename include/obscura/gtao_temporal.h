@@ -32,7 +32,8 @@ struct GtaoTemporalSettings {
                                   // visibility to 1/65535 and length to 1/32 frame in one word, world
                                   // normal and bent normal octahedral in one word each (with depth, 4
                                   // words per pixel instead of 9 floats);
-                                  // the returned visibility is the stored one
+                                  // the returned visibility is the stored one (with gridHistory,
+                                  // upsampled from the stored one)
     bool gridHistory = false;     // with halfResolution: reproject and accumulate on the half-resolution
                                   // grid and upsample the accumulated result, so the history, its reads
                                   // and its writes are a quarter of the full-resolution ones; the
@@ -69,7 +70,7 @@ private:
     GtaoTemporalSettings temporal_;
     int frame_ = 0;
     GtaoResult result_;
-    Image accumulated_;  // the accumulated visibility on the history's lattice (the result, or the grid's)
+    Image accumulated_;  // with gridHistory, the accumulated visibility on the grid (else the result's is)
     Image bentWorld_;  // accumulated bent normals in world space, so they survive camera motion
     Image historyLength_;
     Camera previousCamera_;

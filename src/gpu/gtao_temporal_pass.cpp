@@ -235,10 +235,12 @@ std::size_t GtaoTemporalPasses::bytesPerFrame() const {
     const std::size_t written = history - (variant_.callerKeepsDepth ? 1 : 0);
     if (gridHistory_) {
         // The accumulation on the grid: the raw values, the grid's depth and normals, the history in; the next
-        // history and the grid's view bent normals out. Then the upsampling: the accumulated visibility and b
-        // bent-normal channels of the grid with its depth, and the full depth, in; 1 + b per pixel out.
+        // history and the grid's view bent normals out. Then the upsampling, one dispatch per plane: the grid's
+        // accumulated visibility (and b bent-normal channels) with its depth and the full depth in; 1 (and b)
+        // per pixel out.
         bytes += f * grid * ((1 + b) + (1 + 3) + history + written + b);
-        bytes += f * (grid * (1 + b + 1) + pixels * (1 + 1 + b));
+        bytes += f * (grid * (1 + 1) + pixels * (1 + 1));
+        if (b > 0) bytes += f * (grid * (b + 1) + pixels * (1 + b));
         return bytes;
     }
     bytes += f * (grid * (1 + b + (step_ == 2 ? 1 : 0)) + pixels * ((1 + 3) + history + written + b));

@@ -78,7 +78,8 @@ public:
     // Records the whole frame into cmd, with a barrier between dependent dispatches. Frames recorded back to
     // back in one command buffer need none between them: a frame's first stage touches nothing its
     // predecessor's last stage does (at half resolution it overwrites the raw values its predecessor's
-    // reconstruction read, which that frame's barrier before its accumulation already orders), and its later
+    // reconstruction, or with the grid's history its accumulation, read, which that frame's barrier before its
+    // accumulation, or its upsampling, already orders), and its later
     // barriers order the rest (the history it reads, the intermediates it overwrites). A caller that reads the result records its own barrier. After each stage
     // it calls mark(stage) if set, so that a caller can write a timestamp: "mips" (the depth MIP chain, with
     // mip sampling only), "gtao", "denoise" (both

@@ -174,6 +174,8 @@ const GtaoResult& GtaoTemporal::frame(const GBuffer& g) {
     const Mat4 viewFromWorld = g.camera.viewFromWorld();
     const Mat4 previousViewFromWorld = previousCamera_.viewFromWorld();
     const bool useHistory = temporal_.temporal && frame_ > 0;
+    // The accumulated visibility the previous frame left on the lattice: its result, or the grid's.
+    const Image& previousVisibility = gridHistory ? accumulated_ : result_.visibility;
     Image newBentWorld(lw, lh, 3, 0.0f), newLength(lw, lh, 1, 1.0f), normalWorld(lw, lh, 3, 0.0f);
     forRows(lh, [&](int y) {
         for (int x = 0; x < lw; ++x) {
@@ -188,8 +190,9 @@ const GtaoResult& GtaoTemporal::frame(const GBuffer& g) {
             float expectedDepth = 0.0f;
             const Vec2 prev = previousCamera_.pixelFromView(transformPoint(previousViewFromWorld, world), &expectedDepth);
             if (!(expectedDepth > 0.0f)) continue;
-            // Lattice pixel x' has its centre at pixel centre hs x' + 0.5 (a division by 1 is exact).
-            const float gx = (prev.x - 0.5f) / float(hs), gy = (prev.y - 0.5f) / float(hs);
+            // Lattice pixel x' has its centre at pixel centre hs x' + 0.5; scaled by 1 or 1/2, exactly.
+            const float toLattice = hs == 1 ? 1.0f : 0.5f;
+            const float gx = (prev.x - 0.5f) * toLattice, gy = (prev.y - 0.5f) * toLattice;
             const int x0 = int(std::floor(gx)), y0 = int(std::floor(gy));
             const float fx = gx - float(x0), fy = gy - float(y0);
             float weightSum = 0.0f, historyVisibility = 0.0f, historyLength = 0.0f;
@@ -203,7 +206,7 @@ const GtaoResult& GtaoTemporal::frame(const GBuffer& g) {
                 if (!finiteDepth(pd) || std::fabs(pd - expectedDepth) > temporal_.rejectDepth * expectedDepth) continue;
                 if (dot(vec3At(previousNormalWorld_, tx, ty), nWorld) < temporal_.rejectNormalCos) continue;
                 weightSum += bw;
-                historyVisibility += bw * accumulated_.at(tx, ty);
+                historyVisibility += bw * previousVisibility.at(tx, ty);
                 historyBent += vec3At(bentWorld_, tx, ty) * bw;
                 historyLength += bw * historyLength_.at(tx, ty);
             }
@@ -245,7 +248,6 @@ const GtaoResult& GtaoTemporal::frame(const GBuffer& g) {
         accumulated_ = std::move(visibility);
         previousDepth_ = std::move(gridDepth);
     } else {
-        accumulated_ = visibility;
         result_.visibility = std::move(visibility);
         result_.bentNormal = std::move(bentView);
         previousDepth_ = g.depth;

@@ -390,9 +390,10 @@ TEST(GpuGtaoTemporal, VisibilityOnlyGivesTheSameVisibility) {
         std::printf("[ measured ] visibility only, %s: %zu -> %zu bytes per frame (%.2f floats per pixel less)\n",
                     name.c_str(), full.bytesPerFrame(), aoOnly.bytesPerFrame(), saved);
         const double history = packed ? 1 + 1 + 3 : 3 + 3 + 3;  // packed: one word in, one out
-        // With the grid's history: 3 view floats out per pixel; per grid pixel the raw 3 written and read, the
-        // grid's view bent normal 3 written and read by its upsampling, and the history's in and out.
-        const double gridSaved = 3 + (3 + 3 + 3 + 3 + (packed ? 2 : 6)) / 4.0;
+        // With the grid's history: per pixel 3 view floats out and the full depth that the bent normals'
+        // upsampling reads; per grid pixel the raw 3 written and read, the grid's view bent normal 3 written
+        // and read by its upsampling with the grid's depth (1), and the history's in and out.
+        const double gridSaved = 4 + (3 + 3 + 3 + 3 + 1 + (packed ? 2 : 6)) / 4.0;
         EXPECT_NEAR(saved, grid ? gridSaved : history + (half ? (3 + 3 + 10) / 4.0 : 3 + 3), 0.2) << name;
     }
     EXPECT_EQ(testing::validationReport(context), "");

@@ -71,54 +71,56 @@ TEST(GtaoTemporal, DisoccludedPixelsTakeNoHistory) {
     b.target += Vec3{1.0f, 0.0f, 0.0f};
     GBuffer ga = trace::renderGBuffer(tracer, a), gb = trace::renderGBuffer(tracer, b);
     for (bool grid : {false, true}) {
-    GtaoTemporalSettings t;
-    t.halfResolution = t.gridHistory = grid;
-    GtaoTemporal temporal(oneSlice(0.5f, 3), t);
-    for (int f = 0; f < 3; ++f) temporal.frame(ga);
-    temporal.frame(gb);
-    // With the grid's history, pixel (x, y) of the full image is read at grid pixel (x / 2, y / 2), which
-    // stands at (x, y) when both are even: only those pixels are checked.
-    const Image& history = temporal.historyLength();
-    const int hs = grid ? 2 : 1;
-    auto historyAt = [&](int x, int y) { return history.at(x / hs, y / hs); };
+        GtaoTemporalSettings t;
+        t.halfResolution = t.gridHistory = grid;
+        GtaoTemporal temporal(oneSlice(0.5f, 3), t);
+        for (int f = 0; f < 3; ++f) temporal.frame(ga);
+        temporal.frame(gb);
+        // With the grid's history, pixel (x, y) of the full image is read at grid pixel (x / 2, y / 2), which
+        // stands at (x, y) when both are even: only those pixels are checked.
+        const Image& history = temporal.historyLength();
+        const int hs = grid ? 2 : 1;
+        auto historyAt = [&](int x, int y) { return history.at(x / hs, y / hs); };
 
-    // Independent of the depth test: a point of frame b was hidden from camera a if a ray from a's
-    // position to it stops short (by more than 2%); a pixel is "disoccluded" when it and its 8 neighbours
-    // all were, so pixels at the silhouette, whose bilinear footprint may touch the visible side, are left out.
-    const Mat4 worldFromView = b.worldFromView();
-    auto hiddenFromA = [&](int x, int y) {
-        if (gb.isSky(x, y)) return false;
-        Vec3 p = transformPoint(worldFromView, gb.viewPosition(x, y));
-        Vec3 d = p - a.position;
-        float dist = length(d);
-        return tracer.occluded(a.position, d / dist, 0.0f, 0.98f * dist);
-    };
-    int disoccluded = 0, visible = 0, visibleWithHistory = 0;
-    for (int y = 1; y + 1 < b.height; ++y)
-        for (int x = 1; x + 1 < b.width; ++x) {
-            if (gb.isSky(x, y) || x % hs != 0 || y % hs != 0) continue;
-            bool all = true, none = true;
-            for (int dy = -1; dy <= 1; ++dy)
-                for (int dx = -1; dx <= 1; ++dx) {
-                    bool h = hiddenFromA(x + dx, y + dy);
-                    all = all && h;
-                    none = none && !h && !gb.isSky(x + dx, y + dy);
+        // Independent of the depth test: a point of frame b was hidden from camera a if a ray from a's
+        // position to it stops short (by more than 2%); a pixel is "disoccluded" when it and its 8 neighbours
+        // all were, so pixels at the silhouette, whose bilinear footprint may touch the visible side, are left out.
+        const Mat4 worldFromView = b.worldFromView();
+        auto hiddenFromA = [&](int x, int y) {
+            if (gb.isSky(x, y)) return false;
+            Vec3 p = transformPoint(worldFromView, gb.viewPosition(x, y));
+            Vec3 d = p - a.position;
+            float dist = length(d);
+            return tracer.occluded(a.position, d / dist, 0.0f, 0.98f * dist);
+        };
+        int disoccluded = 0, visible = 0, visibleWithHistory = 0;
+        for (int y = 1; y + 1 < b.height; ++y)
+            for (int x = 1; x + 1 < b.width; ++x) {
+                if (gb.isSky(x, y) || x % hs != 0 || y % hs != 0) continue;
+                bool all = true, none = true;
+                for (int dy = -1; dy <= 1; ++dy)
+                    for (int dx = -1; dx <= 1; ++dx) {
+                        bool h = hiddenFromA(x + dx, y + dy);
+                        all = all && h;
+                        none = none && !h && !gb.isSky(x + dx, y + dy);
+                    }
+                if (all) {
+                    ++disoccluded;
+                    EXPECT_EQ(historyAt(x, y), 1.0f)
+                        << "pixel " << x << "," << y << " took history" << (grid ? " (grid)" : "");
+                } else if (none) {
+                    const Vec3 world = transformPoint(worldFromView, gb.viewPosition(x, y));
+                    Vec2 pa = a.pixelFromView(transformPoint(a.viewFromWorld(), world));
+                    if (pa.x < 1 || pa.y < 1 || pa.x > float(a.width - 1) || pa.y > float(a.height - 1)) continue;
+                    ++visible;
+                    if (historyAt(x, y) > 1.0f) ++visibleWithHistory;
                 }
-            if (all) {
-                ++disoccluded;
-                EXPECT_EQ(historyAt(x, y), 1.0f) << "pixel " << x << "," << y << " took history" << (grid ? " (grid)" : "");
-            } else if (none) {
-                Vec2 pa = a.pixelFromView(transformPoint(a.viewFromWorld(), transformPoint(worldFromView, gb.viewPosition(x, y))));
-                if (pa.x < 1 || pa.y < 1 || pa.x > float(a.width - 1) || pa.y > float(a.height - 1)) continue;
-                ++visible;
-                if (historyAt(x, y) > 1.0f) ++visibleWithHistory;
             }
-        }
-    std::printf("%s: disoccluded %d pixels, visible %d (%d with history)\n", grid ? "grid history" : "full resolution",
-                disoccluded, visible, visibleWithHistory);
-    EXPECT_GT(disoccluded, grid ? 7 : 30);
-    // Everything seen before keeps its history, bar rounding at the reprojection's edges.
-    EXPECT_GT(visibleWithHistory, visible * 98 / 100);
+        std::printf("%s: disoccluded %d pixels, visible %d (%d with history)\n",
+                    grid ? "grid history" : "full resolution", disoccluded, visible, visibleWithHistory);
+        EXPECT_GT(disoccluded, grid ? 7 : 30);
+        // Everything seen before keeps its history, bar rounding at the reprojection's edges.
+        EXPECT_GT(visibleWithHistory, visible * 98 / 100);
     }
 }
 

@@ -3,9 +3,9 @@
 // and the 25 taps of each pixel read them there instead of 25 x (depth, normal, values) global loads. The
 // values are the same floats, so the filter's result is unchanged.
 //
-// reconstruct_interleaved.comp uses it, and gtao_temporal.comp at full resolution, where it runs the same
-// reconstruction inside the accumulation. The half-resolution accumulation reads 4 grid pixels and declares
-// a tile of 1 slot: on an H100 (2026-11-25) the full tile's shared memory alone, never filled, made that
+// reconstruct_interleaved.comp uses it, and gtao_temporal.comp where it runs the same reconstruction inside
+// the accumulation (at full resolution, and on the grid with the grid's history). The half-resolution
+// accumulation with the history at full resolution upsamples, reads 4 grid pixels and declares a tile of 1 slot: on an H100 (2026-11-25) the full tile's shared memory alone, never filled, made that
 // variant 1.8x slower (fewer workgroups per SM).
 //
 // The including shader declares, before the #include, the grid in global memory:

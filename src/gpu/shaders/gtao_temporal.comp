@@ -1,10 +1,12 @@
 // The temporal accumulation of spatio-temporal GTAO: Jimenez, Wu, Pesce and Jarabo 2016, "Practical Realtime
 // Strategies for Accurate Indirect Occlusion", §4.1 (reprojection into an exponential accumulation buffer
-// that gathers the 6 per-frame rotations). One invocation per pixel.
+// that gathers the 6 per-frame rotations). One invocation per pixel of the history's lattice: every pixel, or
+// with kHistoryStep 2 every pixel of the half-resolution grid.
 //
-// The pass starts with the spatial filter of its own pixel (temporal_filters.glsl): at full resolution the
-// 4x4 reconstruction of the GTAO pass's raw interleaved values, at half resolution the depth-aware upsampling
-// of the reconstructed grid. The CPU writes the filtered planes and reads them back here; fused, they stay in
+// The pass starts with the spatial filter of its own lattice pixel (temporal_filters.glsl): at full
+// resolution, and on the grid with kHistoryStep 2, the 4x4 reconstruction of the GTAO pass's raw interleaved
+// values; at half resolution with the history at full resolution, the depth-aware upsampling of the
+// reconstructed grid. The CPU writes the filtered planes and reads them back here; fused, they stay in
 // registers, which removes the planes' round trip through memory and a pass with its barrier, and gives the
 // same values (each pixel's filter reads only the grid, which no invocation here writes).
 //
@@ -171,7 +173,9 @@ void temporalPixel(int x, int y, vec3 bent, inout float visibility, inout vec3 n
     float expectedDepth = 0.0;
     const vec2 prev = previousPixelFromView(transformPoint(k.previousViewFromWorld, world), expectedDepth);
     if (!(expectedDepth > 0.0)) return;
-    const float gx = (prev.x - 0.5) / float(kHistoryStep), gy = (prev.y - 0.5) / float(kHistoryStep);
+    // Scaled by 1 or 1/2, exact either way, as the CPU scales (a division need not be correctly rounded).
+    const float toLattice = kHistoryStep == 1 ? 1.0 : 0.5;
+    const float gx = (prev.x - 0.5) * toLattice, gy = (prev.y - 0.5) * toLattice;
     const int x0 = int(floor(gx)), y0 = int(floor(gy));
     const float fx = gx - float(x0), fy = gy - float(y0);
     float weightSum = 0.0, historyVisibility = 0.0, historyLength = 0.0;

@@ -85,7 +85,8 @@ OBSCURA_CONST int kUpsamplePushConstantBytes = 32;
 // constant_id of the grid step, which picks the filter: 1, the grid is the full-resolution raw interleaved
 // GTAO output, reconstructed here (step 2); 2, it is the half-resolution grid reconstructed by
 // reconstruct_interleaved.comp, upsampled here (step 3). The grid's depth and normals are the G-buffer's
-// at every step-th pixel.
+// at every step-th pixel. With kTemporalSpecHistoryStep 2 (below) and grid step 2, the grid is the raw
+// half-resolution GTAO output, reconstructed here as at full resolution.
 OBSCURA_CONST int kTemporalSpecGridStep = 0;
 // constant_id of GtaoTemporalSettings::depthSigma, (0, 1], a float: the filters' depth tolerance.
 OBSCURA_CONST int kTemporalSpecDepthSigma = 1;
