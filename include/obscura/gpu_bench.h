@@ -47,6 +47,8 @@ struct GpuBenchSettings {
     int temporalSlices = 1;  // slices of the `gtao-temporal` cases, [1, 64]: the paper's 1, times the 16
                              // interleave directions and 6 rotations of the history
     bool packedHistory = false;  // the temporal cases keep their history in packed words (obscura/history_packing.h)
+    bool alternatingWindow = false;  // the temporal cases reconstruct with 4x4 windows alternating over 4 frames
+                                     // (GtaoTemporalSettings::alternatingWindow)
     bool callerKeepsDepth = false;  // the temporal cases read the previous frame's input depth instead of a
                                     // copy in the history (GtaoTemporalVariant::callerKeepsDepth)
     bool bentNormals = true;  // the GTAO cases compute, filter and accumulate bent normals; false: visibility

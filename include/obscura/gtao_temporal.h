@@ -34,6 +34,10 @@ struct GtaoTemporalSettings {
                                   // words per pixel instead of 9 floats);
                                   // the returned visibility is the stored one (with gridHistory,
                                   // upsampled from the stored one)
+    bool alternatingWindow = false;  // with temporal: the reconstruction gathers a 4x4 window (each class
+                                  // of the pattern once, 16 taps instead of 25) whose place alternates over
+                                  // 4 frames, so that the history averages the 5x5 window's weights
+                                  // (reconstructInterleaved's windowPhase = frame index mod 4)
     bool gridHistory = false;     // with halfResolution: reproject and accumulate on the half-resolution
                                   // grid and upsample the accumulated result, so the history, its reads
                                   // and its writes are a quarter of the full-resolution ones; the
@@ -46,7 +50,12 @@ struct GtaoTemporalSettings {
 // so each of the 16 pattern classes has the same spatial weight; taps weigh by ssao::tapWeight (the
 // shared cross-bilateral weight). `values` has 1 or 3 channels (3: vectors, renormalised), `depth` and
 // `normal` are the grid's own (1 and 3 channels, same size). Sky pixels keep their value.
-Image reconstructInterleaved(const Image& values, const Image& depth, const Image& normal, float depthSigma);
+// windowPhase 0..3 gathers a 4x4 window instead, every tap at weight 1: offsets -2..1 in x where
+// (windowPhase & 1) is 0, else -1..2, and likewise in y with (windowPhase >> 1); averaged over the 4 phases,
+// a tap's weight is the 5x5 window's. -1: the 5x5 window.
+int reconstructWindowPhase(const GtaoTemporalSettings& settings, int frameIndex);  // -1, or frameIndex mod 4
+Image reconstructInterleaved(const Image& values, const Image& depth, const Image& normal, float depthSigma,
+                             int windowPhase = -1);
 
 // Depth-aware upsampling of a half-resolution image (pixel (x, y) taken at full-resolution (2x, 2y)) to the
 // G-buffer's size: bilinear weights times the depth weight of each low-resolution tap.

@@ -216,6 +216,7 @@ CaseSetup temporalCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s
     t.halfResolution = half;
     t.packedHistory = s.packedHistory;
     t.gridHistory = gridHistory;
+    t.alternatingWindow = temporal && s.alternatingWindow;  // the spatial case has no history to average
     auto passes = std::make_shared<GtaoTemporalPasses>(c, settings, t, w, h,
                                                        GtaoTemporalVariant{s.bentNormals, s.callerKeepsDepth});
     CaseSetup setup;
@@ -225,6 +226,7 @@ CaseSetup temporalCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s
                         (half && !gridHistory ? " + depth-aware upsample" : "") +
                         (temporal ? (s.packedHistory ? " + reprojected packed history" : " + reprojected history") : "") +
                         (gridHistory ? " on the grid + depth-aware upsample" : "") +
+                        (t.alternatingWindow ? ", 4x4 windows alternating over 4 frames" : "") +
                         (s.bentNormals ? "" : ", visibility only") +
                         (temporal && s.callerKeepsDepth ? ", previous depth kept by the caller" : "");
     setup.bytes = double(passes->bytesPerFrame());

@@ -63,12 +63,13 @@ GtaoTemporalConstants gtaoTemporalConstants(const ssao::GtaoTemporalSettings& t,
 }
 
 void recordReconstruct(Context::Impl& c, VkCommandBuffer cmd, const ReconstructBuffers& b,
-                       const ReconstructConstants& k, int channels) {
+                       const ReconstructConstants& k, int channels, int windowPhase) {
     assert(channels == 1 || channels == 3);
+    assert(windowPhase >= -1 && windowPhase <= 3);
     ComputePipeline& pipeline =
         c.pipeline("reconstruct_interleaved", shaders::reconstruct_interleaved,
                    storageBuffers(kReconstructBindingCount), kReconstructPushConstantBytes, kTemporalWorkgroupX,
-                   kTemporalWorkgroupY, {channels});  // kReconstructSpecChannels
+                   kTemporalWorkgroupY, {channels, windowPhase});  // kReconstructSpecChannels, WindowPhase
     // In binding order: kReconstructBindingValues, Depth, Normal, Output.
     pipeline.dispatchGrid(cmd, {&b.values, &b.depth, &b.normal, &b.output}, &k, sizeof k, k.width, k.height);
 }
@@ -159,11 +160,13 @@ void GtaoTemporalPasses::record(VkCommandBuffer cmd, const GtaoTemporalFrameInpu
     // normals are the G-buffer's at every other pixel. At full resolution the accumulation gathers them for
     // its own pixel instead, and the upsampling (3.) is the accumulation's too.
     const Buffer* grid[2] = {&rawVisibility, &rawBent};
+    // The reconstruction's window: with temporal.alternatingWindow, one of 4 by the frame index.
+    const int phase = ssao::reconstructWindowPhase(temporal_, in.frameIndex);
     if (step_ == 2 && !gridHistory_) {
         const ReconstructConstants rk =
             reconstructConstants(gridWidth_, gridHeight_, width_, step_, temporal_.depthSigma);
-        recordReconstruct(c, cmd, {rawVisibility, in.depth, in.normal, visibility_}, rk, 1);
-        if (variant_.bentNormals) recordReconstruct(c, cmd, {rawBent, in.depth, in.normal, bent_}, rk, 3);
+        recordReconstruct(c, cmd, {rawVisibility, in.depth, in.normal, visibility_}, rk, 1, phase);
+        if (variant_.bentNormals) recordReconstruct(c, cmd, {rawBent, in.depth, in.normal, bent_}, rk, 3, phase);
         stage("denoise");
         computeBarrier(cmd);  // the accumulation reads the reconstructed values
         grid[0] = &visibility_;
@@ -179,8 +182,11 @@ void GtaoTemporalPasses::record(VkCommandBuffer cmd, const GtaoTemporalFrameInpu
         c.pipeline("gtao_temporal", shaders::gtao_temporal, storageBuffers(kTemporalBindingCount),
                    kTemporalPushConstantBytes, kTemporalWorkgroupX, kTemporalWorkgroupY,
                    {step_, std::bit_cast<std::int32_t>(temporal_.depthSigma), variant_.bentNormals ? 1 : 0,
-                    temporal_.packedHistory ? 1 : 0, variant_.callerKeepsDepth ? 0 : 1, gridHistory_ ? 2 : 1});
-    // (kTemporalSpecGridStep, DepthSigma, BentNormal, PackedHistory, DepthCopy, HistoryStep.) The previous depth is the
+                    temporal_.packedHistory ? 1 : 0, variant_.callerKeepsDepth ? 0 : 1, gridHistory_ ? 2 : 1,
+                    step_ == 2 && !gridHistory_ ? -1 : phase});
+    // (kTemporalSpecGridStep, DepthSigma, BentNormal, PackedHistory, DepthCopy, HistoryStep, WindowPhase: the
+    // window where this pass reconstructs, else -1, so that the upsampling variant is one pipeline.) The
+    // previous depth is the
     // history's copy, or the caller's buffer of the last frame, which unused_ stands for on a first frame.
     const Buffer& previousDepth = !variant_.callerKeepsDepth ? previous.depth
                                   : useHistory                     ? *in.previousDepth
@@ -250,13 +256,15 @@ std::size_t GtaoTemporalPasses::bytesPerFrame() const {
 // ---- the public API: uploads, one submission, downloads ----
 
 Image reconstructInterleaved(Context& context, const Image& values, const Image& depth, const Image& normal,
-                             float depthSigma) {
+                             float depthSigma, int windowPhase) {
     const int w = values.width, h = values.height;
     if (values.channels != 1 && values.channels != 3)
         fail("reconstruct interleaved", "values must have 1 or 3 channels, not " + std::to_string(values.channels));
     if (depth.width != w || depth.height != h || normal.width != w || normal.height != h || normal.channels < 3)
         fail("reconstruct interleaved", "depth (1 channel) and normal (3 channels) must match the " +
                                             std::to_string(w) + "x" + std::to_string(h) + " values");
+    if (windowPhase < -1 || windowPhase > 3)
+        fail("reconstruct interleaved", "window phase must be -1 (5x5) or 0..3, not " + std::to_string(windowPhase));
     if (values.empty()) return values;
     Context::Impl& c = context.impl();
     const Buffer in = uploadChannels(c, values, values.channels);
@@ -264,7 +272,8 @@ Image reconstructInterleaved(Context& context, const Image& values, const Image&
     const Buffer n = uploadChannels(c, normal, 3);
     const Buffer out = deviceFloats(c, values.pixels.size());
     const ReconstructConstants k = reconstructConstants(w, h, w, 1, depthSigma);
-    c.submit([&](VkCommandBuffer cmd) { recordReconstruct(c, cmd, {in, d, n, out}, k, values.channels); }, true);
+    c.submit([&](VkCommandBuffer cmd) { recordReconstruct(c, cmd, {in, d, n, out}, k, values.channels, windowPhase); },
+             true);
     Image result(w, h, values.channels);
     download(c, out, result.pixels.data(), result.pixels.size() * sizeof(float));
     return result;

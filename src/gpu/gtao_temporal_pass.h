@@ -29,9 +29,10 @@ struct ReconstructBuffers {
     const Buffer& normal;  // guide
     const Buffer& output;
 };
-// Records one dispatch for `channels` 1 or 3; the inputs must be visible to compute shaders.
+// Records one dispatch for `channels` 1 or 3 and the window of ssao::reconstructInterleaved's windowPhase
+// (-1: 5x5); the inputs must be visible to compute shaders.
 void recordReconstruct(Context::Impl& context, VkCommandBuffer cmd, const ReconstructBuffers& buffers,
-                       const ReconstructConstants& k, int channels);
+                       const ReconstructConstants& k, int channels, int windowPhase = -1);
 
 // Storage buffers of upsample_depth_aware.comp.
 struct UpsampleBuffers {

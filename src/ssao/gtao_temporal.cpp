@@ -40,11 +40,21 @@ void GtaoTemporalSettings::validate() const {
     check(rejectNormalCos >= -1.0f && rejectNormalCos <= 1.0f, "reject-normal-cos", "[-1, 1]");
     check(maxHistory >= 1 && maxHistory <= 1024, "max-history", "[1, 1024]");
     if (gridHistory && !halfResolution) fail("gtao-grid-history", "needs half resolution (the grid it keeps)");
+    if (alternatingWindow && !temporal)
+        fail("gtao-alternating-window", "needs the history (temporal), which averages its 4 windows");
 }
 
-Image reconstructInterleaved(const Image& values, const Image& depth, const Image& normal, float depthSigma) {
+int reconstructWindowPhase(const GtaoTemporalSettings& settings, int frameIndex) {
+    return settings.alternatingWindow ? frameIndex & 3 : -1;
+}
+
+Image reconstructInterleaved(const Image& values, const Image& depth, const Image& normal, float depthSigma,
+                             int windowPhase) {
     Image out = values;
     const int w = values.width, h = values.height, channels = values.channels;
+    const bool window4 = windowPhase >= 0;
+    const int firstX = window4 ? -2 + (windowPhase & 1) : -2, lastX = window4 ? firstX + 3 : 2;
+    const int firstY = window4 ? -2 + ((windowPhase >> 1) & 1) : -2, lastY = window4 ? firstY + 3 : 2;
     forRows(h, [&](int y) {
         for (int x = 0; x < w; ++x) {
             const float d = depth.at(x, y);
@@ -53,16 +63,17 @@ Image reconstructInterleaved(const Image& values, const Image& depth, const Imag
             const float sigma = depthSigma * d;
             const float invTwoSigma2 = 1.0f / (2.0f * sigma * sigma);
             float sum[3] = {0, 0, 0}, weightSum = 0.0f;
-            for (int dy = -2; dy <= 2; ++dy) {
+            for (int dy = firstY; dy <= lastY; ++dy) {
                 const int yy = y + dy;
                 if (yy < 0 || yy >= h) continue;
-                for (int dx = -2; dx <= 2; ++dx) {
+                for (int dx = firstX; dx <= lastX; ++dx) {
                     const int xx = x + dx;
                     if (xx < 0 || xx >= w) continue;
                     const float di = depth.at(xx, yy);
                     if (!finiteDepth(di)) continue;
-                    // Half weight on the outer ring: every class of the 4x4 pattern weighs the same.
-                    const float spatial = (dx == -2 || dx == 2 ? 0.5f : 1.0f) * (dy == -2 || dy == 2 ? 0.5f : 1.0f);
+                    // Half weight on the 5x5 window's outer ring: every class of the 4x4 pattern weighs the same.
+                    const float spatial = window4 ? 1.0f
+                                                  : (dx == -2 || dx == 2 ? 0.5f : 1.0f) * (dy == -2 || dy == 2 ? 0.5f : 1.0f);
                     const float wt = tapWeight(spatial, d, n, di, vec3At(normal, xx, yy), invTwoSigma2, true);
                     for (int c = 0; c < channels; ++c) sum[c] += wt * values.at(xx, yy, c);
                     weightSum += wt;
@@ -158,8 +169,9 @@ const GtaoResult& GtaoTemporal::frame(const GBuffer& g) {
     // 2. Spatial gather of the 16 pattern directions; 3. back to full resolution, unless the history is the
     // grid's (then after step 4).
     const bool gridHistory = step == 2 && temporal_.gridHistory;
-    Image visibility = reconstructInterleaved(rawVisibility, gridDepth, gridNormal, temporal_.depthSigma);
-    Image bent = reconstructInterleaved(rawBent, gridDepth, gridNormal, temporal_.depthSigma);
+    const int phase = reconstructWindowPhase(temporal_, frame_);
+    Image visibility = reconstructInterleaved(rawVisibility, gridDepth, gridNormal, temporal_.depthSigma, phase);
+    Image bent = reconstructInterleaved(rawBent, gridDepth, gridNormal, temporal_.depthSigma, phase);
     if (step == 2 && !gridHistory) {
         visibility = upsampleDepthAware(visibility, gridDepth, g, temporal_.depthSigma);
         bent = upsampleDepthAware(bent, gridDepth, g, temporal_.depthSigma);

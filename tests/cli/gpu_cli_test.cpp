@@ -146,6 +146,7 @@ TEST_F(GpuCommands, RenderGtaoMatchesTheCpu) {
         "demo --size 75x41 --ao gtao --gtao-half-res --gtao-slices 2 --gtao-steps 4 --gtao-interleave",  // full, half
         "well --size 70x40 --ao gtao --gtao-half-res --gtao-half-blur-radius 0",
         "demo --size 97x55 --ao gtao --frames 3 --gtao-half-res --gtao-grid-history --gtao-packed-history",
+        "stairs --size 81x47 --ao gtao --frames 5 --gtao-alternating-window",
     };
     for (const char* c : cases) {
         const Pair d = renderBoth(c);

@@ -74,6 +74,7 @@ TEST_F(GtaoCli, BadInputFailsWithOneLine) {
                           {"--gtao-packed-history --frames 1", "--gtao-packed-history"},
                           {"--gtao-packed-history --frames 3 --gtao-mode spatial", "--gtao-packed-history"},
                           {"--gtao-grid-history --frames 3", "--gtao-grid-history"},
+                          {"--gtao-alternating-window --frames 3 --gtao-mode spatial", "--gtao-alternating-window"},
                           {"--gtao-grid-history --gtao-half-res", "--gtao-grid-history"},  // the full mode
                           {"--gtao-slices 65", "--gtao-slices"},
                           {"--gtao-steps 257", "--gtao-steps"},

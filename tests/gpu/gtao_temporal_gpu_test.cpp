@@ -293,6 +293,33 @@ TEST(GpuGtaoTemporal, GridHistoryMatchesTheCpuReference) {
     EXPECT_EQ(testing::validationReport(context), "");
 }
 
+// The alternating 4x4 windows (GtaoTemporalSettings::alternatingWindow, one pipeline per phase): where the
+// accumulation reconstructs (full resolution, the grid's history) and in the reconstruction's own pass (half
+// resolution with the history at full resolution). 5 frames, so that every phase runs and one twice.
+TEST(GpuGtaoTemporal, AlternatingWindowMatchesTheCpuReference) {
+    OBSCURA_GPU_CONTEXT(context);
+    for (const auto& [half, grid] : {std::pair{false, false}, std::pair{true, false}, std::pair{true, true}}) {
+        ssao::GtaoTemporalSettings t = mode(true, half, grid);
+        t.alternatingWindow = true;
+        t.packedHistory = grid;
+        const std::string m = std::string("temporal, alternating windows") +
+                              (grid ? ", packed grid history" : half ? ", half resolution" : "");
+        expectMatch(context, {"demo", 333, 197, ssao::GtaoQuality::Medium}, t, 5, 0, m);
+        expectMatch(context, {"stairs", 97, 63, ssao::GtaoQuality::High}, t, 5, 0, m);
+    }
+    // The filter alone, each phase, on the CPU's own raw values (both get the same input bits).
+    const GBuffer g = testing::render("demo", 133, 77);
+    const ssao::GtaoResult raw =
+        ssao::computeGtao(g, ssao::gtaoConstants(preset(ssao::GtaoQuality::Low), g.camera, 2, true));
+    for (int phase = 0; phase < 4; ++phase) {
+        const double d = maxDifference(reconstructInterleaved(context, raw.visibility, g.depth, g.normal, 0.05f, phase),
+                                       ssao::reconstructInterleaved(raw.visibility, g.depth, g.normal, 0.05f, phase));
+        EXPECT_LE(d, kVisibilityBound) << phase;
+    }
+    EXPECT_THROW(reconstructInterleaved(context, raw.visibility, g.depth, g.normal, 0.05f, 4), Error);
+    EXPECT_EQ(testing::validationReport(context), "");
+}
+
 // The benchmark's path: frames recorded back to back on resident buffers in one submission (the barrier at
 // the start of each frame orders them), with a mark after each stage, give the bits of GtaoTemporal's
 // frame-per-submission path. Also with mip sampling, whose chain each frame rewrites after the previous

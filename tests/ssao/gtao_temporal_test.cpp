@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <string>
 
@@ -130,7 +131,9 @@ TEST(GtaoTemporal, AccumulatedMatchesRayTraced) {
     //   3 steps per side (the ultra/high presets' steps): 0.0157 / 0.0188 / 0.0200;
     //   6 steps: 0.0154 / 0.0173 / 0.0134 full resolution, 0.0167 / 0.0201 / 0.0168 half resolution;
     //   the first frame (= spatial-only mode) is within 0.001 of these: the error is bias, not noise;
-    //   half resolution with the grid's history (gridHistory): the same to 4 digits (2026-11-26).
+    //   half resolution with the grid's history (gridHistory): the same to 4 digits (2026-11-26); with the
+    //   alternating 4x4 windows too: 0.0166 / 0.0199 / 0.0163 after 6 frames (the first frame, one window
+    //   alone, 0.0174 / 0.0203 / 0.0180).
     // (Before the column rule and linear steps, 3 steps gave 0.028-0.033.) The bound is the 0.03.
     for (const char* name : {"well", "stairs", "corner"}) {
         const test::TopDownReference top(name, 96, 1024);
@@ -138,12 +141,13 @@ TEST(GtaoTemporal, AccumulatedMatchesRayTraced) {
         const Image& reference = top.reference;
         const test::TopDownView& view = top.view;
         for (int steps : {3, 6})
-            for (int variant = 0; variant < 3; ++variant) {
-                const bool half = variant > 0;  // 2: with the grid's history
+            for (int variant = 0; variant < 4; ++variant) {
+                const bool half = variant > 0;  // 2: with the grid's history, 3: and the alternating windows
                 if (steps == 3 && half) continue;  // not worth the test's time
                 GtaoTemporalSettings t;
                 t.halfResolution = half;
-                t.gridHistory = variant == 2;
+                t.gridHistory = variant >= 2;
+                t.alternatingWindow = variant == 3;
                 GtaoTemporal temporal(oneSlice(view.radius, steps), t);
                 double first = 0, mae = 0;
                 for (int f = 0; f < 6; ++f) {
@@ -152,7 +156,11 @@ TEST(GtaoTemporal, AccumulatedMatchesRayTraced) {
                     if (f == 0) first = mae;
                 }
                 std::printf("%s 1x%d %s: MAE spatial-only %.4f, after 6 frames %.4f\n", name, steps,
-                            variant == 2 ? "half, grid history" : half ? "half" : "full", first, mae);
+                            variant == 3   ? "half, grid history, alternating windows"
+                            : variant == 2 ? "half, grid history"
+                            : half         ? "half"
+                                           : "full",
+                            first, mae);
                 EXPECT_LE(mae, 0.03) << name << " steps " << steps << (half ? " half" : "");
             }
     }
@@ -221,27 +229,75 @@ TEST(GtaoTemporal, GridHistoryKeepsTheAccuracyAlongThePath) {
         const int frames = 12;
         GtaoTemporalSettings full, grid;
         full.halfResolution = grid.halfResolution = grid.gridHistory = true;
-        GtaoTemporal a(oneSlice(0.5f, 6), full), b(oneSlice(0.5f, 6), grid);
+        GtaoTemporalSettings window = grid;
+        window.alternatingWindow = true;
+        GtaoTemporal a(oneSlice(0.5f, 6), full), b(oneSlice(0.5f, 6), grid), c(oneSlice(0.5f, 6), window);
         GBuffer g;
-        Image va, vb;
+        Image va, vb, vc;
         for (int k = 0; k < frames; ++k) {
             g = trace::renderGBuffer(tracer, turnedAboutTarget(base, 0.5f * kPi / 180.0f * float(k)));
             va = a.frame(g).visibility;
             vb = b.frame(g).visibility;
+            vc = c.frame(g).visibility;
         }
         const Image reference = test::rayTracedReference(tracer, g, 0.5f, 512);
         const double maeFull = test::meanAbsoluteError(g, va, reference);
         const double maeGrid = test::meanAbsoluteError(g, vb, reference);
+        const double maeWindow = test::meanAbsoluteError(g, vc, reference);
         const double between = test::meanAbsoluteError(g, va, vb);
         const Image& length = b.historyLength();
         double meanLength = 0;
         for (float l : length.pixels) meanLength += double(l);
         meanLength /= double(length.pixels.size());
         std::printf("[ measured ] %s %dx%d, %d frames of the path, 1x6 half resolution: MAE full-resolution history "
-                    "%.4f, grid history %.4f, between them %.4f; grid history length mean %.2f\n",
-                    name, base.width, base.height, frames, maeFull, maeGrid, between, meanLength);
+                    "%.4f, grid history %.4f (with the alternating 4x4 windows %.4f), between them %.4f; grid history "
+                    "length mean %.2f\n",
+                    name, base.width, base.height, frames, maeFull, maeGrid, maeWindow, between, meanLength);
         EXPECT_LE(maeGrid, maeFull + 0.003) << name;
+        EXPECT_LE(maeWindow, maeFull + 0.003) << name;
         EXPECT_LE(between, 0.01) << name;
         EXPECT_GT(meanLength, 6.0) << name;  // the history is really kept along the path
     }
+}
+
+// The 4x4 windows of GtaoTemporalSettings::alternatingWindow: where every tap weighs the same (a plane facing
+// the camera at one depth, one normal), the mean of the 4 phases' results is the 5x5 window's, since each
+// tap's count over the phases is 4 x its 5x5 weight (1, 1/2 on the edges, 1/4 at the corners). Away from
+// the image's edges (which clip the windows differently), to float rounding.
+TEST(GtaoTemporal, AlternatingWindowsAverageToTheFiveByFiveWindow) {
+    const int w = 24, h = 20;
+    Image values(w, h, 1), depth(w, h, 1, 3.0f), normal(w, h, 3, 0.0f);
+    std::uint32_t state = 12345u;
+    for (float& v : values.pixels) {
+        state = state * 1664525u + 1013904223u;
+        v = float(state >> 8) / float(1u << 24);
+    }
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) normal.at(x, y, 2) = 1.0f;
+    const Image five = reconstructInterleaved(values, depth, normal, 0.05f);
+    Image mean(w, h, 1, 0.0f);
+    for (int phase = 0; phase < 4; ++phase) {
+        const Image r = reconstructInterleaved(values, depth, normal, 0.05f, phase);
+        for (std::size_t i = 0; i < r.pixels.size(); ++i) mean.pixels[i] += 0.25f * r.pixels[i];
+    }
+    double worst = 0, spread = 0;
+    for (int y = 2; y < h - 2; ++y)
+        for (int x = 2; x < w - 2; ++x) {
+            worst = std::max(worst, double(std::fabs(mean.at(x, y) - five.at(x, y))));
+            spread = std::max(spread, double(std::fabs(reconstructInterleaved(values, depth, normal, 0.05f, 0).at(x, y) -
+                                                       five.at(x, y))));
+        }
+    EXPECT_LE(worst, 1e-6);
+    EXPECT_GT(spread, 1e-3);  // one phase alone is not the 5x5 window: the test sees the windows move
+
+    GtaoTemporalSettings t;
+    t.alternatingWindow = true;
+    EXPECT_NO_THROW(t.validate());
+    t.temporal = false;  // no history to average the windows
+    EXPECT_THROW(t.validate(), Error);
+    EXPECT_EQ(reconstructWindowPhase(GtaoTemporalSettings{}, 7), -1);
+    GtaoTemporalSettings on;
+    on.alternatingWindow = true;
+    EXPECT_EQ(reconstructWindowPhase(on, 7), 3);
+    EXPECT_EQ(reconstructWindowPhase(on, 8), 0);
 }

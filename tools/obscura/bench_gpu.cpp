@@ -56,6 +56,7 @@ struct GpuBenchOptions {
     bool visibilityOnly = false;
     bool packedHistory = false;
     bool keepPreviousDepth = false;
+    bool alternatingWindow = false;
     std::string sampling = "planar";
     float mipRatio = 7.0f;
     float radius = 1.0f;
@@ -108,6 +109,9 @@ void GpuBenchOptions::add(CLI::App& bench) {
     bench.add_flag("--keep-previous-depth", keepPreviousDepth,
                    "--gpu: the temporal cases read the previous frame's depth buffer instead of a copy in the history, "
                    "as an engine that keeps last frame's depth (for TAA, say) can");
+    bench.add_flag("--alternating-window", alternatingWindow,
+                   "--gpu: the temporal cases reconstruct with a 4x4 window (16 taps instead of 25) whose place "
+                   "alternates over 4 frames, which the history averages to the 5x5 window's weights");
     addGtaoSamplingOption(bench, sampling, mipRatio, "--gpu: how the GTAO cases' horizon samples read depth");
     gtao.add(bench, "--gpu, the GTAO cases", "; the temporal cases take --temporal-slices",
              "; the gtao and gtao-half cases only: the others rotate by their 4x4 interleave");
@@ -230,6 +234,7 @@ void runGpuBench(const GpuBenchOptions& o) {
     settings.bentNormals = !o.visibilityOnly;
     settings.packedHistory = o.packedHistory;
     settings.callerKeepsDepth = o.keepPreviousDepth;
+    settings.alternatingWindow = o.alternatingWindow;
     settings.sampling = gtaoSampling(o.sampling);
     settings.mipDistanceRatio = o.mipRatio;
     settings.gtaoRadius = o.radius;
@@ -294,6 +299,7 @@ void runGpuBench(const GpuBenchOptions& o) {
     report["bent_normals"] = settings.bentNormals;
     report["packed_history"] = settings.packedHistory;
     report["keep_previous_depth"] = settings.callerKeepsDepth;
+    report["alternating_window"] = settings.alternatingWindow;
     report["gtao_sampling"] = o.sampling;
     report["gtao_mip_ratio"] = o.mipRatio;
     report["gtao_radius_m"] = o.radius;
@@ -311,6 +317,7 @@ void runGpuBench(const GpuBenchOptions& o) {
         if (o.visibilityOnly) variants += ", GTAO visibility only";
         if (o.packedHistory) variants += ", packed history";
         if (o.keepPreviousDepth) variants += ", previous depth kept";
+        if (o.alternatingWindow) variants += ", alternating 4x4 windows";
         ssao::GtaoSettings sampling;
         sampling.sampling = settings.sampling;
         sampling.mipDistanceRatio = settings.mipDistanceRatio;

@@ -155,6 +155,9 @@ void GtaoOptions::add(CLI::App& app) {
                  "GTAO spatial and temporal modes with --gtao-half-res: reproject and accumulate on the half-resolution "
                  "grid and upsample afterwards, so the history is a quarter of the full-resolution one (the same "
                  "error against ray tracing to 4 digits on the static views of docs/QUALITY.md)");
+    app.add_flag("--gtao-alternating-window", alternatingWindow,
+                 "GTAO temporal mode: reconstruct with a 4x4 window (16 taps instead of 25) whose place alternates "
+                 "over 4 frames, so that the history averages it to the 5x5 window's weights");
     app.add_option("--gtao-thickness", thickness, "GTAO thin occluders: none, heuristic (eq. 9), bitmask")
         ->check(CLI::IsMember({"none", "heuristic", "bitmask"}))
         ->capture_default_str();
@@ -205,6 +208,9 @@ void GtaoOptions::validate(const std::string& aovDir) const {
         fail("--gtao-half-blur-radius", "needs --gtao-half-res in the full mode (--gtao-mode full, or auto with one frame)");
     if (packedHistory && !temporal)
         fail("--gtao-packed-history", "needs a history: --gtao-mode temporal, or auto with --frames > 1");
+    if (alternatingWindow && !temporal)
+        fail("--gtao-alternating-window", "needs a history to average its windows: --gtao-mode temporal, or auto with "
+                                          "--frames > 1");
     if (gridHistory && (!halfResolution || !(mode == "spatial" || temporal)))
         fail("--gtao-grid-history", "needs --gtao-half-res in the spatial or temporal mode (--gtao-mode spatial or "
                                     "temporal, or auto with --frames > 1)");
@@ -223,6 +229,7 @@ GtaoFrame renderGtaoFrames(const GtaoOptions& o, float radius, const trace::Trac
     temporalSettings.halfResolution = o.halfResolution;
     temporalSettings.packedHistory = o.packedHistory;
     temporalSettings.gridHistory = o.gridHistory;
+    temporalSettings.alternatingWindow = o.alternatingWindow;
     ssao::GtaoHalfResolutionSettings half;  // the full mode's, with --gtao-half-res
     half.blur.mode = o.halfBlurRadius > 0 ? ssao::BlurMode::Separable : ssao::BlurMode::None;
     half.blur.radius = std::max(o.halfBlurRadius, 1);

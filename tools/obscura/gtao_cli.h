@@ -42,6 +42,7 @@ struct GtaoOptions {
     int halfBlurRadius = 2;  // full mode at half resolution: taps on each side of the grid's blur; 0: none
     bool packedHistory = false;
     bool gridHistory = false;  // spatial/temporal modes at half resolution: accumulate on the grid
+    bool alternatingWindow = false;  // temporal mode: 4x4 reconstruction windows alternating over 4 frames
     std::string thickness = "none";
     float falloffStart = 1.0f;
     std::string beyondRadius = "column";

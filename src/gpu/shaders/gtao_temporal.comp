@@ -32,6 +32,7 @@ layout(constant_id = kTemporalSpecBentNormal) const int kBentNormal = 1;
 layout(constant_id = kTemporalSpecPackedHistory) const int kPackedHistory = 0;
 layout(constant_id = kTemporalSpecDepthCopy) const int kDepthCopy = 1;
 layout(constant_id = kTemporalSpecHistoryStep) const int kHistoryStep = 1;
+layout(constant_id = kTemporalSpecWindowPhase) const int kWindowPhase = -1;
 
 layout(push_constant, std430) uniform Constants { GtaoTemporalConstants k; };
 layout(std430, binding = kTemporalBindingDepth) readonly buffer DepthPlane { float depthPlane[]; };
@@ -219,7 +220,7 @@ void main() {
     // alone: its filtered visibility and view bent normal.
     float spatial[4];
     if (kReconstructs)
-        reconstructInterleaved(p.x, p.y, w, h, kDepthSigma, spatial);
+        reconstructInterleaved(p.x, p.y, w, h, kDepthSigma, kWindowPhase, spatial);
     else
         upsampleDepthAware(p.x, p.y, depth, gridWidth(), gridHeight(), kDepthSigma, spatial);
     float visibility = spatial[0];

@@ -14,6 +14,7 @@
 layout(local_size_x = kTemporalWorkgroupX, local_size_y = kTemporalWorkgroupY, local_size_z = 1) in;
 
 layout(constant_id = kReconstructSpecChannels) const int kGridChannels = 1;
+layout(constant_id = kReconstructSpecWindowPhase) const int kWindowPhase = -1;
 
 layout(push_constant, std430) uniform Constants { ReconstructConstants k; };
 layout(std430, binding = kReconstructBindingValues) readonly buffer Values { float values[]; };
@@ -43,7 +44,7 @@ void main() {
     loadGridTile(k.width, k.height);
     if (p.x >= k.width || p.y >= k.height) return;
     float result[4];
-    reconstructInterleaved(p.x, p.y, k.width, k.height, k.depthSigma, result);
+    reconstructInterleaved(p.x, p.y, k.width, k.height, k.depthSigma, kWindowPhase, result);
     const uint i = (uint(p.y) * uint(k.width) + uint(p.x)) * uint(kGridChannels);
     for (int c = 0; c < kGridChannels; ++c) outValues[i + uint(c)] = result[c];
 }

@@ -44,23 +44,29 @@ const bool kGridVector = kGridChannels >= 3;
 const int kGridVectorFirst = kGridChannels - 3;
 
 // The reconstruction of grid pixel (x, y) of a w x h grid, channel by channel in result[0..kGridChannels).
-void reconstructInterleaved(int x, int y, int w, int h, float depthSigma, out float result[4]) {
+// windowPhase -1 gathers the 5x5 window, 0..3 the 4x4 window of that phase (ssao::reconstructInterleaved);
+// the callers pass a specialization constant, so the loops' bounds are known when the pipeline is made.
+void reconstructInterleaved(int x, int y, int w, int h, float depthSigma, int windowPhase, out float result[4]) {
     for (int c = 0; c < 4; ++c) result[c] = c < kGridChannels ? gridValue(x, y, c) : 0.0;  // Image out = values
     const float d = gridDepth(x, y);
     if (!finiteDepth(d)) return;
     const vec3 n = gridNormal(x, y);
     const float sigma = depthSigma * d;
     const float invTwoSigma2 = 1.0 / (2.0 * sigma * sigma);
+    const bool window4 = windowPhase >= 0;
+    const int firstX = window4 ? -2 + (windowPhase & 1) : -2, lastX = window4 ? firstX + 3 : 2;
+    const int firstY = window4 ? -2 + ((windowPhase >> 1) & 1) : -2, lastY = window4 ? firstY + 3 : 2;
     float sum[4] = float[4](0.0, 0.0, 0.0, 0.0), weightSum = 0.0;
-    for (int dy = -2; dy <= 2; ++dy) {
+    for (int dy = firstY; dy <= lastY; ++dy) {
         const int yy = y + dy;
         if (yy < 0 || yy >= h) continue;
-        for (int dx = -2; dx <= 2; ++dx) {
+        for (int dx = firstX; dx <= lastX; ++dx) {
             const int xx = x + dx;
             if (xx < 0 || xx >= w) continue;
             const float di = gridDepth(xx, yy);
             if (!finiteDepth(di)) continue;
-            const float spatial = (dx == -2 || dx == 2 ? 0.5 : 1.0) * (dy == -2 || dy == 2 ? 0.5 : 1.0);
+            const float spatial =
+                window4 ? 1.0 : (dx == -2 || dx == 2 ? 0.5 : 1.0) * (dy == -2 || dy == 2 ? 0.5 : 1.0);
             const float wt = tapWeight(spatial, d, n, di, gridNormal(xx, yy), invTwoSigma2, true);
             for (int c = 0; c < kGridChannels; ++c) sum[c] += wt * gridValue(xx, yy, c);
             weightSum += wt;
