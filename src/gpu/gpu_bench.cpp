@@ -222,11 +222,12 @@ CaseSetup temporalCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s
     CaseSetup setup;
     setup.description = std::string(temporal ? "spatio-temporal" : "spatial") + " GTAO" +
                         (half ? " at half resolution" : "") + " (" + slicesText(settings) +
-                        ", 4x4 interleave" + radiusText(settings) + ") + 5x5 reconstruction" +
+                        ", 4x4 interleave" + radiusText(settings) + ") + " +
+                        (t.alternatingWindow ? "4x4 reconstruction, its window alternating over 4 frames"
+                                             : "5x5 reconstruction") +
                         (half && !gridHistory ? " + depth-aware upsample" : "") +
                         (temporal ? (s.packedHistory ? " + reprojected packed history" : " + reprojected history") : "") +
                         (gridHistory ? " on the grid + depth-aware upsample" : "") +
-                        (t.alternatingWindow ? ", 4x4 windows alternating over 4 frames" : "") +
                         (s.bentNormals ? "" : ", visibility only") +
                         (temporal && s.callerKeepsDepth ? ", previous depth kept by the caller" : "");
     setup.bytes = double(passes->bytesPerFrame());

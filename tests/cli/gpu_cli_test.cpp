@@ -61,6 +61,18 @@ protected:
         EXPECT_EQ(r.out.find("warning"), std::string::npos) << r.out;
         return r;
     }
+    // `bench --gpu ARGS --json` without and with FLAG: the two reports, each checked to say whether FLAG was
+    // given (its JSON field `field`), and to hold `cases` cases.
+    std::pair<nlohmann::json, nlohmann::json> benchWithout(const std::string& args, const std::string& flag,
+                                                           const char* field, std::size_t cases) {
+        const nlohmann::json a = nlohmann::json::parse(runGpu(args).out);
+        const nlohmann::json b = nlohmann::json::parse(runGpu(args + " " + flag).out);
+        EXPECT_EQ(a[field], false) << field;
+        EXPECT_EQ(b[field], true) << field;
+        EXPECT_EQ(a["cases"].size(), cases);
+        EXPECT_EQ(b["cases"].size(), cases);
+        return {a, b};
+    }
     // `render ARGS` on the CPU and on the GPU, each with its AOVs: the linear frames (EXR) and the AO.
     struct Pair {
         Difference frame, ao;
@@ -437,14 +449,10 @@ TEST_F(GpuCommands, BenchGpuReportsEveryCase) {
 // alchemy case keeps its own), said in the report and the descriptions, with half the blur's bytes; radii the
 // tile cannot hold fail in one line naming the flag.
 TEST_F(GpuCommands, BenchGpuBlurTiled) {
-    const std::string args = "bench --gpu --sizes 40x24 --frames 2 --warmup 0 --inputs 1 --json "
-                             "--cases alchemy,alchemy-fused,gtao,gtao-half";
-    const CliResult two = runGpu(args);
-    const CliResult tiled = runGpu(args + " --blur-tiled");
-    const nlohmann::json a = nlohmann::json::parse(two.out), b = nlohmann::json::parse(tiled.out);
-    EXPECT_EQ(a["blur_tiled"], false);
-    EXPECT_EQ(b["blur_tiled"], true);
-    ASSERT_EQ(b["cases"].size(), 4u);
+    const auto [a, b] = benchWithout("bench --gpu --sizes 40x24 --frames 2 --warmup 0 --inputs 1 --json "
+                                     "--cases alchemy,alchemy-fused,gtao,gtao-half",
+                                     "--blur-tiled", "blur_tiled", 4);
+    if (HasFailure()) return;
     for (int i = 0; i < 4; ++i) {
         const std::string name = b["cases"][i]["case"];
         const std::string description = b["cases"][i]["description"];
@@ -462,6 +470,23 @@ TEST_F(GpuCommands, BenchGpuBlurTiled) {
     }
     expectFailure("bench --gpu --blur-tiled --blur-radius 9", {"--blur-tiled", "up to 8", "--blur-radius is 9"});
     expectFailure("bench --gpu --blur-tiled --half-blur-radius 12", {"--blur-tiled", "--half-blur-radius is 12"});
+}
+
+// --alternating-window reaches the temporal cases (not the spatial one, which has no history to average the
+// windows), one pipeline per window: 6 frames, so that every phase is timed; the bytes do not change.
+TEST_F(GpuCommands, BenchGpuAlternatingWindow) {
+    const auto [a, b] = benchWithout("bench --gpu --sizes 40x24 --frames 6 --warmup 0 --inputs 2 --json "
+                                     "--visibility-only --cases gtao-spatial,gtao-temporal,gtao-temporal-half,"
+                                     "gtao-temporal-grid",
+                                     "--alternating-window", "alternating_window", 4);
+    if (HasFailure()) return;
+    for (int i = 0; i < 4; ++i) {
+        const std::string name = b["cases"][i]["case"];
+        const std::string description = b["cases"][i]["description"];
+        EXPECT_EQ(description.find("window alternating") != std::string::npos, name != "gtao-spatial") << description;
+        EXPECT_EQ(a["cases"][i]["description"].get<std::string>().find("alternating"), std::string::npos);
+        EXPECT_EQ(a["cases"][i]["bytes_per_frame"], b["cases"][i]["bytes_per_frame"]) << name;
+    }
 }
 
 // --pipeline-stats and --pipeline-internals: what the driver says of each pipeline the cases compiled, or,

@@ -35,11 +35,13 @@ TEST(GtaoTemporal, StaticViewConverges) {
     test::TopDownView view = test::topDownView("corner", 96, 96);
     trace::Tracer tracer(view.scene);
     GBuffer g = trace::renderGBuffer(tracer, view.camera);
-    // Full resolution, half with the history at full resolution, half with the grid's history.
-    for (int variant = 0; variant < 3; ++variant) {
+    // Full resolution, half with the history at full resolution, half with the grid's history, and that with
+    // the alternating 4x4 windows (whose moving window must not keep the result from settling).
+    for (int variant = 0; variant < 4; ++variant) {
         GtaoTemporalSettings t;
         t.halfResolution = variant > 0;
-        t.gridHistory = variant == 2;
+        t.gridHistory = variant >= 2;
+        t.alternatingWindow = variant == 3;
         GtaoTemporal temporal(oneSlice(view.radius, 3), t);
         Image previous;
         for (int f = 0; f < 16; ++f) {
