@@ -37,7 +37,7 @@ struct GtaoTemporalSettings {
     bool alternatingWindow = false;  // with temporal: the reconstruction gathers a 4x4 window (each class
                                   // of the pattern once, 16 taps instead of 25) whose place alternates over
                                   // 4 frames, so that the history averages the 5x5 window's weights
-                                  // (reconstructInterleaved's windowPhase = frame index mod 4)
+                                  // (reconstructInterleaved's windowPhase = reconstructWindowPhase)
     bool gridHistory = false;     // with halfResolution: reproject and accumulate on the half-resolution
                                   // grid and upsample the accumulated result, so the history, its reads
                                   // and its writes are a quarter of the full-resolution ones; the
@@ -53,7 +53,8 @@ struct GtaoTemporalSettings {
 // windowPhase 0..3 gathers a 4x4 window instead, every tap at weight 1: offsets -2..1 in x where
 // (windowPhase & 1) is 0, else -1..2, and likewise in y with (windowPhase >> 1); averaged over the 4 phases,
 // a tap's weight is the 5x5 window's. -1: the 5x5 window.
-int reconstructWindowPhase(const GtaoTemporalSettings& settings, int frameIndex);  // -1, or frameIndex mod 4
+// -1 without alternatingWindow; else the phase of frame frameIndex, 0, 1, 3, 2 in turn.
+int reconstructWindowPhase(const GtaoTemporalSettings& settings, int frameIndex);
 Image reconstructInterleaved(const Image& values, const Image& depth, const Image& normal, float depthSigma,
                              int windowPhase = -1);
 

@@ -50,7 +50,8 @@ struct GtaoTemporalFrameInputs {
     const Buffer& depth;   // width * height linear depths, +inf for sky
     const Buffer& normal;  // width * height * 3 view normals
     Camera camera;         // of the passes' size
-    int frameIndex;        // selects the rotation (ssao::gtaoConstants' frameIndex)
+    int frameIndex;        // selects the rotation (ssao::gtaoConstants' frameIndex) and, with alternatingWindow,
+                           // the reconstruction's window (ssao::reconstructWindowPhase): keep it counting
     // With GtaoTemporalVariant::callerKeepsDepth: the previous recorded frame's `depth` buffer, unchanged
     // since that frame (an engine that keeps last frame's depth, as TAA does); record() throws
     // obscura::Error without it on a frame that uses the history. Ignored otherwise.

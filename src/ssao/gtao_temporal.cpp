@@ -45,7 +45,11 @@ void GtaoTemporalSettings::validate() const {
 }
 
 int reconstructWindowPhase(const GtaoTemporalSettings& settings, int frameIndex) {
-    return settings.alternatingWindow ? frameIndex & 3 : -1;
+    // Phases 0, 1, 3, 2 in turn: the window's x half (bit 0) then changes with frames 1 and 3 of each 4, not
+    // with the frame's parity, which the 6 rotations share, so every rotation meets both halves of x and of y
+    // over 12 frames; taken in the order 0..3, column -2 only ever saw the even rotations.
+    if (!settings.alternatingWindow) return -1;
+    return (frameIndex & 3) ^ ((frameIndex >> 1) & 1);
 }
 
 Image reconstructInterleaved(const Image& values, const Image& depth, const Image& normal, float depthSigma,

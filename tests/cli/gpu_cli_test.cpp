@@ -473,7 +473,8 @@ TEST_F(GpuCommands, BenchGpuBlurTiled) {
 }
 
 // --alternating-window reaches the temporal cases (not the spatial one, which has no history to average the
-// windows), one pipeline per window: 6 frames, so that every phase is timed; the bytes do not change.
+// windows): 6 frames, so that every phase's pipelines run; the bytes do not change. That the phases reach the
+// shaders is GpuGtaoTemporal.AlternatingWindowMatchesTheCpuReference's to check.
 TEST_F(GpuCommands, BenchGpuAlternatingWindow) {
     const auto [a, b] = benchWithout("bench --gpu --sizes 40x24 --frames 6 --warmup 0 --inputs 2 --json "
                                      "--visibility-only --cases gtao-spatial,gtao-temporal,gtao-temporal-half,"

@@ -330,16 +330,20 @@ TEST(GpuGtaoTemporal, RecordsFramesOnResidentBuffers) {
     using ssao::GtaoSampling;
     struct Case {
         GtaoSampling sampling;
-        bool half, grid;
+        bool half, grid, window = false;  // window: alternating windows, a pipeline per phase in one submission
     };
-    for (const auto& [sampling, half, grid] :
+    for (const auto& [sampling, half, grid, window] :
          {Case{GtaoSampling::Planar, false, false}, Case{GtaoSampling::Planar, true, false},
           Case{GtaoSampling::Mip, false, false}, Case{GtaoSampling::Mip, true, false},
-          Case{GtaoSampling::Planar, true, true}, Case{GtaoSampling::Mip, true, true}}) {
+          Case{GtaoSampling::Planar, true, true}, Case{GtaoSampling::Mip, true, true},
+          Case{GtaoSampling::Planar, false, false, true}, Case{GtaoSampling::Planar, true, false, true},
+          Case{GtaoSampling::Planar, true, true, true}}) {
         ssao::GtaoSettings settings = preset(ssao::GtaoQuality::Low);
         settings.sampling = sampling;
         Context::Impl& c = context.impl();
-        GtaoTemporalPasses passes(c, settings, mode(true, half, grid), 96, 64);
+        ssao::GtaoTemporalSettings t = mode(true, half, grid);
+        t.alternatingWindow = window;
+        GtaoTemporalPasses passes(c, settings, t, 96, 64);
         std::vector<Buffer> depth, normal;
         for (const GBuffer& g : gbuffers) {
             depth.push_back(uploadChannels(c, g.depth, 1));
@@ -360,7 +364,7 @@ TEST(GpuGtaoTemporal, RecordsFramesOnResidentBuffers) {
         ssao::GtaoResult r{Image(96, 64, 1), Image(96, 64, 3)};
         download(c, passes.visibility(), r.visibility.pixels.data(), r.visibility.pixels.size() * sizeof(float));
         download(c, passes.bentNormal(), r.bentNormal.pixels.data(), r.bentNormal.pixels.size() * sizeof(float));
-        GtaoTemporal reference(context, settings, mode(true, half, grid));
+        GtaoTemporal reference(context, settings, t);
         ssao::GtaoResult expected;
         for (const GBuffer& g : gbuffers) expected = reference.frame(g);
         EXPECT_EQ(r.visibility.pixels, expected.visibility.pixels);

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <set>
 #include <string>
 
 using namespace obscura;
@@ -298,8 +299,18 @@ TEST(GtaoTemporal, AlternatingWindowsAverageToTheFiveByFiveWindow) {
     t.temporal = false;  // no history to average the windows
     EXPECT_THROW(t.validate(), Error);
     EXPECT_EQ(reconstructWindowPhase(GtaoTemporalSettings{}, 7), -1);
+    // Over 12 frames every rotation (frame mod 6) meets both halves of x (phase bit 0) and of y (bit 1).
     GtaoTemporalSettings on;
     on.alternatingWindow = true;
-    EXPECT_EQ(reconstructWindowPhase(on, 7), 3);
-    EXPECT_EQ(reconstructWindowPhase(on, 8), 0);
+    std::set<std::pair<int, int>> xs, ys;
+    for (int f = 0; f < 12; ++f) {
+        const int phase = reconstructWindowPhase(on, f);
+        ASSERT_GE(phase, 0);
+        ASSERT_LE(phase, 3);
+        EXPECT_EQ(phase, reconstructWindowPhase(on, f + 4));  // a period of 4
+        xs.insert({f % 6, phase & 1});
+        ys.insert({f % 6, phase >> 1});
+    }
+    EXPECT_EQ(xs.size(), 12u);
+    EXPECT_EQ(ys.size(), 12u);
 }
