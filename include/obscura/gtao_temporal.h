@@ -53,10 +53,10 @@ struct GtaoTemporalSettings {
 // windowPhase 0..3 gathers a 4x4 window instead, every tap at weight 1: offsets -2..1 in x where
 // (windowPhase & 1) is 0, else -1..2, and likewise in y with (windowPhase >> 1); averaged over the 4 phases,
 // a tap's weight is the 5x5 window's. -1: the 5x5 window.
-// -1 without alternatingWindow; else the phase of frame frameIndex, 0, 1, 3, 2 in turn.
-int reconstructWindowPhase(const GtaoTemporalSettings& settings, int frameIndex);
 Image reconstructInterleaved(const Image& values, const Image& depth, const Image& normal, float depthSigma,
                              int windowPhase = -1);
+// The windowPhase of frame frameIndex: -1 without alternatingWindow, else 0, 1, 3, 2 in turn.
+int reconstructWindowPhase(const GtaoTemporalSettings& settings, int frameIndex);
 
 // Depth-aware upsampling of a half-resolution image (pixel (x, y) taken at full-resolution (2x, 2y)) to the
 // G-buffer's size: bilinear weights times the depth weight of each low-resolution tap.

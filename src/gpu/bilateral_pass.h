@@ -27,6 +27,8 @@ struct SeparableBilateralBuffers {
 // bilateral_tiled.comp once (both passes per tile from shared memory; radius <= kBilateralTiledMaxRadius).
 // The same bits either way.
 enum class BlurDispatch { TwoPasses, Tiled };
+// Its dispatches, each reading the guide and the values and writing values: what a byte count multiplies.
+inline int blurDispatchCount(BlurDispatch d) { return d == BlurDispatch::Tiled ? 1 : 2; }
 
 // Records the blur. The inputs must be visible to compute shaders (the caller's barrier); the settings were
 // checked by ssao::checkBilateralInputs. BlurDispatch::Tiled with a larger radius throws obscura::Error;

@@ -61,8 +61,9 @@ ssao::GtaoSettings gtaoSettings(const GpuBenchSettings& s) {
     return g;
 }
 
-BlurDispatch blurDispatch(const GpuBenchSettings& s) { return s.blurTiled ? BlurDispatch::Tiled : BlurDispatch::TwoPasses; }
-double blurDispatches(BlurDispatch d) { return d == BlurDispatch::Tiled ? 1.0 : 2.0; }
+BlurDispatch blurDispatch(const GpuBenchSettings& s) {
+    return s.blurTiled ? BlurDispatch::Tiled : BlurDispatch::TwoPasses;
+}
 // What the descriptions add for GpuBenchSettings::blurTiled.
 std::string tiledText(const GpuBenchSettings& s) { return s.blurTiled ? " (both passes in one tiled dispatch)" : ""; }
 
@@ -130,7 +131,7 @@ CaseSetup alchemyCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s,
     }
     // Estimator: depth + normal in, AO out; each blur dispatch: depth + AO in, AO out (normals unused).
     const BlurDispatch dispatch = blurDispatch(s);
-    setup.bytes = double(px) * (4 + 12 + 4) + blurDispatches(dispatch) * double(px) * (4 + 4 + 4);
+    setup.bytes = double(px) * (4 + 12 + 4) + blurDispatchCount(dispatch) * double(px) * (4 + 4 + 4);
     setup.record = [&c, k, blur, spiral, logSpatial, raw, scratch, out, dispatch](
                        VkCommandBuffer cmd, const ResidentInput& in, int, const std::function<void(const char*)>& mark) {
         recordAlchemy(c, cmd, {in.depth, in.normal, *spiral, *raw}, k);
@@ -159,7 +160,8 @@ CaseSetup gtaoCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s, co
                         "," + blurText(s) + tiledText(s);
     // GTAO: depth + normal in, visibility (+ bent normal) out; blur dispatches as in the alchemy case.
     const BlurDispatch dispatch = blurDispatch(s);
-    setup.bytes = double(px) * (4 + 12 + 4 + (s.bentNormals ? 12 : 0)) + blurDispatches(dispatch) * double(px) * (4 + 4 + 4);
+    setup.bytes = double(px) * (4 + 12 + 4 + (s.bentNormals ? 12 : 0)) +
+                  blurDispatchCount(dispatch) * double(px) * (4 + 4 + 4);
     // Mip sampling: the chain's pass reads depth and writes the chain, which the GTAO pass reads.
     if (k.mipLevels > 0) setup.bytes += 4.0 * (double(px) + 2.0 * double(gtaoDepthMipsFloats(w, h, k.mipLevels)));
     setup.keepAlive = {logSpatial, visibility, bent, mips, scratch, out};

@@ -29,7 +29,8 @@ GtaoHalfResolutionPasses::GtaoHalfResolutionPasses(Context::Impl& c, const ssao:
                                                    int height, bool bentNormals, BlurDispatch blurDispatch)
     : context_(c), settings_(settings), half_(half), width_(width), height_(height), gridWidth_((width + 1) / 2),
       gridHeight_((height + 1) / 2), bentNormals_(bentNormals),
-      blur_(separableBilateral(half.blur, gridWidth_, gridHeight_)), blurDispatch_(blurDispatch), kernel2D_(ssao::gaussianHalfKernel(half.blur.radius)),
+      blur_(separableBilateral(half.blur, gridWidth_, gridHeight_)), blurDispatch_(blurDispatch),
+      kernel2D_(ssao::gaussianHalfKernel(half.blur.radius)),
       blurWeights_(half.blur.mode == ssao::BlurMode::TwoD
                        ? upload(c, kernel2D_.data(), kernel2D_.size() * sizeof(float))
                        : upload(c, blur_.logSpatial.data(), blur_.logSpatial.size() * sizeof(float))),
@@ -89,7 +90,7 @@ std::size_t GtaoHalfResolutionPasses::bytesPerFrame() const {
     if (chain > 0) bytes += f * (pixels + 2 * chain);
     // Blur: each pass reads the grid's guide depth (and normals) and values, writes values; 2-D: one pass.
     const std::size_t guide = half_.blur.usesNormals() ? 4 : 1;
-    const std::size_t blurPasses = half_.blur.mode == ssao::BlurMode::Separable ? (blurDispatch_ == BlurDispatch::Tiled ? 1 : 2)
+    const std::size_t blurPasses = half_.blur.mode == ssao::BlurMode::Separable ? blurDispatchCount(blurDispatch_)
                                    : half_.blur.mode == ssao::BlurMode::TwoD   ? 1
                                                                                : 0;
     bytes += f * blurPasses * grid * (guide + 1 + 1);

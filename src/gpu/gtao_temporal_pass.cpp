@@ -186,8 +186,8 @@ void GtaoTemporalPasses::record(VkCommandBuffer cmd, const GtaoTemporalFrameInpu
                     step_ == 2 && !gridHistory_ ? -1 : phase});
     // (kTemporalSpecGridStep, DepthSigma, BentNormal, PackedHistory, DepthCopy, HistoryStep, WindowPhase: the
     // window where this pass reconstructs, else -1, so that the upsampling variant is one pipeline.) The
-    // previous depth is the
-    // history's copy, or the caller's buffer of the last frame, which unused_ stands for on a first frame.
+    // previous depth is the history's copy, or the caller's buffer of the last frame, which unused_ stands for
+    // on a first frame.
     const Buffer& previousDepth = !variant_.callerKeepsDepth ? previous.depth
                                   : useHistory                     ? *in.previousDepth
                                                                    : unused_;

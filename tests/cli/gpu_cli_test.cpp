@@ -73,6 +73,20 @@ protected:
         EXPECT_EQ(b["cases"].size(), cases);
         return {a, b};
     }
+    // `render ARGS` on the GPU without and with FLAG, a way of dispatching that must not change the result: the
+    // summary with it says `summary`, and the frames and the AO of both agree, to the bit on lavapipe (1e-6
+    // elsewhere).
+    void expectSameRenderWith(const std::string& args, const std::string& flag, const std::string& summary) {
+        const std::string base = "render " + args + " -q";
+        runGpu(base + " -o " + path("a.exr") + " --aov-dir " + path("a"));
+        const CliResult with = runGpu(base + " " + flag + " -o " + path("b.exr") + " --aov-dir " + path("b"));
+        EXPECT_NE(with.out.find(summary), std::string::npos) << with.out;
+        const double bound = with.out.find("llvmpipe") != std::string::npos ? 0.0 : 1e-6;
+        EXPECT_LE(difference(obscura::readExr(path("a.exr")), obscura::readExr(path("b.exr"))).max, bound)
+            << args << " " << flag;
+        EXPECT_LE(difference(obscura::readExr(path("a/ao.exr")), obscura::readExr(path("b/ao.exr"))).max, bound)
+            << args << " " << flag;
+    }
     // `render ARGS` on the CPU and on the GPU, each with its AOVs: the linear frames (EXR) and the AO.
     struct Pair {
         Difference frame, ao;
@@ -92,21 +106,9 @@ protected:
 // the three dispatches (the same bits on lavapipe; 1e-6 elsewhere), with and without a guard band, and say so
 // in the summary; without --gpu or with another blur it fails in one line, writing nothing.
 TEST_F(GpuCommands, RenderAlchemyFusedBlurMatchesTheSeparatePasses) {
-    for (const char* band : {"0", "12"}) {
-        const std::string base = std::string("render stairs --size 97x61 --ao alchemy --ao-guard-band ") + band + " -q";
-        runGpu(base + " -o " + path("a.exr") + " --aov-dir " + path("a"));
-        const CliResult fused = runGpu(base + " --gpu-fused-blur -o " + path("b.exr") + " --aov-dir " + path("b"));
-        EXPECT_NE(fused.out.find("rows fused into the estimator"), std::string::npos) << fused.out;
-        const bool lavapipe = fused.out.find("llvmpipe") != std::string::npos;
-        for (const char* name : {"a.exr", "a/ao.exr"}) {
-            const std::string other = std::string(name) == "a.exr" ? "b.exr" : "b/ao.exr";
-            const obscura::Image x = obscura::readExr(path(name)), y = obscura::readExr(path(other));
-            ASSERT_EQ(x.pixels.size(), y.pixels.size());
-            float worst = 0.0f;
-            for (std::size_t i = 0; i < x.pixels.size(); ++i) worst = std::max(worst, std::fabs(x.pixels[i] - y.pixels[i]));
-            EXPECT_LE(worst, lavapipe ? 0.0f : 1e-6f) << name << ", guard band " << band;
-        }
-    }
+    for (const char* band : {"0", "12"})
+        expectSameRenderWith(std::string("stairs --size 97x61 --ao alchemy --ao-guard-band ") + band,
+                             "--gpu-fused-blur", "rows fused into the estimator");
     expectFailure("render --ao alchemy --gpu-fused-blur -o " + path("c.png"), {"--gpu-fused-blur", "--gpu"});
     expectFailure("render --ao alchemy --gpu --gpu-fused-blur --blur 2d -o " + path("c.png"), {"--gpu-fused-blur"});
     expectFailure("render --ao gtao --gpu --gpu-fused-blur -o " + path("c.png"), {"--gpu-fused-blur", "alchemy"});
@@ -117,20 +119,9 @@ TEST_F(GpuCommands, RenderAlchemyFusedBlurMatchesTheSeparatePasses) {
 // dispatches (the same bits on lavapipe; 1e-6 elsewhere), with the normal weight too, and say so; it fails in
 // one line without --gpu, with another blur, a radius its tile cannot hold, or beside --gpu-fused-blur.
 TEST_F(GpuCommands, RenderAlchemyTiledBlurMatchesTheTwoPasses) {
-    for (const char* extra : {"", " --blur-normal-weight on --blur-radius 8"}) {
-        const std::string base = std::string("render cabinet --size 77x45 --ao alchemy -q") + extra;
-        runGpu(base + " -o " + path("a.exr") + " --aov-dir " + path("a"));
-        const CliResult tiled = runGpu(base + " --gpu-tiled-blur -o " + path("b.exr") + " --aov-dir " + path("b"));
-        EXPECT_NE(tiled.out.find("both passes in one tiled dispatch"), std::string::npos) << tiled.out;
-        const bool lavapipe = tiled.out.find("llvmpipe") != std::string::npos;
-        for (const auto& [x, y] : {std::pair{"a.exr", "b.exr"}, std::pair{"a/ao.exr", "b/ao.exr"}}) {
-            const obscura::Image p = obscura::readExr(path(x)), q = obscura::readExr(path(y));
-            ASSERT_EQ(p.pixels.size(), q.pixels.size());
-            float worst = 0.0f;
-            for (std::size_t i = 0; i < p.pixels.size(); ++i) worst = std::max(worst, std::fabs(p.pixels[i] - q.pixels[i]));
-            EXPECT_LE(worst, lavapipe ? 0.0f : 1e-6f) << x << extra;
-        }
-    }
+    for (const char* extra : {"", " --blur-normal-weight on --blur-radius 8"})
+        expectSameRenderWith(std::string("cabinet --size 77x45 --ao alchemy") + extra, "--gpu-tiled-blur",
+                             "both passes in one tiled dispatch");
     expectFailure("render --ao alchemy --gpu-tiled-blur -o " + path("c.png"), {"--gpu-tiled-blur", "--gpu"});
     expectFailure("render --ao alchemy --gpu --gpu-tiled-blur --blur 2d -o " + path("c.png"), {"--gpu-tiled-blur"});
     expectFailure("render --ao alchemy --gpu --gpu-tiled-blur --blur-radius 9 -o " + path("c.png"),

@@ -186,14 +186,12 @@ void run(const RenderOptions& o) {
                                   : "");
     if (o.ao == "gtao") {
         const ssao::GtaoSettings g = o.gtao.settings(aoSettings.radius);
+        std::string variants = o.gtao.halfResolution ? ", half resolution" : "";
+        if (o.gtao.gridHistory) variants += ", history on the grid";
+        if (o.gtao.alternatingWindow) variants += ", alternating 4x4 windows";
         std::printf(" (%s: %d slice(s) x %d steps%s, r = %s m, %d frame(s)%s)", o.gtao.quality.c_str(), g.sliceCount,
                     g.stepsPerSide, g.interleave ? ", 4x4 interleave" : g.jitter ? ", jittered" : "", o.radius.c_str(),
-                    o.gtao.frames,
-                    (std::string(o.gtao.halfResolution ? (o.gtao.gridHistory ? ", half resolution, history on the grid"
-                                                                             : ", half resolution")
-                                                        : "") +
-                     (o.gtao.alternatingWindow ? ", alternating 4x4 windows" : ""))
-                        .c_str());
+                    o.gtao.frames, variants.c_str());
     }
     if (context) std::printf(", on %s", context->device().name.c_str());
     std::printf(", %.2f s\n", secondsSince(start));
