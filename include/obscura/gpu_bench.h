@@ -49,6 +49,7 @@ struct GpuBenchSettings {
     bool packedHistory = false;  // the temporal cases keep their history in packed words (obscura/history_packing.h)
     bool alternatingWindow = false;  // the temporal cases reconstruct with 4x4 windows alternating over 4 frames
                                      // (GtaoTemporalSettings::alternatingWindow)
+    int alternatingWindowSize = 4;  // ... of 4x4 or 2x2 taps (GtaoTemporalSettings::alternatingWindowSize)
     bool callerKeepsDepth = false;  // the temporal cases read the previous frame's input depth instead of a
                                     // copy in the history (GtaoTemporalVariant::callerKeepsDepth)
     bool bentNormals = true;  // the GTAO cases compute, filter and accumulate bent normals; false: visibility

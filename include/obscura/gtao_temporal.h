@@ -38,6 +38,10 @@ struct GtaoTemporalSettings {
                                   // of the pattern once, 16 taps instead of 25) whose place alternates over
                                   // 4 frames, so that the history averages the 5x5 window's weights
                                   // (reconstructInterleaved's windowPhase = reconstructWindowPhase)
+    int alternatingWindowSize = 4;  // with alternatingWindow: 4 (the 4x4 windows above) or 2: 2x2 windows
+                                  // that each hold the pixel (4 taps), averaging over 4 frames to the 3x3
+                                  // tent (obscura/reconstruct_window.h); for half resolution, where it keeps
+                                  // the accumulated error (at full resolution it loses some: docs/QUALITY.md)
     bool gridHistory = false;     // with halfResolution: reproject and accumulate on the half-resolution
                                   // grid and upsample the accumulated result, so the history, its reads
                                   // and its writes are a quarter of the full-resolution ones; the
@@ -50,12 +54,12 @@ struct GtaoTemporalSettings {
 // so each of the 16 pattern classes has the same spatial weight; taps weigh by ssao::tapWeight (the
 // shared cross-bilateral weight). `values` has 1 or 3 channels (3: vectors, renormalised), `depth` and
 // `normal` are the grid's own (1 and 3 channels, same size). Sky pixels keep their value.
-// windowPhase 0..3 gathers a 4x4 window instead, every tap at weight 1: offsets -2..1 in x where
-// (windowPhase & 1) is 0, else -1..2, and likewise in y with (windowPhase >> 1); averaged over the 4 phases,
-// a tap's weight is the 5x5 window's. -1: the 5x5 window.
+// windowPhase 0..3 gathers a 4x4 window instead, 4..7 a 2x2 one, every tap at weight 1
+// (obscura/reconstruct_window.h says which); -1: the 5x5 window.
 Image reconstructInterleaved(const Image& values, const Image& depth, const Image& normal, float depthSigma,
                              int windowPhase = -1);
-// The windowPhase of frame frameIndex: -1 without alternatingWindow, else 0, 1, 3, 2 in turn.
+// The windowPhase of frame frameIndex: -1 without alternatingWindow, else 0, 1, 3, 2 in turn, plus 4 for
+// alternatingWindowSize 2.
 int reconstructWindowPhase(const GtaoTemporalSettings& settings, int frameIndex);
 
 // Depth-aware upsampling of a half-resolution image (pixel (x, y) taken at full-resolution (2x, 2y)) to the

@@ -219,14 +219,16 @@ CaseSetup temporalCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s
     t.packedHistory = s.packedHistory;
     t.gridHistory = gridHistory;
     t.alternatingWindow = temporal && s.alternatingWindow;  // the spatial case has no history to average
+    t.alternatingWindowSize = s.alternatingWindowSize;
     auto passes = std::make_shared<GtaoTemporalPasses>(c, settings, t, w, h,
                                                        GtaoTemporalVariant{s.bentNormals, s.callerKeepsDepth});
     CaseSetup setup;
     setup.description = std::string(temporal ? "spatio-temporal" : "spatial") + " GTAO" +
                         (half ? " at half resolution" : "") + " (" + slicesText(settings) +
                         ", 4x4 interleave" + radiusText(settings) + ") + " +
-                        (t.alternatingWindow ? "4x4 reconstruction, its window alternating over 4 frames"
-                                             : "5x5 reconstruction") +
+                        (t.alternatingWindow ? std::string(t.alternatingWindowSize == 2 ? "2x2" : "4x4") +
+                                                   " reconstruction, its window alternating over 4 frames"
+                                             : std::string("5x5 reconstruction")) +
                         (half && !gridHistory ? " + depth-aware upsample" : "") +
                         (temporal ? (s.packedHistory ? " + reprojected packed history" : " + reprojected history") : "") +
                         (gridHistory ? " on the grid + depth-aware upsample" : "") +

@@ -65,7 +65,7 @@ GtaoTemporalConstants gtaoTemporalConstants(const ssao::GtaoTemporalSettings& t,
 void recordReconstruct(Context::Impl& c, VkCommandBuffer cmd, const ReconstructBuffers& b,
                        const ReconstructConstants& k, int channels, int windowPhase) {
     assert(channels == 1 || channels == 3);
-    assert(windowPhase >= -1 && windowPhase <= 3);
+    assert(windowPhase >= -1 && windowPhase <= 7);
     ComputePipeline& pipeline =
         c.pipeline("reconstruct_interleaved", shaders::reconstruct_interleaved,
                    storageBuffers(kReconstructBindingCount), kReconstructPushConstantBytes, kTemporalWorkgroupX,
@@ -263,8 +263,9 @@ Image reconstructInterleaved(Context& context, const Image& values, const Image&
     if (depth.width != w || depth.height != h || normal.width != w || normal.height != h || normal.channels < 3)
         fail("reconstruct interleaved", "depth (1 channel) and normal (3 channels) must match the " +
                                             std::to_string(w) + "x" + std::to_string(h) + " values");
-    if (windowPhase < -1 || windowPhase > 3)
-        fail("reconstruct interleaved", "window phase must be -1 (5x5) or 0..3, not " + std::to_string(windowPhase));
+    if (windowPhase < -1 || windowPhase > 7)
+        fail("reconstruct interleaved", "window phase must be -1 (5x5), 0..3 (4x4) or 4..7 (2x2), not " +
+                                            std::to_string(windowPhase));
     if (values.empty()) return values;
     Context::Impl& c = context.impl();
     const Buffer in = uploadChannels(c, values, values.channels);

@@ -5,6 +5,7 @@
 #include "obscura/bilateral.h"
 #include "obscura/error.h"
 #include "obscura/history_packing.h"
+#include "obscura/reconstruct_window.h"
 #include "obscura/parallel.h"
 
 #include <algorithm>
@@ -42,6 +43,8 @@ void GtaoTemporalSettings::validate() const {
     if (gridHistory && !halfResolution) fail("gtao-grid-history", "needs half resolution (the grid it keeps)");
     if (alternatingWindow && !temporal)
         fail("gtao-alternating-window", "needs the history (temporal), which averages its 4 windows");
+    if (alternatingWindowSize != 4 && alternatingWindowSize != 2)
+        fail("gtao-alternating-window-size", "must be 4 (4x4 windows) or 2 (2x2 windows)");
 }
 
 int reconstructWindowPhase(const GtaoTemporalSettings& settings, int frameIndex) {
@@ -49,16 +52,20 @@ int reconstructWindowPhase(const GtaoTemporalSettings& settings, int frameIndex)
     // with the frame's parity, which the 6 rotations share, so every rotation meets both halves of x and of y
     // over 12 frames; taken in the order 0..3, column -2 only ever saw the even rotations.
     if (!settings.alternatingWindow) return -1;
-    return (frameIndex & 3) ^ ((frameIndex >> 1) & 1);
+    const int phase = (frameIndex & 3) ^ ((frameIndex >> 1) & 1);
+    return settings.alternatingWindowSize == 2 ? 4 + phase : phase;
 }
 
 Image reconstructInterleaved(const Image& values, const Image& depth, const Image& normal, float depthSigma,
                              int windowPhase) {
+    if (windowPhase < -1 || windowPhase > 7)
+        fail("reconstruct interleaved", "window phase must be -1 (5x5), 0..3 (4x4) or 4..7 (2x2), not " +
+                                            std::to_string(windowPhase));
     Image out = values;
     const int w = values.width, h = values.height, channels = values.channels;
-    const bool window4 = windowPhase >= 0;
-    const int firstX = window4 ? -2 + (windowPhase & 1) : -2, lastX = window4 ? firstX + 3 : 2;
-    const int firstY = window4 ? -2 + ((windowPhase >> 1) & 1) : -2, lastY = window4 ? firstY + 3 : 2;
+    const int side = reconstructWindowSide(windowPhase);
+    const int firstX = reconstructWindowFirst(windowPhase, 0), lastX = firstX + side - 1;
+    const int firstY = reconstructWindowFirst(windowPhase, 1), lastY = firstY + side - 1;
     forRows(h, [&](int y) {
         for (int x = 0; x < w; ++x) {
             const float d = depth.at(x, y);
@@ -75,9 +82,7 @@ Image reconstructInterleaved(const Image& values, const Image& depth, const Imag
                     if (xx < 0 || xx >= w) continue;
                     const float di = depth.at(xx, yy);
                     if (!finiteDepth(di)) continue;
-                    // Half weight on the 5x5 window's outer ring: every class of the 4x4 pattern weighs the same.
-                    const float spatial = window4 ? 1.0f
-                                                  : (dx == -2 || dx == 2 ? 0.5f : 1.0f) * (dy == -2 || dy == 2 ? 0.5f : 1.0f);
+                    const float spatial = reconstructWindowWeight(windowPhase, dx, dy);
                     const float wt = tapWeight(spatial, d, n, di, vec3At(normal, xx, yy), invTwoSigma2, true);
                     for (int c = 0; c < channels; ++c) sum[c] += wt * values.at(xx, yy, c);
                     weightSum += wt;

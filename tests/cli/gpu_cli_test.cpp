@@ -150,6 +150,8 @@ TEST_F(GpuCommands, RenderGtaoMatchesTheCpu) {
         "well --size 70x40 --ao gtao --gtao-half-res --gtao-half-blur-radius 0",
         "demo --size 97x55 --ao gtao --frames 3 --gtao-half-res --gtao-grid-history --gtao-packed-history",
         "stairs --size 81x47 --ao gtao --frames 5 --gtao-alternating-window",
+        "demo --size 97x55 --ao gtao --frames 5 --gtao-half-res --gtao-grid-history --gtao-alternating-window "
+        "--gtao-alternating-window-size 2",
     };
     for (const char* c : cases) {
         const Pair d = renderBoth(c);
@@ -478,7 +480,20 @@ TEST_F(GpuCommands, BenchGpuAlternatingWindow) {
         EXPECT_EQ(description.find("window alternating") != std::string::npos, name != "gtao-spatial") << description;
         EXPECT_EQ(a["cases"][i]["description"].get<std::string>().find("alternating"), std::string::npos);
         EXPECT_EQ(a["cases"][i]["bytes_per_frame"], b["cases"][i]["bytes_per_frame"]) << name;
+        EXPECT_NE(description.find("4x4 reconstruction") != std::string::npos, name == "gtao-spatial") << description;
     }
+    EXPECT_EQ(b["alternating_window_size"], 4);
+    // --alternating-window-size 2: the 2x2 windows, named in the description and the report.
+    const nlohmann::json c = nlohmann::json::parse(
+        runGpu("bench --gpu --sizes 40x24 --frames 6 --warmup 0 --inputs 2 --json --visibility-only "
+               "--cases gtao-temporal-grid --alternating-window --alternating-window-size 2")
+            .out);
+    EXPECT_EQ(c["alternating_window_size"], 2);
+    EXPECT_NE(c["cases"][0]["description"].get<std::string>().find("2x2 reconstruction, its window alternating"),
+              std::string::npos)
+        << c["cases"][0]["description"];
+    expectFailure("bench --gpu --alternating-window-size 2", {"--alternating-window-size", "--alternating-window"});
+    expectFailure("bench --gpu --alternating-window --alternating-window-size 3", {"--alternating-window-size"});
 }
 
 // --pipeline-stats and --pipeline-internals: what the driver says of each pipeline the cases compiled, or,

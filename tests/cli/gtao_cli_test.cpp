@@ -75,6 +75,9 @@ TEST_F(GtaoCli, BadInputFailsWithOneLine) {
                           {"--gtao-packed-history --frames 3 --gtao-mode spatial", "--gtao-packed-history"},
                           {"--gtao-grid-history --frames 3", "--gtao-grid-history"},
                           {"--gtao-alternating-window --frames 3 --gtao-mode spatial", "--gtao-alternating-window"},
+                          {"--gtao-alternating-window-size 2 --frames 3", "--gtao-alternating-window-size"},
+                          {"--gtao-alternating-window --gtao-alternating-window-size 3 --frames 3",
+                           "--gtao-alternating-window-size"},
                           {"--gtao-grid-history --gtao-half-res", "--gtao-grid-history"},  // the full mode
                           {"--gtao-slices 65", "--gtao-slices"},
                           {"--gtao-steps 257", "--gtao-steps"},
@@ -127,6 +130,29 @@ TEST_F(GtaoCli, SamplingFlagReachesTheKernel) {
             EXPECT_GT(darker, 0);
         }
     }
+}
+
+// --gtao-alternating-window-size reaches the reconstruction: after 5 frames the AO of the 2x2 windows differs
+// from the 4x4 windows' and from the 5x5 window's (which of them is nearer ray tracing is
+// GtaoTemporal.GridHistorySamplingsAgainstRayTracing's to say).
+TEST_F(GtaoCli, AlternatingWindowSizeReachesTheReconstruction) {
+    const std::string base = "render stairs --ao gtao --size 96x54 --frames 5 --gtao-half-res --gtao-grid-history -q -o " +
+                             path("f.png") + " --aov-dir ";
+    const char* variants[3] = {"", "--gtao-alternating-window", "--gtao-alternating-window --gtao-alternating-window-size 2"};
+    obscura::Image ao[3];
+    for (int i = 0; i < 3; ++i) {
+        const std::string aovs = path("aov" + std::to_string(i));
+        Result r = run(base + aovs + " " + variants[i]);
+        ASSERT_EQ(r.code, 0) << r.out;
+        ao[i] = obscura::readExr(aovs + "/ao.exr");
+    }
+    auto meanDifference = [](const obscura::Image& a, const obscura::Image& b) {
+        double sum = 0;
+        for (std::size_t i = 0; i < a.pixels.size(); ++i) sum += std::fabs(double(a.pixels[i]) - double(b.pixels[i]));
+        return sum / double(a.pixels.size());
+    };
+    EXPECT_GT(meanDifference(ao[2], ao[1]), 1e-4);
+    EXPECT_GT(meanDifference(ao[2], ao[0]), 1e-4);
 }
 
 // gtao-nearest is a method of compare: the high preset with nearest-pixel samples, whose error against ray

@@ -293,30 +293,33 @@ TEST(GpuGtaoTemporal, GridHistoryMatchesTheCpuReference) {
     EXPECT_EQ(testing::validationReport(context), "");
 }
 
-// The alternating 4x4 windows (GtaoTemporalSettings::alternatingWindow, one pipeline per phase): where the
-// accumulation reconstructs (full resolution, the grid's history) and in the reconstruction's own pass (half
-// resolution with the history at full resolution). 5 frames, so that every phase runs and one twice.
+// The alternating 4x4 and 2x2 windows (GtaoTemporalSettings::alternatingWindow, alternatingWindowSize, one
+// pipeline per phase): where the accumulation reconstructs (full resolution, the grid's history) and in the
+// reconstruction's own pass (half resolution with the history at full resolution). 5 frames, so that every
+// phase runs and one twice.
 TEST(GpuGtaoTemporal, AlternatingWindowMatchesTheCpuReference) {
     OBSCURA_GPU_CONTEXT(context);
-    for (const auto& [half, grid] : {std::pair{false, false}, std::pair{true, false}, std::pair{true, true}}) {
-        ssao::GtaoTemporalSettings t = mode(true, half, grid);
-        t.alternatingWindow = true;
-        t.packedHistory = grid;
-        const std::string m = std::string("temporal, alternating windows") +
-                              (grid ? ", packed grid history" : half ? ", half resolution" : "");
-        expectMatch(context, {"demo", 333, 197, ssao::GtaoQuality::Medium}, t, 5, 0, m);
-        expectMatch(context, {"stairs", 97, 63, ssao::GtaoQuality::High}, t, 5, 0, m);
-    }
+    for (const int size : {4, 2})
+        for (const auto& [half, grid] : {std::pair{false, false}, std::pair{true, false}, std::pair{true, true}}) {
+            ssao::GtaoTemporalSettings t = mode(true, half, grid);
+            t.alternatingWindow = true;
+            t.alternatingWindowSize = size;
+            t.packedHistory = grid;
+            const std::string m = "temporal, alternating " + std::to_string(size) + "x" + std::to_string(size) +
+                                  " windows" + (grid ? ", packed grid history" : half ? ", half resolution" : "");
+            expectMatch(context, {"demo", 333, 197, ssao::GtaoQuality::Medium}, t, 5, 0, m);
+            expectMatch(context, {"stairs", 97, 63, ssao::GtaoQuality::High}, t, 5, 0, m);
+        }
     // The filter alone, each phase, on the CPU's own raw values (both get the same input bits).
     const GBuffer g = testing::render("demo", 133, 77);
     const ssao::GtaoResult raw =
         ssao::computeGtao(g, ssao::gtaoConstants(preset(ssao::GtaoQuality::Low), g.camera, 2, true));
-    for (int phase = 0; phase < 4; ++phase) {
+    for (int phase = 0; phase < 8; ++phase) {
         const double d = maxDifference(reconstructInterleaved(context, raw.visibility, g.depth, g.normal, 0.05f, phase),
                                        ssao::reconstructInterleaved(raw.visibility, g.depth, g.normal, 0.05f, phase));
         EXPECT_LE(d, kVisibilityBound) << phase;
     }
-    EXPECT_THROW(reconstructInterleaved(context, raw.visibility, g.depth, g.normal, 0.05f, 4), Error);
+    EXPECT_THROW(reconstructInterleaved(context, raw.visibility, g.depth, g.normal, 0.05f, 8), Error);
     EXPECT_EQ(testing::validationReport(context), "");
 }
 
@@ -330,19 +333,21 @@ TEST(GpuGtaoTemporal, RecordsFramesOnResidentBuffers) {
     using ssao::GtaoSampling;
     struct Case {
         GtaoSampling sampling;
-        bool half, grid, window = false;  // window: alternating windows, a pipeline per phase in one submission
+        bool half, grid;
+        int window = 0;  // alternating windows of this side, a pipeline per phase in one submission; 0: none
     };
     for (const auto& [sampling, half, grid, window] :
          {Case{GtaoSampling::Planar, false, false}, Case{GtaoSampling::Planar, true, false},
           Case{GtaoSampling::Mip, false, false}, Case{GtaoSampling::Mip, true, false},
           Case{GtaoSampling::Planar, true, true}, Case{GtaoSampling::Mip, true, true},
-          Case{GtaoSampling::Planar, false, false, true}, Case{GtaoSampling::Planar, true, false, true},
-          Case{GtaoSampling::Planar, true, true, true}}) {
+          Case{GtaoSampling::Planar, false, false, 4}, Case{GtaoSampling::Planar, true, false, 4},
+          Case{GtaoSampling::Planar, true, true, 4}, Case{GtaoSampling::Planar, true, true, 2}}) {
         ssao::GtaoSettings settings = preset(ssao::GtaoQuality::Low);
         settings.sampling = sampling;
         Context::Impl& c = context.impl();
         ssao::GtaoTemporalSettings t = mode(true, half, grid);
-        t.alternatingWindow = window;
+        t.alternatingWindow = window > 0;
+        t.alternatingWindowSize = window == 2 ? 2 : 4;
         GtaoTemporalPasses passes(c, settings, t, 96, 64);
         std::vector<Buffer> depth, normal;
         for (const GBuffer& g : gbuffers) {

@@ -57,6 +57,7 @@ struct GpuBenchOptions {
     bool packedHistory = false;
     bool keepPreviousDepth = false;
     bool alternatingWindow = false;
+    int alternatingWindowSize = 4;
     std::string sampling = "planar";
     float mipRatio = 7.0f;
     float radius = 1.0f;
@@ -112,6 +113,10 @@ void GpuBenchOptions::add(CLI::App& bench) {
     bench.add_flag("--alternating-window", alternatingWindow,
                    "--gpu: the temporal cases reconstruct with a 4x4 window (16 taps instead of 25) whose place "
                    "alternates over 4 frames, which the history averages to the 5x5 window's weights");
+    bench.add_option("--alternating-window-size", alternatingWindowSize,
+                     "--gpu with --alternating-window: the windows' side, 4 (16 taps) or 2 (4 taps, each window holding "
+                     "the pixel, which the history averages to a 3x3 tent)")
+        ->capture_default_str();
     addGtaoSamplingOption(bench, sampling, mipRatio, "--gpu: how the GTAO cases' horizon samples read depth");
     gtao.add(bench, "--gpu, the GTAO cases", "; the temporal cases take --temporal-slices",
              "; the gtao and gtao-half cases only: the others rotate by their 4x4 interleave");
@@ -235,6 +240,7 @@ void runGpuBench(const GpuBenchOptions& o) {
     settings.packedHistory = o.packedHistory;
     settings.callerKeepsDepth = o.keepPreviousDepth;
     settings.alternatingWindow = o.alternatingWindow;
+    settings.alternatingWindowSize = o.alternatingWindowSize;
     settings.sampling = gtaoSampling(o.sampling);
     settings.mipDistanceRatio = o.mipRatio;
     settings.gtaoRadius = o.radius;
@@ -247,6 +253,10 @@ void runGpuBench(const GpuBenchOptions& o) {
     }
     if (o.inputs < 1 || o.inputs > 16) fail("--inputs", "must be in [1, 16]");
     if (!(o.peakGbps > 0.0 && o.peakGbps < 1e6)) fail("--peak-gbps", "must be in (0, 1e6) GB/s");
+    if (o.alternatingWindowSize != 4 && o.alternatingWindowSize != 2)
+        fail("--alternating-window-size", "must be 4 or 2, not " + std::to_string(o.alternatingWindowSize));
+    if (o.alternatingWindowSize != 4 && !o.alternatingWindow)
+        fail("--alternating-window-size", "needs --alternating-window");
     GpuFlags device{true, o.device};
     device.pipelineStatistics = o.pipelineStats || !o.pipelineInternals.empty();
     device.pipelineInternals = !o.pipelineInternals.empty();
@@ -300,6 +310,7 @@ void runGpuBench(const GpuBenchOptions& o) {
     report["packed_history"] = settings.packedHistory;
     report["keep_previous_depth"] = settings.callerKeepsDepth;
     report["alternating_window"] = settings.alternatingWindow;
+    report["alternating_window_size"] = settings.alternatingWindow ? settings.alternatingWindowSize : 0;
     report["gtao_sampling"] = o.sampling;
     report["gtao_mip_ratio"] = o.mipRatio;
     report["gtao_radius_m"] = o.radius;
@@ -317,7 +328,8 @@ void runGpuBench(const GpuBenchOptions& o) {
         if (o.visibilityOnly) variants += ", GTAO visibility only";
         if (o.packedHistory) variants += ", packed history";
         if (o.keepPreviousDepth) variants += ", previous depth kept";
-        if (o.alternatingWindow) variants += ", alternating 4x4 windows";
+        if (o.alternatingWindow)
+            variants += o.alternatingWindowSize == 2 ? ", alternating 2x2 windows" : ", alternating 4x4 windows";
         ssao::GtaoSettings sampling;
         sampling.sampling = settings.sampling;
         sampling.mipDistanceRatio = settings.mipDistanceRatio;

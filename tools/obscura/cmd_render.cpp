@@ -188,7 +188,8 @@ void run(const RenderOptions& o) {
         const ssao::GtaoSettings g = o.gtao.settings(aoSettings.radius);
         std::string variants = o.gtao.halfResolution ? ", half resolution" : "";
         if (o.gtao.gridHistory) variants += ", history on the grid";
-        if (o.gtao.alternatingWindow) variants += ", alternating 4x4 windows";
+        if (o.gtao.alternatingWindow)
+            variants += o.gtao.alternatingWindowSize == 2 ? ", alternating 2x2 windows" : ", alternating 4x4 windows";
         std::printf(" (%s: %d slice(s) x %d steps%s, r = %s m, %d frame(s)%s)", o.gtao.quality.c_str(), g.sliceCount,
                     g.stepsPerSide, g.interleave ? ", 4x4 interleave" : g.jitter ? ", jittered" : "", o.radius.c_str(),
                     o.gtao.frames, variants.c_str());

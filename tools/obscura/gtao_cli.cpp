@@ -158,6 +158,10 @@ void GtaoOptions::add(CLI::App& app) {
     app.add_flag("--gtao-alternating-window", alternatingWindow,
                  "GTAO temporal mode: reconstruct with a 4x4 window (16 taps instead of 25) whose place alternates "
                  "over 4 frames, so that the history averages it to the 5x5 window's weights");
+    app.add_option("--gtao-alternating-window-size", alternatingWindowSize,
+                   "GTAO temporal mode with --gtao-alternating-window: the windows' side, 4 (16 taps) or 2 (2x2 windows "
+                   "that each hold the pixel, 4 taps, which the history averages to a 3x3 tent)")
+        ->capture_default_str();
     app.add_option("--gtao-thickness", thickness, "GTAO thin occluders: none, heuristic (eq. 9), bitmask")
         ->check(CLI::IsMember({"none", "heuristic", "bitmask"}))
         ->capture_default_str();
@@ -211,6 +215,10 @@ void GtaoOptions::validate(const std::string& aovDir) const {
     if (alternatingWindow && !temporal)
         fail("--gtao-alternating-window", "needs a history to average its windows: --gtao-mode temporal, or auto with "
                                           "--frames > 1");
+    if (alternatingWindowSize != 4 && alternatingWindowSize != 2)
+        fail("--gtao-alternating-window-size", "must be 4 or 2, not " + std::to_string(alternatingWindowSize));
+    if (alternatingWindowSize != 4 && !alternatingWindow)
+        fail("--gtao-alternating-window-size", "needs --gtao-alternating-window");
     if (gridHistory && (!halfResolution || !(mode == "spatial" || temporal)))
         fail("--gtao-grid-history", "needs --gtao-half-res in the spatial or temporal mode (--gtao-mode spatial or "
                                     "temporal, or auto with --frames > 1)");
@@ -230,6 +238,7 @@ GtaoFrame renderGtaoFrames(const GtaoOptions& o, float radius, const trace::Trac
     temporalSettings.packedHistory = o.packedHistory;
     temporalSettings.gridHistory = o.gridHistory;
     temporalSettings.alternatingWindow = o.alternatingWindow;
+    temporalSettings.alternatingWindowSize = o.alternatingWindowSize;
     ssao::GtaoHalfResolutionSettings half;  // the full mode's, with --gtao-half-res
     half.blur.mode = o.halfBlurRadius > 0 ? ssao::BlurMode::Separable : ssao::BlurMode::None;
     half.blur.radius = std::max(o.halfBlurRadius, 1);

@@ -43,6 +43,7 @@ struct GtaoOptions {
     bool packedHistory = false;
     bool gridHistory = false;  // spatial/temporal modes at half resolution: accumulate on the grid
     bool alternatingWindow = false;  // temporal mode: 4x4 reconstruction windows alternating over 4 frames
+    int alternatingWindowSize = 4;   // ... or 2x2 ones (GtaoTemporalSettings::alternatingWindowSize)
     std::string thickness = "none";
     float falloffStart = 1.0f;
     std::string beyondRadius = "column";

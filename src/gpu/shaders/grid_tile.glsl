@@ -13,12 +13,19 @@
 //   float gridValueAt(int x, int y, int c)
 // and calls loadGridTile(width, height) from every invocation of the workgroup (it holds a barrier), before
 // any invocation returns. Then gridTileDepth, gridTileNormal and gridTileValue read the tile; they may be
-// asked only for pixels within 2 of the workgroup's own (all that the reconstruction reads) and inside the
-// grid. The includer's gridDepth, gridNormal and gridValue (temporal_filters.glsl's grid) call them.
+// asked only for pixels within kGridTileReach of the workgroup's own (all that the reconstruction reads) and
+// inside the grid. The includer's gridDepth, gridNormal and gridValue (temporal_filters.glsl's grid) call them.
 #ifndef OBSCURA_GPU_GRID_TILE_GLSL
 #define OBSCURA_GPU_GRID_TILE_GLSL
 
-const int kGridTileReach = 2;  // the reconstruction's 5x5 gather
+// How far the reconstruction's taps reach: 2 for the 5x5 and 4x4 windows. An including shader whose window
+// reaches less defines GRID_TILE_REACH as an expression of its specialization constants: the 2x2 windows
+// (obscura/reconstruct_window.h) reach 1, and their tile is then 18x6 slots instead of 20x8 (16x4
+// workgroups), a third fewer loads of depth, normal and values for the same taps.
+#ifndef GRID_TILE_REACH
+#define GRID_TILE_REACH 2
+#endif
+const int kGridTileReach = GRID_TILE_REACH;
 const int kGridTileWidth = kTemporalWorkgroupX + 2 * kGridTileReach;
 const int kGridTileHeight = kTemporalWorkgroupY + 2 * kGridTileReach;
 // Rows packed. With 8x8 workgroups, rows 24 floats apart (a warp's 4 rows of 8 reads in 32 different banks)

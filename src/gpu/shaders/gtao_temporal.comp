@@ -87,6 +87,7 @@ float gridValueAt(int x, int y, int c) {
 // spatial variant) and 0.115 instead of 0.159 with it. The upsampling reads 4 grid pixels straight from
 // memory, with a tile of one slot.
 #define GRID_TILE_SLOTS (kReconstructs ? kGridTileHeight * kGridTileStride : 1)
+#define GRID_TILE_REACH (kWindowPhase >= 4 ? 1 : 2)  // the 2x2 windows reach 1 (obscura/reconstruct_window.h)
 #include "grid_tile.glsl"
 float gridDepth(int x, int y) { return kReconstructs ? gridTileDepth(x, y) : gridDepthAt(x, y); }
 vec3 gridNormal(int x, int y) { return kReconstructs ? gridTileNormal(x, y) : gridNormalAt(x, y); }

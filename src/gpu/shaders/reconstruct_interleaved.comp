@@ -32,6 +32,7 @@ float gridValueAt(int x, int y, int c) {
     return values[(uint(y) * uint(k.width) + uint(x)) * uint(kGridChannels) + uint(c)];
 }
 
+#define GRID_TILE_REACH (kWindowPhase >= 4 ? 1 : 2)  // the 2x2 windows reach 1 (obscura/reconstruct_window.h)
 #include "grid_tile.glsl"
 float gridDepth(int x, int y) { return gridTileDepth(x, y); }
 vec3 gridNormal(int x, int y) { return gridTileNormal(x, y); }

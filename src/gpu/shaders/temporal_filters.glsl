@@ -19,6 +19,8 @@
 #ifndef OBSCURA_GPU_TEMPORAL_FILTERS_GLSL
 #define OBSCURA_GPU_TEMPORAL_FILTERS_GLSL
 
+#include "obscura/reconstruct_window.h"
+
 // ---- obscura/math.h ----
 float dot3(vec3 a, vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 vec3 normalize3(vec3 a) {
@@ -44,7 +46,8 @@ const bool kGridVector = kGridChannels >= 3;
 const int kGridVectorFirst = kGridChannels - 3;
 
 // The reconstruction of grid pixel (x, y) of a w x h grid, channel by channel in result[0..kGridChannels).
-// windowPhase -1 gathers the 5x5 window, 0..3 the 4x4 window of that phase (ssao::reconstructInterleaved);
+// windowPhase -1 gathers the 5x5 window, 0..3 the 4x4 window of that phase, 4..7 the 2x2 one
+// (obscura/reconstruct_window.h, ssao::reconstructInterleaved);
 // the callers pass a specialization constant, so the loops' bounds are known when the pipeline is made.
 void reconstructInterleaved(int x, int y, int w, int h, float depthSigma, int windowPhase, out float result[4]) {
     for (int c = 0; c < 4; ++c) result[c] = c < kGridChannels ? gridValue(x, y, c) : 0.0;  // Image out = values
@@ -53,9 +56,9 @@ void reconstructInterleaved(int x, int y, int w, int h, float depthSigma, int wi
     const vec3 n = gridNormal(x, y);
     const float sigma = depthSigma * d;
     const float invTwoSigma2 = 1.0 / (2.0 * sigma * sigma);
-    const bool window4 = windowPhase >= 0;
-    const int firstX = window4 ? -2 + (windowPhase & 1) : -2, lastX = window4 ? firstX + 3 : 2;
-    const int firstY = window4 ? -2 + ((windowPhase >> 1) & 1) : -2, lastY = window4 ? firstY + 3 : 2;
+    const int side = reconstructWindowSide(windowPhase);
+    const int firstX = reconstructWindowFirst(windowPhase, 0), lastX = firstX + side - 1;
+    const int firstY = reconstructWindowFirst(windowPhase, 1), lastY = firstY + side - 1;
     float sum[4] = float[4](0.0, 0.0, 0.0, 0.0), weightSum = 0.0;
     for (int dy = firstY; dy <= lastY; ++dy) {
         const int yy = y + dy;
@@ -65,8 +68,7 @@ void reconstructInterleaved(int x, int y, int w, int h, float depthSigma, int wi
             if (xx < 0 || xx >= w) continue;
             const float di = gridDepth(xx, yy);
             if (!finiteDepth(di)) continue;
-            const float spatial =
-                window4 ? 1.0 : (dx == -2 || dx == 2 ? 0.5 : 1.0) * (dy == -2 || dy == 2 ? 0.5 : 1.0);
+            const float spatial = reconstructWindowWeight(windowPhase, dx, dy);
             const float wt = tapWeight(spatial, d, n, di, gridNormal(xx, yy), invTwoSigma2, true);
             for (int c = 0; c < kGridChannels; ++c) sum[c] += wt * gridValue(xx, yy, c);
             weightSum += wt;

@@ -36,7 +36,8 @@ OBSCURA_CONST int kGtaoSpecGridStep = 0;
 // constant_id of the channel count of values and output: 1 (visibility) or 3 (bent normals, renormalised).
 OBSCURA_CONST int kReconstructSpecChannels = 0;
 // constant_id of the window (GtaoTemporalSettings::alternatingWindow): -1 (the default) the 5x5 window; 0..3
-// the 4x4 window of that phase, ssao::reconstructWindowPhase(settings, frameIndex): one pipeline per phase.
+// the 4x4 window of that phase, 4..7 the 2x2 one (obscura/reconstruct_window.h),
+// ssao::reconstructWindowPhase(settings, frameIndex): one pipeline per phase.
 OBSCURA_CONST int kReconstructSpecWindowPhase = 1;
 struct ReconstructConstants {
     int width;         // grid size, px
@@ -115,7 +116,7 @@ OBSCURA_CONST int kTemporalSpecDepthCopy = 4;
 // kUpsampleSpecPackedLow when packed) and BentViewOut to full resolution.
 OBSCURA_CONST int kTemporalSpecHistoryStep = 5;
 // constant_id of the reconstruction's window where this pass reconstructs (grid step = history step), as
-// kReconstructSpecWindowPhase: -1 the 5x5 window, 0..3 the 4x4 window of that phase.
+// kReconstructSpecWindowPhase: -1 the 5x5 window, 0..3 the 4x4 window of that phase, 4..7 the 2x2 one.
 OBSCURA_CONST int kTemporalSpecWindowPhase = 6;
 // The previous camera's size, and so its aspect, are the current one's: the frame rejects a size change.
 // 128 bytes, Vulkan's guaranteed push-constant size (lavapipe's too).
