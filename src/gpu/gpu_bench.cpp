@@ -27,9 +27,10 @@ namespace obscura::gpu {
 
 namespace {
 
-// One input G-buffer on the device.
+// One input G-buffer on the device; packedNormal, its normals as octahedral words, only with
+// GpuBenchSettings::packedNormals.
 struct ResidentInput {
-    Buffer depth, normal;
+    Buffer depth, normal, packedNormal;
     Camera camera;
 };
 
@@ -220,8 +221,8 @@ CaseSetup temporalCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s
     t.gridHistory = gridHistory;
     t.alternatingWindow = temporal && s.alternatingWindow;  // the spatial case has no history to average
     t.alternatingWindowSize = s.alternatingWindowSize;
-    auto passes = std::make_shared<GtaoTemporalPasses>(c, settings, t, w, h,
-                                                       GtaoTemporalVariant{s.bentNormals, s.callerKeepsDepth});
+    auto passes = std::make_shared<GtaoTemporalPasses>(
+        c, settings, t, w, h, GtaoTemporalVariant{s.bentNormals, s.callerKeepsDepth, s.packedNormals});
     CaseSetup setup;
     setup.description = std::string(temporal ? "spatio-temporal" : "spatial") + " GTAO" +
                         (half ? " at half resolution" : "") + " (" + slicesText(settings) +
@@ -233,14 +234,17 @@ CaseSetup temporalCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s
                         (temporal ? (s.packedHistory ? " + reprojected packed history" : " + reprojected history") : "") +
                         (gridHistory ? " on the grid + depth-aware upsample" : "") +
                         (s.bentNormals ? "" : ", visibility only") +
-                        (temporal && s.callerKeepsDepth ? ", previous depth kept by the caller" : "");
+                        (temporal && s.callerKeepsDepth ? ", previous depth kept by the caller" : "") +
+                        (s.packedNormals ? ", octahedral normals" : "");
     setup.bytes = double(passes->bytesPerFrame());
     setup.keepAlive = {passes};
     // The previous frame's depth: the rotating inputs stay resident, so it is still there (callerKeepsDepth).
     auto previousDepth = std::make_shared<const Buffer*>(nullptr);
-    setup.record = [passes, previousDepth](VkCommandBuffer cmd, const ResidentInput& in, int index,
-                                           const std::function<void(const char*)>& mark) {
-        passes->record(cmd, {in.depth, in.normal, in.camera, index, *previousDepth}, mark);
+    const bool packedNormals = s.packedNormals;
+    setup.record = [passes, previousDepth, packedNormals](VkCommandBuffer cmd, const ResidentInput& in, int index,
+                                                          const std::function<void(const char*)>& mark) {
+        passes->record(cmd, {in.depth, packedNormals ? in.packedNormal : in.normal, in.camera, index, *previousDepth},
+                       mark);
         *previousDepth = &in.depth;
     };
     return setup;
@@ -313,8 +317,13 @@ GpuBenchCase benchGpuCase(Context& context, const std::string& name, const std::
     std::vector<ResidentInput> resident;
     for (const GBuffer& g : inputs) {
         const std::size_t px = g.depth.pixelCount();
+        Buffer packed;
+        if (settings.packedNormals) {
+            const std::vector<std::uint32_t> words = packNormals(g.normal);
+            packed = upload(c, words.data(), words.size() * sizeof(std::uint32_t));
+        }
         resident.push_back({upload(c, g.depth.pixels.data(), px * sizeof(float)),
-                            upload(c, g.normal.pixels.data(), 3 * px * sizeof(float)), g.camera});
+                            upload(c, g.normal.pixels.data(), 3 * px * sizeof(float)), std::move(packed), g.camera});
     }
     const CaseSetup setup = name == "alchemy" || name == "alchemy-fused"
                                 ? alchemyCase(c, w, h, settings, inputs[0].camera, name == "alchemy-fused")

@@ -26,13 +26,14 @@ static_assert((GTAO_MIP_WORKGROUP >> (GTAO_MAX_MIP_LEVELS - 1)) >= 1,
               "gtao_mips.comp makes every level in one workgroup's tile: the top level needs a texel of it");
 
 void recordGtao(Context::Impl& c, VkCommandBuffer cmd, const GtaoBuffers& b, const ssao::GtaoConstants& k,
-                int gridStep, bool bentNormal) {
+                int gridStep, bool bentNormal, bool packedNormals) {
     assert(gridStep == 1 || gridStep == 2);
     ComputePipeline& pipeline =
         c.pipeline("gtao", shaders::gtao, std::vector<BindingKind>(kGtaoBindingCount, BindingKind::StorageBuffer),
                    kGtaoPushConstantBytes, kGtaoWorkgroupX, kGtaoWorkgroupY,
-                   // kGtaoSpecGridStep, BentNormal, then the constants' modes (Sampling ... BeyondRadius).
-                   {gridStep, bentNormal ? 1 : 0, k.sampling, k.weighting, k.thicknessMode, k.beyondRadius});
+                   // kGtaoSpecGridStep, BentNormal, the constants' modes (Sampling ... BeyondRadius), PackedNormals.
+                   {gridStep, bentNormal ? 1 : 0, k.sampling, k.weighting, k.thicknessMode, k.beyondRadius,
+                    packedNormals ? 1 : 0});
     // In binding order: kGtaoBindingDepth, Normal, Visibility, BentNormal, DepthMips.
     pipeline.dispatchGrid(cmd, {&b.depth, &b.normal, &b.visibility, &b.bentNormal, &b.depthMips}, &k, sizeof k,
                           (k.width + gridStep - 1) / gridStep, (k.height + gridStep - 1) / gridStep);

@@ -35,9 +35,10 @@ void recordGtaoDepthMips(Context::Impl& context, VkCommandBuffer cmd, const Buff
 // the whole image; 2: the half-resolution grid of ssao::GtaoTemporal, see kGtaoSpecGridStep). The inputs
 // must be visible to compute shaders (the caller's barrier); the buffers were checked by
 // ssao::checkGtaoBuffers. Without bentNormal the pass writes visibility alone (kGtaoSpecBentNormal 0) and
-// does not touch buffers.bentNormal, which may be any buffer.
+// does not touch buffers.bentNormal, which may be any buffer. With packedNormals buffers.normal holds one
+// octahedral word per pixel (kGtaoSpecPackedNormals 1, ssao::packOctahedral) instead of 3 floats.
 void recordGtao(Context::Impl& context, VkCommandBuffer cmd, const GtaoBuffers& buffers, const ssao::GtaoConstants& k,
-                int gridStep = 1, bool bentNormal = true);
+                int gridStep = 1, bool bentNormal = true, bool packedNormals = false);
 
 // The bent-normal output of a pass over `pixels` pixels: 3 floats each, or without bentNormal a 4-float
 // buffer that only fills the binding (the pass does not touch it; Vulkan has no empty buffers).

@@ -63,13 +63,14 @@ GtaoTemporalConstants gtaoTemporalConstants(const ssao::GtaoTemporalSettings& t,
 }
 
 void recordReconstruct(Context::Impl& c, VkCommandBuffer cmd, const ReconstructBuffers& b,
-                       const ReconstructConstants& k, int channels, int windowPhase) {
+                       const ReconstructConstants& k, int channels, int windowPhase, bool packedNormals) {
     assert(channels == 1 || channels == 3);
     assert(windowPhase >= -1 && windowPhase <= 7);
     ComputePipeline& pipeline =
         c.pipeline("reconstruct_interleaved", shaders::reconstruct_interleaved,
                    storageBuffers(kReconstructBindingCount), kReconstructPushConstantBytes, kTemporalWorkgroupX,
-                   kTemporalWorkgroupY, {channels, windowPhase});  // kReconstructSpecChannels, WindowPhase
+                   kTemporalWorkgroupY, {channels, windowPhase, packedNormals ? 1 : 0});
+    // (kReconstructSpecChannels, WindowPhase, PackedNormals)
     // In binding order: kReconstructBindingValues, Depth, Normal, Output.
     pipeline.dispatchGrid(cmd, {&b.values, &b.depth, &b.normal, &b.output}, &k, sizeof k, k.width, k.height);
 }
@@ -152,7 +153,8 @@ void GtaoTemporalPasses::record(VkCommandBuffer cmd, const GtaoTemporalFrameInpu
         stage("mips");
         computeBarrier(cmd);  // the GTAO pass reads the chain
     }
-    recordGtao(c, cmd, {in.depth, in.normal, rawVisibility, rawBent, depthMips_}, k, step_, variant_.bentNormals);
+    recordGtao(c, cmd, {in.depth, in.normal, rawVisibility, rawBent, depthMips_}, k, step_, variant_.bentNormals,
+               variant_.packedNormals);
     stage("gtao");
     computeBarrier(cmd);  // the next stage reads the raw values
 
@@ -165,8 +167,10 @@ void GtaoTemporalPasses::record(VkCommandBuffer cmd, const GtaoTemporalFrameInpu
     if (step_ == 2 && !gridHistory_) {
         const ReconstructConstants rk =
             reconstructConstants(gridWidth_, gridHeight_, width_, step_, temporal_.depthSigma);
-        recordReconstruct(c, cmd, {rawVisibility, in.depth, in.normal, visibility_}, rk, 1, phase);
-        if (variant_.bentNormals) recordReconstruct(c, cmd, {rawBent, in.depth, in.normal, bent_}, rk, 3, phase);
+        const bool packed = variant_.packedNormals;
+        recordReconstruct(c, cmd, {rawVisibility, in.depth, in.normal, visibility_}, rk, 1, phase, packed);
+        if (variant_.bentNormals)
+            recordReconstruct(c, cmd, {rawBent, in.depth, in.normal, bent_}, rk, 3, phase, packed);
         stage("denoise");
         computeBarrier(cmd);  // the accumulation reads the reconstructed values
         grid[0] = &visibility_;
@@ -183,9 +187,10 @@ void GtaoTemporalPasses::record(VkCommandBuffer cmd, const GtaoTemporalFrameInpu
                    kTemporalPushConstantBytes, kTemporalWorkgroupX, kTemporalWorkgroupY,
                    {step_, std::bit_cast<std::int32_t>(temporal_.depthSigma), variant_.bentNormals ? 1 : 0,
                     temporal_.packedHistory ? 1 : 0, variant_.callerKeepsDepth ? 0 : 1, gridHistory_ ? 2 : 1,
-                    step_ == 2 && !gridHistory_ ? -1 : phase});
+                    step_ == 2 && !gridHistory_ ? -1 : phase, variant_.packedNormals ? 1 : 0});
     // (kTemporalSpecGridStep, DepthSigma, BentNormal, PackedHistory, DepthCopy, HistoryStep, WindowPhase: the
-    // window where this pass reconstructs, else -1, so that the upsampling variant is one pipeline.) The
+    // window where this pass reconstructs, else -1, so that the upsampling variant is one pipeline;
+    // PackedNormals.) The
     // previous depth is the history's copy, or the caller's buffer of the last frame, which unused_ stands for
     // on a first frame.
     const Buffer& previousDepth = !variant_.callerKeepsDepth ? previous.depth
@@ -219,18 +224,39 @@ void GtaoTemporalPasses::record(VkCommandBuffer cmd, const GtaoTemporalFrameInpu
     ++recorded_;
 }
 
+std::vector<std::uint32_t> packNormals(const Image& normal) {
+    assert(normal.channels == 3);
+    std::vector<std::uint32_t> words(std::size_t(normal.width) * std::size_t(normal.height));
+    for (std::size_t i = 0; i < words.size(); ++i)
+        words[i] = ssao::packOctahedral({normal.pixels[3 * i], normal.pixels[3 * i + 1], normal.pixels[3 * i + 2]});
+    return words;
+}
+
+Image unpackNormals(const std::vector<std::uint32_t>& words, int width, int height) {
+    assert(words.size() == std::size_t(width) * std::size_t(height));
+    Image normal(width, height, 3);
+    for (std::size_t i = 0; i < words.size(); ++i) {
+        const Vec3 n = ssao::unpackOctahedral(words[i]);
+        normal.pixels[3 * i] = n.x;
+        normal.pixels[3 * i + 1] = n.y;
+        normal.pixels[3 * i + 2] = n.z;
+    }
+    return normal;
+}
+
 std::size_t GtaoTemporalPasses::bytesPerFrame() const {
     const std::size_t f = sizeof(float);
     const std::size_t pixels = std::size_t(width_) * std::size_t(height_);
     const std::size_t grid = std::size_t(gridWidth_) * std::size_t(gridHeight_);
     const std::size_t b = variant_.bentNormals ? 3 : 0;  // floats of a bent normal
+    const std::size_t n = variant_.packedNormals ? 1 : 3;  // words of an input normal
     // GTAO: the search reads the whole depth plane, the normals of the grid pixels; writes 1 + b per grid pixel.
-    std::size_t bytes = f * (pixels + 3 * grid + (1 + b) * grid);
+    std::size_t bytes = f * (pixels + n * grid + (1 + b) * grid);
     // Mip sampling: the chain's pass reads depth and writes the chain, which the GTAO pass reads.
     const std::size_t chain = gtaoDepthMipsFloats(width_, height_, ssao::gtaoDepthMipLevels(settings_));
     if (chain > 0) bytes += f * (pixels + 2 * chain);
     // Half resolution: the reconstruction, 1 and b channels: values, guide depth and normals in, values out.
-    if (step_ == 2 && !gridHistory_) bytes += f * grid * ((1 + 1 + 3 + 1) + (b > 0 ? b + 1 + 3 + b : 0));
+    if (step_ == 2 && !gridHistory_) bytes += f * grid * ((1 + 1 + n + 1) + (b > 0 ? b + 1 + n + b : 0));
     // Accumulation: the grid's 1 + b values (its depth and normals are those of the full planes at full
     // resolution, and at half resolution the upsampling reads only the depth: 1 more per grid pixel), depth,
     // normals and the history planes in; the next history planes and the view bent normals out. The
@@ -244,12 +270,12 @@ std::size_t GtaoTemporalPasses::bytesPerFrame() const {
         // history and the grid's view bent normals out. Then the upsampling, one dispatch per plane: the grid's
         // accumulated visibility (and b bent-normal channels) with its depth and the full depth in; 1 (and b)
         // per pixel out.
-        bytes += f * grid * ((1 + b) + (1 + 3) + history + written + b);
+        bytes += f * grid * ((1 + b) + (1 + n) + history + written + b);
         bytes += f * (grid * (1 + 1) + pixels * (1 + 1));
         if (b > 0) bytes += f * (grid * (b + 1) + pixels * (1 + b));
         return bytes;
     }
-    bytes += f * (grid * (1 + b + (step_ == 2 ? 1 : 0)) + pixels * ((1 + 3) + history + written + b));
+    bytes += f * (grid * (1 + b + (step_ == 2 ? 1 : 0)) + pixels * ((1 + n) + history + written + b));
     return bytes;
 }
 

@@ -12,7 +12,9 @@
 
 #include <cassert>
 #include <cstddef>
+#include <cstdint>
 #include <functional>
+#include <vector>
 
 namespace obscura::gpu {
 
@@ -30,9 +32,10 @@ struct ReconstructBuffers {
     const Buffer& output;
 };
 // Records one dispatch for `channels` 1 or 3 and the window of ssao::reconstructInterleaved's windowPhase
-// (-1: 5x5); the inputs must be visible to compute shaders.
+// (-1: 5x5); the inputs must be visible to compute shaders. packedNormals: the guide normals are octahedral
+// words (kReconstructSpecPackedNormals).
 void recordReconstruct(Context::Impl& context, VkCommandBuffer cmd, const ReconstructBuffers& buffers,
-                       const ReconstructConstants& k, int channels, int windowPhase = -1);
+                       const ReconstructConstants& k, int channels, int windowPhase = -1, bool packedNormals = false);
 
 // Storage buffers of upsample_depth_aware.comp.
 struct UpsampleBuffers {
@@ -48,7 +51,7 @@ void recordUpsample(Context::Impl& context, VkCommandBuffer cmd, const UpsampleB
 // One frame's inputs, resident on the device and visible to compute shaders (the caller's barrier).
 struct GtaoTemporalFrameInputs {
     const Buffer& depth;   // width * height linear depths, +inf for sky
-    const Buffer& normal;  // width * height * 3 view normals
+    const Buffer& normal;  // width * height * 3 view normals (GtaoTemporalVariant::packedNormals: width * height words)
     Camera camera;         // of the passes' size
     int frameIndex;        // selects the rotation (ssao::gtaoConstants' frameIndex) and, with alternatingWindow,
                            // the reconstruction's window (ssao::reconstructWindowPhase): keep it counting
@@ -65,7 +68,16 @@ struct GtaoTemporalVariant {
     // true: the history keeps no copy of depth (kTemporalSpecDepthCopy 0); each frame after the first reads
     // the previous frame's depth buffer from GtaoTemporalFrameInputs::previousDepth.
     bool callerKeepsDepth = false;
+    // true: GtaoTemporalFrameInputs::normal holds one octahedral word per pixel (ssao::packOctahedral, as
+    // packNormals makes them) instead of 3 floats (kGtaoSpecPackedNormals, kReconstructSpecPackedNormals and
+    // kTemporalSpecPackedNormals 1): the frame of those normals decoded (ssao::unpackOctahedral).
+    bool packedNormals = false;
 };
+
+// The view normals of `normal` (3 channels) as one octahedral word per pixel, for packedNormals; and the
+// normals a pass reading those words sees, for a CPU reference of that frame.
+std::vector<std::uint32_t> packNormals(const Image& normal);
+Image unpackNormals(const std::vector<std::uint32_t>& words, int width, int height);
 
 // The resident buffers of ssao::GtaoTemporal for one size: the frame's intermediates and two sets of history
 // (depth, world normals, visibility, world bent normals, history length), written in turn: a frame reads the

@@ -73,6 +73,10 @@ protected:
         EXPECT_EQ(b["cases"].size(), cases);
         return {a, b};
     }
+    // The bytes per frame of case i that the flag of benchWithout saved.
+    static double bytesSaved(const nlohmann::json& without, const nlohmann::json& with, int i) {
+        return without["cases"][i]["bytes_per_frame"].get<double>() - with["cases"][i]["bytes_per_frame"].get<double>();
+    }
     // `render ARGS` on the GPU without and with FLAG, a way of dispatching that must not change the result: the
     // summary with it says `summary`, and the frames and the AO of both agree, to the bit on lavapipe (1e-6
     // elsewhere).
@@ -454,9 +458,7 @@ TEST_F(GpuCommands, BenchGpuBlurTiled) {
         EXPECT_EQ(a["cases"][i]["description"].get<std::string>().find("tiled"), std::string::npos);
         // One dispatch of the blur's two moves depth + AO in and AO out (4 + 4 + 4 bytes per pixel it blurs).
         const double blurred = name == "gtao-half" ? 20.0 * 12.0 : 40.0 * 24.0;
-        EXPECT_DOUBLE_EQ(a["cases"][i]["bytes_per_frame"].get<double>() - b["cases"][i]["bytes_per_frame"].get<double>(),
-                         applies ? blurred * 12.0 : 0.0)
-            << name;
+        EXPECT_DOUBLE_EQ(bytesSaved(a, b, i), applies ? blurred * 12.0 : 0.0) << name;
         std::set<std::string> passes;
         for (const auto& p : b["cases"][i]["passes"]) passes.insert(p["name"].get<std::string>());
         EXPECT_EQ(passes.count(applies ? "blur" : "blur-columns"), 1u) << name;
@@ -494,6 +496,26 @@ TEST_F(GpuCommands, BenchGpuAlternatingWindow) {
         << c["cases"][0]["description"];
     expectFailure("bench --gpu --alternating-window-size 2", {"--alternating-window-size", "--alternating-window"});
     expectFailure("bench --gpu --alternating-window --alternating-window-size 3", {"--alternating-window-size"});
+}
+
+// --packed-normals reaches the spatio-temporal cases (their description says so and their bytes fall by 8
+// per normal read) and no other. That the words reach the shaders is
+// GpuGtaoTemporal.PackedNormalsGiveTheFrameOfTheirDecodedNormals's to check.
+TEST_F(GpuCommands, BenchGpuPackedNormals) {
+    const auto [a, b] = benchWithout("bench --gpu --sizes 40x24 --frames 2 --warmup 0 --inputs 2 --json "
+                                     "--visibility-only --cases gtao,gtao-spatial,gtao-temporal-grid",
+                                     "--packed-normals", "packed_normals", 3);
+    if (HasFailure()) return;
+    for (int i = 0; i < 3; ++i) {
+        const std::string name = b["cases"][i]["case"];
+        const std::string description = b["cases"][i]["description"];
+        const bool applies = name != "gtao";
+        EXPECT_EQ(description.find("octahedral normals") != std::string::npos, applies) << description;
+        // gtao-spatial reads them in its GTAO pass and its resolve (960 pixels each), the grid's case in its
+        // GTAO pass and its accumulation (240 grid pixels each).
+        EXPECT_DOUBLE_EQ(bytesSaved(a, b, i), name == "gtao" ? 0.0 : name == "gtao-spatial" ? 8.0 * 2 * 960 : 8.0 * 2 * 240)
+            << name;
+    }
 }
 
 // --pipeline-stats and --pipeline-internals: what the driver says of each pipeline the cases compiled, or,

@@ -159,6 +159,14 @@ std::vector<std::uint32_t> downloadWords(Context::Impl& c, const Buffer& b, std:
     return v;
 }
 
+// The side-by-side tests' input: 4 frames of the demo path at an odd size, the medium preset.
+struct DemoPath {
+    static constexpr int w = 97, h = 61;
+    std::vector<GBuffer> gbuffers = path("demo", w, h, 4);
+    ssao::GtaoSettings settings = preset(ssao::GtaoQuality::Medium);
+    std::size_t pixels = std::size_t(w) * std::size_t(h);
+};
+
 // Records the frames through two pass objects, both in one submission per frame, and calls compare(f) once
 // frame f has run. Every frame's depth stays uploaded and each frame is given the previous one's, which a
 // pass object with callerKeepsDepth reads (the others ignore it).
@@ -380,6 +388,64 @@ TEST(GpuGtaoTemporal, RecordsFramesOnResidentBuffers) {
     EXPECT_EQ(testing::validationReport(context), "");
 }
 
+// Packed normals (GtaoTemporalVariant::packedNormals, one octahedral word per pixel): the frame is, bit for
+// bit, the frame of the words' decoded normals (unpackNormals) read as floats, in each mode, with bent normals
+// and with the alternating windows, over 4 frames of the path; so it is the CPU reference's frame of those
+// normals to the bounds the tests above hold the float path to. The decoded normals are within 1e-4 of the
+// G-buffer's, and each normal read moves 2 words fewer.
+TEST(GpuGtaoTemporal, PackedNormalsGiveTheFrameOfTheirDecodedNormals) {
+    OBSCURA_GPU_CONTEXT(context);
+    Context::Impl& c = context.impl();
+    const DemoPath in;
+    const auto& [gbuffers, settings, pixels] = in;
+    const int w = DemoPath::w, h = DemoPath::h;
+    for (const auto& [half, grid, window] : {std::tuple{false, false, 0}, std::tuple{true, false, 4},
+                                             std::tuple{true, true, 2}}) {
+        ssao::GtaoTemporalSettings t = mode(true, half, grid);
+        t.alternatingWindow = window > 0;
+        t.alternatingWindowSize = window == 2 ? 2 : 4;
+        GtaoTemporalPasses floats(c, settings, t, w, h);
+        GtaoTemporalPasses words(c, settings, t, w, h, {.packedNormals = true});
+        int differing = 0;
+        double normalError = 0;
+        for (std::size_t f = 0; f < gbuffers.size(); ++f) {
+            const GBuffer& g = gbuffers[f];
+            const std::vector<std::uint32_t> packed = packNormals(g.normal);
+            const Image decoded = unpackNormals(packed, w, h);
+            for (std::size_t i = 0; i < pixels; ++i)
+                if (g.depth.pixels[i] < 1e30f)
+                    for (int k = 0; k < 3; ++k)
+                        normalError = std::max(normalError, double(std::fabs(decoded.pixels[3 * i + k] -
+                                                                             g.normal.pixels[3 * i + k])));
+            const Buffer depth = uploadChannels(c, g.depth, 1);
+            const Buffer wordPlane = upload(c, packed.data(), packed.size() * sizeof(std::uint32_t));
+            const Buffer floatPlane = uploadChannels(c, decoded, 3);
+            c.submit([&](VkCommandBuffer cmd) {
+                floats.record(cmd, {depth, floatPlane, g.camera, int(f)});
+                words.record(cmd, {depth, wordPlane, g.camera, int(f)});
+            });
+            for (const auto& [a, b, count] :
+                 {std::tuple{&floats.visibility(), &words.visibility(), pixels},
+                  std::tuple{&floats.bentNormal(), &words.bentNormal(), 3 * pixels}}) {
+                const std::vector<std::uint32_t> va = downloadWords(c, *a, count), vb = downloadWords(c, *b, count);
+                for (std::size_t i = 0; i < count; ++i) differing += va[i] != vb[i];
+            }
+        }
+        const std::string name = grid ? "grid history" : half ? "half resolution" : "full resolution";
+        EXPECT_EQ(differing, 0) << name;
+        EXPECT_LE(normalError, 1e-4) << name;
+        EXPECT_GT(normalError, 0.0) << name;  // the words are not the floats: the test sees the decoding
+        // 8 bytes fewer per normal read: the GTAO pass's per grid pixel, the reconstruction's pass's per grid
+        // pixel and channel set (half resolution, history at full resolution), the accumulation's per element
+        // of its lattice.
+        const std::size_t gridPixels = std::size_t((w + 1) / 2) * std::size_t((h + 1) / 2);
+        const std::size_t evaluated = half ? gridPixels : pixels;
+        const std::size_t reads = evaluated + (half && !grid ? 2 * gridPixels : 0) + (grid ? gridPixels : pixels);
+        EXPECT_EQ(floats.bytesPerFrame() - words.bytesPerFrame(), 8 * reads) << name;
+    }
+    EXPECT_EQ(testing::validationReport(context), "");
+}
+
 // Visibility alone (no bent normal computed, filtered or accumulated, kGtaoSpecBentNormal and
 // kTemporalSpecBentNormal 0) gives the full frame's visibility and history length bit for bit: the
 // bent normal feeds neither. Four frames of the path, so the history is read and written, at both
@@ -387,10 +453,9 @@ TEST(GpuGtaoTemporal, RecordsFramesOnResidentBuffers) {
 TEST(GpuGtaoTemporal, VisibilityOnlyGivesTheSameVisibility) {
     OBSCURA_GPU_CONTEXT(context);
     Context::Impl& c = context.impl();
-    const int w = 97, h = 61;
-    const std::vector<GBuffer> gbuffers = path("demo", w, h, 4);
-    const ssao::GtaoSettings settings = preset(ssao::GtaoQuality::Medium);
-    const std::size_t pixels = std::size_t(w) * std::size_t(h);
+    const DemoPath in;
+    const auto& [gbuffers, settings, pixels] = in;
+    const int w = DemoPath::w, h = DemoPath::h;
     for (const auto& [half, packed, grid] : {std::tuple{false, false, false}, std::tuple{true, false, false},
                                              std::tuple{false, true, false}, std::tuple{true, false, true},
                                              std::tuple{true, true, true}}) {

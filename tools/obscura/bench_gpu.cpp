@@ -58,6 +58,7 @@ struct GpuBenchOptions {
     bool keepPreviousDepth = false;
     bool alternatingWindow = false;
     int alternatingWindowSize = 4;
+    bool packedNormals = false;
     std::string sampling = "planar";
     float mipRatio = 7.0f;
     float radius = 1.0f;
@@ -110,6 +111,9 @@ void GpuBenchOptions::add(CLI::App& bench) {
     bench.add_flag("--keep-previous-depth", keepPreviousDepth,
                    "--gpu: the temporal cases read the previous frame's depth buffer instead of a copy in the history, "
                    "as an engine that keeps last frame's depth (for TAA, say) can");
+    bench.add_flag("--packed-normals", packedNormals,
+                   "--gpu: the spatio-temporal cases read the G-buffer's normals as one octahedral word per pixel (two "
+                   "snorm16, as engines keep them) instead of 3 floats; the other cases read the floats");
     bench.add_flag("--alternating-window", alternatingWindow,
                    "--gpu: the temporal cases reconstruct with a 4x4 window (16 taps instead of 25) whose place "
                    "alternates over 4 frames, which the history averages to the 5x5 window's weights");
@@ -239,6 +243,7 @@ void runGpuBench(const GpuBenchOptions& o) {
     settings.bentNormals = !o.visibilityOnly;
     settings.packedHistory = o.packedHistory;
     settings.callerKeepsDepth = o.keepPreviousDepth;
+    settings.packedNormals = o.packedNormals;
     settings.alternatingWindow = o.alternatingWindow;
     settings.alternatingWindowSize = o.alternatingWindowSize;
     settings.sampling = gtaoSampling(o.sampling);
@@ -309,6 +314,7 @@ void runGpuBench(const GpuBenchOptions& o) {
     report["bent_normals"] = settings.bentNormals;
     report["packed_history"] = settings.packedHistory;
     report["keep_previous_depth"] = settings.callerKeepsDepth;
+    report["packed_normals"] = settings.packedNormals;
     report["alternating_window"] = settings.alternatingWindow;
     report["alternating_window_size"] = settings.alternatingWindow ? settings.alternatingWindowSize : 0;
     report["gtao_sampling"] = o.sampling;
@@ -328,6 +334,7 @@ void runGpuBench(const GpuBenchOptions& o) {
         if (o.visibilityOnly) variants += ", GTAO visibility only";
         if (o.packedHistory) variants += ", packed history";
         if (o.keepPreviousDepth) variants += ", previous depth kept";
+        if (o.packedNormals) variants += ", octahedral normals";
         if (o.alternatingWindow)
             variants += o.alternatingWindowSize == 2 ? ", alternating 2x2 windows" : ", alternating 4x4 windows";
         ssao::GtaoSettings sampling;

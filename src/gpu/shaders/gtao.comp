@@ -52,10 +52,11 @@ layout(constant_id = kGtaoSpecSampling) const int kSampling = GTAO_SAMPLING_PLAN
 layout(constant_id = kGtaoSpecWeighting) const int kWeighting = GTAO_WEIGHTING_COSINE;          // k.weighting
 layout(constant_id = kGtaoSpecThicknessMode) const int kThicknessMode = GTAO_THICKNESS_NONE;    // k.thicknessMode
 layout(constant_id = kGtaoSpecBeyondRadius) const int kBeyondRadius = GTAO_BEYOND_COLUMN;       // k.beyondRadius
+layout(constant_id = kGtaoSpecPackedNormals) const int kPackedNormals = 0;
 
 layout(push_constant, std430) uniform Constants { GtaoConstants k; };
 layout(std430, binding = kGtaoBindingDepth) readonly buffer DepthPlane { float depthPlane[]; };
-layout(std430, binding = kGtaoBindingNormal) readonly buffer NormalPlane { float normalPlane[]; };
+layout(std430, binding = kGtaoBindingNormal) readonly buffer NormalPlane { uint normalWords[]; };
 layout(std430, binding = kGtaoBindingVisibility) writeonly buffer Visibility { float visibilityOut[]; };
 layout(std430, binding = kGtaoBindingBentNormal) writeonly buffer BentNormal { float bentNormalOut[]; };
 layout(std430, binding = kGtaoBindingDepthMips) readonly buffer DepthMips { float depthMips[]; };
@@ -106,6 +107,8 @@ void bentIntegrals(float t, float n, out float alongV, out float alongT) {
     alongV = signOf(t) * a;
     alongT = signOf(t) * b;
 }
+
+#include "normal_plane.glsl"
 
 vec3 viewPosition(float px, float py, float depth) {
     return vec3((px * k.viewFromPixelMulX + k.viewFromPixelAddX) * depth,
@@ -195,7 +198,7 @@ GtaoPixel gtaoPixel(int x, int y, int interleave) {
     if (!(depth < 1e30)) return result;
     const vec3 p = viewPosition(float(x) + 0.5, float(y) + 0.5, depth);
     const vec3 v = -p * inversesqrt(dot3(p, p));
-    const vec3 normal = vec3(normalPlane[3 * c], normalPlane[3 * c + 1], normalPlane[3 * c + 2]);
+    const vec3 normal = loadNormal(c);
     result.bentNormal = normal;
 
     const float screenRadius = min(k.radius * k.focalPixels / depth, k.maxRadiusPixels);

@@ -33,10 +33,11 @@ layout(constant_id = kTemporalSpecPackedHistory) const int kPackedHistory = 0;
 layout(constant_id = kTemporalSpecDepthCopy) const int kDepthCopy = 1;
 layout(constant_id = kTemporalSpecHistoryStep) const int kHistoryStep = 1;
 layout(constant_id = kTemporalSpecWindowPhase) const int kWindowPhase = -1;
+layout(constant_id = kTemporalSpecPackedNormals) const int kPackedNormals = 0;
 
 layout(push_constant, std430) uniform Constants { GtaoTemporalConstants k; };
 layout(std430, binding = kTemporalBindingDepth) readonly buffer DepthPlane { float depthPlane[]; };
-layout(std430, binding = kTemporalBindingNormal) readonly buffer NormalPlane { float normalPlane[]; };
+layout(std430, binding = kTemporalBindingNormal) readonly buffer NormalPlane { uint normalWords[]; };
 layout(std430, binding = kTemporalBindingGridVisibility) readonly buffer GridVisibility { float gridVisibility[]; };
 layout(std430, binding = kTemporalBindingGridBent) readonly buffer GridBent { float gridBent[]; };
 // The history planes hold 32-bit words: floats' bits, or with kPackedHistory the packed words of
@@ -74,10 +75,8 @@ uint pixelIndex(int x, int y) { return uint(y * kHistoryStep) * uint(k.width) + 
 // The grid's depth and normals are the G-buffer's at every kGridStep-th pixel (temporal_layouts.h).
 uint guide(int x, int y) { return uint(y * kGridStep) * uint(k.width) + uint(x * kGridStep); }
 float gridDepthAt(int x, int y) { return depthPlane[guide(x, y)]; }
-vec3 gridNormalAt(int x, int y) {
-    const uint i = 3 * guide(x, y);
-    return vec3(normalPlane[i], normalPlane[i + 1], normalPlane[i + 2]);
-}
+#include "normal_plane.glsl"
+vec3 gridNormalAt(int x, int y) { return loadNormal(guide(x, y)); }
 float gridValueAt(int x, int y, int c) {
     const uint i = uint(y) * uint(gridWidth()) + uint(x);
     return c == 0 ? gridVisibility[i] : gridBent[3 * i + uint(c - 1)];
@@ -165,7 +164,7 @@ void temporalPixel(int x, int y, vec3 bent, inout float visibility, inout vec3 n
     const uint pi = pixelIndex(x, y);
     const float depth = depthPlane[pi];
     if (!finiteDepth(depth)) return;  // g.isSky(px, py)
-    const vec3 viewNormal = vec3(normalPlane[3 * pi], normalPlane[3 * pi + 1], normalPlane[3 * pi + 2]);
+    const vec3 viewNormal = loadNormal(pi);
     const vec3 nWorld = normalize3(transformVector(k.worldFromView, viewNormal));
     normalWorld = nWorld;
     vec3 currentBent = normalize3(transformVector(k.worldFromView, bent));

@@ -93,7 +93,8 @@ OBSCURA_CONST int kAlchemyBlurPushConstantBytes = 128;  // 96 + 32; 128 is every
 // ---- gtao.comp (src/gpu/gtao_pass.cpp) ----
 // Storage buffers of set 0 (float arrays, std430).
 OBSCURA_CONST int kGtaoBindingDepth = 0;       // width * height linear depths, +inf for sky
-OBSCURA_CONST int kGtaoBindingNormal = 1;      // width * height * 3 view normals
+OBSCURA_CONST int kGtaoBindingNormal = 1;      // width * height * 3 view normals, or with kGtaoSpecPackedNormals 1
+                                               // width * height octahedral words (normal_plane.glsl)
 OBSCURA_CONST int kGtaoBindingVisibility = 2;  // width * height visibility, the pass's output
 OBSCURA_CONST int kGtaoBindingBentNormal = 3;  // width * height * 3 bent normals, the pass's output
 OBSCURA_CONST int kGtaoBindingDepthMips = 4;   // GTAO_SAMPLING_(PLANAR_)MIP: the coarse levels (gtao_mips.comp's);
@@ -115,6 +116,9 @@ OBSCURA_CONST int kGtaoSpecSampling = 2;
 OBSCURA_CONST int kGtaoSpecWeighting = 3;
 OBSCURA_CONST int kGtaoSpecThicknessMode = 4;
 OBSCURA_CONST int kGtaoSpecBeyondRadius = 5;
+// constant_id of the normals' layout: 0 (the default) 3 floats per pixel, 1 one octahedral word per pixel
+// (obscura/history_packing.h's packOctahedral; normal_plane.glsl).
+OBSCURA_CONST int kGtaoSpecPackedNormals = 6;
 // The push constants are one GtaoConstants (obscura/gtao_constants.h).
 OBSCURA_CONST int kGtaoPushConstantBytes = 104;
 // 16x4: a warp is 16 x 2 pixels. With the 4x4 interleave (the spatial and temporal variants) that holds each

@@ -15,19 +15,18 @@ layout(local_size_x = kTemporalWorkgroupX, local_size_y = kTemporalWorkgroupY, l
 
 layout(constant_id = kReconstructSpecChannels) const int kGridChannels = 1;
 layout(constant_id = kReconstructSpecWindowPhase) const int kWindowPhase = -1;
+layout(constant_id = kReconstructSpecPackedNormals) const int kPackedNormals = 0;
 
 layout(push_constant, std430) uniform Constants { ReconstructConstants k; };
 layout(std430, binding = kReconstructBindingValues) readonly buffer Values { float values[]; };
 layout(std430, binding = kReconstructBindingDepth) readonly buffer DepthPlane { float depthPlane[]; };
-layout(std430, binding = kReconstructBindingNormal) readonly buffer NormalPlane { float normalPlane[]; };
+layout(std430, binding = kReconstructBindingNormal) readonly buffer NormalPlane { uint normalWords[]; };
 layout(std430, binding = kReconstructBindingOutput) writeonly buffer Output { float outValues[]; };
 
 uint guide(int x, int y) { return uint(y * k.guideStep) * uint(k.guideWidth) + uint(x * k.guideStep); }
 float gridDepthAt(int x, int y) { return depthPlane[guide(x, y)]; }
-vec3 gridNormalAt(int x, int y) {
-    const uint i = 3 * guide(x, y);
-    return vec3(normalPlane[i], normalPlane[i + 1], normalPlane[i + 2]);
-}
+#include "normal_plane.glsl"
+vec3 gridNormalAt(int x, int y) { return loadNormal(guide(x, y)); }
 float gridValueAt(int x, int y, int c) {
     return values[(uint(y) * uint(k.width) + uint(x)) * uint(kGridChannels) + uint(c)];
 }

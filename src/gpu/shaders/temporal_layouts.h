@@ -39,6 +39,9 @@ OBSCURA_CONST int kReconstructSpecChannels = 0;
 // the 4x4 window of that phase, 4..7 the 2x2 one (obscura/reconstruct_window.h),
 // ssao::reconstructWindowPhase(settings, frameIndex): one pipeline per phase.
 OBSCURA_CONST int kReconstructSpecWindowPhase = 1;
+// constant_id of the guide normals' layout, as gtao.comp's kGtaoSpecPackedNormals (layouts.h): 0 3 floats per
+// element, 1 one octahedral word.
+OBSCURA_CONST int kReconstructSpecPackedNormals = 2;
 struct ReconstructConstants {
     int width;         // grid size, px
     int height;
@@ -52,7 +55,8 @@ struct ReconstructConstants {
 };
 OBSCURA_CONST int kReconstructBindingValues = 0;  // width * height * channels, the raw interleaved values
 OBSCURA_CONST int kReconstructBindingDepth = 1;   // guide linear depths, +inf for sky
-OBSCURA_CONST int kReconstructBindingNormal = 2;  // guide view normals, 3 floats per element
+OBSCURA_CONST int kReconstructBindingNormal = 2;  // guide view normals, 3 floats per element (or a word,
+                                                  // kReconstructSpecPackedNormals)
 OBSCURA_CONST int kReconstructBindingOutput = 3;  // width * height * channels
 OBSCURA_CONST int kReconstructBindingCount = 4;
 OBSCURA_CONST int kReconstructPushConstantBytes = 32;
@@ -118,6 +122,8 @@ OBSCURA_CONST int kTemporalSpecHistoryStep = 5;
 // constant_id of the reconstruction's window where this pass reconstructs (grid step = history step), as
 // kReconstructSpecWindowPhase: -1 the 5x5 window, 0..3 the 4x4 window of that phase, 4..7 the 2x2 one.
 OBSCURA_CONST int kTemporalSpecWindowPhase = 6;
+// constant_id of the normals' layout (kTemporalBindingNormal), as gtao.comp's kGtaoSpecPackedNormals.
+OBSCURA_CONST int kTemporalSpecPackedNormals = 7;
 // The previous camera's size, and so its aspect, are the current one's: the frame rejects a size change.
 // 128 bytes, Vulkan's guaranteed push-constant size (lavapipe's too).
 struct GtaoTemporalConstants {
@@ -139,7 +145,8 @@ struct GtaoTemporalConstants {
 };
 // Storage buffers (float arrays, std430). Inputs of the current frame:
 OBSCURA_CONST int kTemporalBindingDepth = 0;       // width * height linear depths, +inf for sky
-OBSCURA_CONST int kTemporalBindingNormal = 1;      // width * height * 3 view normals
+OBSCURA_CONST int kTemporalBindingNormal = 1;      // width * height * 3 view normals (or words,
+                                                   // kTemporalSpecPackedNormals)
 // The grid of ceil(width / step) x ceil(height / step) pixels the filter reads:
 OBSCURA_CONST int kTemporalBindingGridVisibility = 2;  // 1 float per grid pixel, visibility
 OBSCURA_CONST int kTemporalBindingGridBent = 3;        // 3 floats per grid pixel, view bent normals
