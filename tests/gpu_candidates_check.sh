@@ -97,7 +97,7 @@ grep -q "gone: $work/missing is not a folder" "$work/ab.err" || fail "$(cat "$wo
 # gpu-waiting: every part, each into its file, at a tiny size, with one round.
 "$src/scripts/gpu-waiting" --obscura "$tool" --candidates "$work/spv" --rounds 1 --small "$work/waiting" \
   -- --sizes 48x32 --frames 2 --warmup 0 --inputs 1 2>"$work/waiting.err" || fail "gpu-waiting: $(cat "$work/waiting.err")"
-for f in verify.txt grid-ab.txt grid-ab.json tiled-ab.txt tiled-ab.json pipelines.json internals; do
+for f in verify.txt grid-ab.txt grid-ab.json tiled-ab.txt tiled-ab.json normals-ab.txt normals-ab.json pipelines.json internals; do
   [ -e "$work/waiting/$f" ] || fail "gpu-waiting wrote no $f: $(ls "$work/waiting")"
 done
 if [ ${#patches[@]} -gt 0 ]; then
@@ -109,6 +109,7 @@ if [ ${#patches[@]} -gt 0 ]; then
   grep -q "^alchemy " "$work/waiting/candidates-ab.txt" || fail "candidates-ab.txt: $(cat "$work/waiting/candidates-ab.txt")"
 fi
 grep -q "^gtao-half " "$work/waiting/tiled-ab.txt" || fail "tiled-ab.txt: $(cat "$work/waiting/tiled-ab.txt")"
+grep -q "^alchemy " "$work/waiting/normals-ab.txt" || fail "normals-ab.txt: $(cat "$work/waiting/normals-ab.txt")"
 grep -q "^gtao-temporal-grid .* upsample " "$work/waiting/grid-ab.txt" || fail "grid-ab.txt: $(cat "$work/waiting/grid-ab.txt")"
 grep -q "planar-nearest-window2 ms.*planar-nearest-window2-packed-normals ms" "$work/waiting/grid-ab.txt" || fail "grid-ab.txt, 2x2 windows: $(cat "$work/waiting/grid-ab.txt")"
 grep -q "gpu-verify: ok\|max" "$work/waiting/verify.txt" || fail "verify.txt: $(cat "$work/waiting/verify.txt")"
@@ -119,6 +120,7 @@ if "$src/scripts/gpu-waiting" --obscura "$tool" --small "$work/w3" -- --sizes 16
 fi
 grep -q "grid history's timing FAILED" "$work/waiting.err" || fail "no failure named: $(cat "$work/waiting.err")"
 grep -q "tiled blur's timing FAILED" "$work/waiting.err" || fail "no failure named: $(cat "$work/waiting.err")"
+grep -q "packed normals' timing FAILED" "$work/waiting.err" || fail "no failure named: $(cat "$work/waiting.err")"
 for f in pipelines.json verify.txt; do [ -s "$work/w3/$f" ] || fail "after a failed part, no $f: $(ls "$work/w3")"; done
 if "$src/scripts/gpu-waiting" --obscura "$tool" --candidates "$work/missing" "$work/w2" 2>"$work/waiting.err"; then
   fail "gpu-waiting ran with a missing candidates folder"

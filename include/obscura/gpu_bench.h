@@ -52,9 +52,9 @@ struct GpuBenchSettings {
     int alternatingWindowSize = 4;  // ... of 4x4 or 2x2 taps (GtaoTemporalSettings::alternatingWindowSize)
     bool callerKeepsDepth = false;  // the temporal cases read the previous frame's input depth instead of a
                                     // copy in the history (GtaoTemporalVariant::callerKeepsDepth)
-    bool packedNormals = false;  // the spatio-temporal cases read the G-buffer's normals as one octahedral word
-                                 // per pixel, as an engine keeps them, instead of 3 floats
-                                 // (GtaoTemporalVariant::packedNormals)
+    bool packedNormals = false;  // every case reads the G-buffer's normals as one octahedral word per pixel, as
+                                 // an engine keeps them, instead of 3 floats (GtaoTemporalVariant::packedNormals
+                                 // and its likes)
     bool bentNormals = true;  // the GTAO cases compute, filter and accumulate bent normals; false: visibility
                               // only (kGtaoSpecBentNormal 0), as an engine without bent-normal lighting runs them
     ssao::GtaoSampling sampling = ssao::GtaoSampling::Planar;  // the GTAO cases' horizon samples (GtaoSettings)

@@ -44,7 +44,8 @@ static_assert(reconstructWindowFirst(3, 0) == -1 && reconstructWindowFirst(2, 1)
                   reconstructWindowFirst(0, 1) == -2 && reconstructWindowSide(3) == 4,
               "the 4x4 windows");
 static_assert(reconstructWindowFirst(4, 0) == -1 && reconstructWindowFirst(5, 0) == 0 &&
-                  reconstructWindowFirst(6, 1) == 0 && reconstructWindowFirst(5, 1) == -1 && reconstructWindowSide(7) == 2,
+                  reconstructWindowFirst(6, 1) == 0 && reconstructWindowFirst(5, 1) == -1 &&
+                  reconstructWindowSide(7) == 2,
               "the 2x2 windows, each holding the pixel itself");
 } // namespace obscura::ssao
 #endif

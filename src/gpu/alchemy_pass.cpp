@@ -30,8 +30,9 @@ std::vector<float> alchemySpiralOffsets(const ssao::AlchemyConstants& k) {
 }
 
 void recordAlchemy(Context::Impl& c, VkCommandBuffer cmd, const AlchemyBuffers& b, const ssao::AlchemyConstants& k) {
-    ComputePipeline& pipeline = c.pipeline("alchemy", shaders::alchemy, kAlchemyBindingCount, kAlchemyPushConstantBytes,
-                                           ssao::kAlchemyWorkgroupX, ssao::kAlchemyWorkgroupY);
+    ComputePipeline& pipeline = c.pipeline("alchemy", shaders::alchemy, storageBuffers(kAlchemyBindingCount), kAlchemyPushConstantBytes,
+                                           ssao::kAlchemyWorkgroupX, ssao::kAlchemyWorkgroupY,
+                                           {b.packedNormals ? 1 : 0});  // kAlchemySpecPackedNormals
     // In binding order: kAlchemyBindingDepth, Normal, Spiral, Output.
     pipeline.dispatchGrid(cmd, {&b.depth, &b.normal, &b.spiral, &b.output}, &k, sizeof k, k.width - 2 * k.guardBand,
                           k.height - 2 * k.guardBand);
@@ -42,8 +43,10 @@ void recordAlchemyBlurred(Context::Impl& c, VkCommandBuffer cmd, const AlchemyBl
                           const std::function<void(const char*)>& mark) {
     assert(f.constants.useNormal == 0 && f.constants.width == k.width - 2 * k.guardBand &&
            f.constants.height == k.height - 2 * k.guardBand);
-    ComputePipeline& pipeline = c.pipeline("alchemy_blur_row", shaders::alchemy_blur_row, kAlchemyBlurBindingCount,
-                                           kAlchemyBlurPushConstantBytes, kBilateralHorizontalTileX, 1);
+    ComputePipeline& pipeline =
+        c.pipeline("alchemy_blur_row", shaders::alchemy_blur_row, storageBuffers(kAlchemyBlurBindingCount),
+                   kAlchemyBlurPushConstantBytes, kBilateralHorizontalTileX, 1,
+                   {b.packedNormals ? 1 : 0});  // kAlchemySpecPackedNormals
     struct {
         ssao::AlchemyConstants alchemy;
         BilateralConstants blur;

@@ -19,6 +19,7 @@ struct AlchemyBuffers {
     const Buffer& normal;  // width * height * 3 view normals
     const Buffer& spiral;  // alchemySpiralOffsets(k)
     const Buffer& output;  // (width - 2 guardBand) * (height - 2 guardBand) obscurance
+    bool packedNormals = false;  // `normal` holds one octahedral word per pixel (kAlchemySpecPackedNormals 1)
 };
 
 // ssao::alchemySpiral(k)'s offsets concatenated; the shader finds (count, class) by alchemySpiralAt.
@@ -39,6 +40,7 @@ struct AlchemyBlurredBuffers {
     const Buffer& logSpatial;  // SeparableBilateral::logSpatial
     const Buffer& scratch;     // out width * out height floats: the rows' result
     const Buffer& output;      // out width * out height AO, blurred both ways
+    bool packedNormals = false;  // as AlchemyBuffers'
 };
 
 // Records the estimator fused with the blur's horizontal pass, a barrier, and the vertical pass: what

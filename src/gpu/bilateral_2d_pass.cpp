@@ -17,7 +17,7 @@ void recordBilateral2D(Context::Impl& c, VkCommandBuffer cmd, const Bilateral2DB
         c.pipeline("bilateral_2d", shaders::bilateral_2d,
                    std::vector<BindingKind>(kBilateralBindingCount, BindingKind::StorageBuffer),
                    kBilateralPushConstantBytes, kBilateral2DWorkgroupX, kBilateral2DWorkgroupY,
-                   {k.useNormal});  // kBilateralSpecUseNormal
+                   {k.useNormal, b.packedNormals ? 1 : 0});  // kBilateralSpecUseNormal, PackedNormals
     // In binding order: kBilateralBindingDepth, Normal, kBilateral2DBindingKernel, Input, Output.
     pipeline.dispatchGrid(cmd, {&b.depth, &b.normal, &b.kernel, &b.input, &b.output}, &k, sizeof k, k.width,
                           k.height);

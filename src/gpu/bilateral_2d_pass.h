@@ -20,6 +20,7 @@ struct Bilateral2DBuffers {
     const Buffer& kernel;  // ssao::gaussianHalfKernel(radius)
     const Buffer& input;   // width * height AO
     const Buffer& output;  // width * height AO
+    bool packedNormals = false;  // `normal` holds one octahedral word per pixel (kBilateralSpecPackedNormals 1)
 };
 
 // Records the dispatch; the inputs must be visible to compute shaders (the caller's barrier); the settings

@@ -42,7 +42,7 @@ void recordSeparableBilateralAxis(Context::Impl& c, VkCommandBuffer cmd, const S
         c.pipeline("bilateral_separable", shaders::bilateral_separable,
                    std::vector<BindingKind>(kBilateralBindingCount, BindingKind::StorageBuffer),
                    kBilateralPushConstantBytes, kBilateralWorkgroupX, kBilateralWorkgroupY,
-                   {f.constants.useNormal});  // kBilateralSpecUseNormal
+                   {f.constants.useNormal, b.packedNormals ? 1 : 0});  // kBilateralSpecUseNormal, PackedNormals
     BilateralConstants k = f.constants;
     k.axis = axis;
     // In binding order: kBilateralBindingDepth, Normal, LogSpatial, Input, Output.
@@ -60,16 +60,18 @@ void recordSeparableBilateral(Context::Impl& c, VkCommandBuffer cmd, const Separ
             c.pipeline("bilateral_tiled", shaders::bilateral_tiled,
                        std::vector<BindingKind>(kBilateralBindingCount, BindingKind::StorageBuffer),
                        kBilateralPushConstantBytes, kBilateralTiledWorkgroupX, kBilateralTiledWorkgroupY,
-                       {f.constants.useNormal});  // kBilateralSpecUseNormal
+                       {f.constants.useNormal, b.packedNormals ? 1 : 0});  // kBilateralSpecUseNormal, PackedNormals
         const std::uint32_t tilesX = std::uint32_t((f.constants.width + kBilateralTiledTile - 1) / kBilateralTiledTile);
         const std::uint32_t tilesY = std::uint32_t((f.constants.height + kBilateralTiledTile - 1) / kBilateralTiledTile);
         pipeline.dispatch(cmd, {&b.depth, &b.normal, &b.logSpatial, &b.input, &b.output}, &f.constants,
                           sizeof f.constants, tilesX, tilesY);
         return;
     }
-    recordSeparableBilateralAxis(c, cmd, {b.depth, b.normal, b.logSpatial, b.input, b.scratch, b.scratch}, f, 0);
+    recordSeparableBilateralAxis(
+        c, cmd, {b.depth, b.normal, b.logSpatial, b.input, b.scratch, b.scratch, b.packedNormals}, f, 0);
     computeBarrier(cmd);  // the vertical pass reads what the horizontal one wrote
-    recordSeparableBilateralAxis(c, cmd, {b.depth, b.normal, b.logSpatial, b.scratch, b.scratch, b.output}, f, 1);
+    recordSeparableBilateralAxis(
+        c, cmd, {b.depth, b.normal, b.logSpatial, b.scratch, b.scratch, b.output, b.packedNormals}, f, 1);
 }
 
 namespace {

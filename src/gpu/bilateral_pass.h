@@ -21,6 +21,7 @@ struct SeparableBilateralBuffers {
     const Buffer& input;       // width * height AO
     const Buffer& scratch;     // width * height floats: the horizontal pass's result
     const Buffer& output;      // width * height AO
+    bool packedNormals = false;  // `normal` holds one octahedral word per pixel (kBilateralSpecPackedNormals 1)
 };
 
 // How the two passes are dispatched: bilateral_separable.comp twice with a barrier between them, or

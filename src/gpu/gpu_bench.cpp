@@ -32,7 +32,13 @@ namespace {
 struct ResidentInput {
     Buffer depth, normal, packedNormal;
     Camera camera;
+    const Buffer& normals(bool packed) const { return packed ? packedNormal : normal; }
 };
+
+// Bytes of a normal in the inputs: one octahedral word with GpuBenchSettings::packedNormals, else 3 floats.
+double normalBytes(const GpuBenchSettings& s) { return s.packedNormals ? 4.0 : 12.0; }
+
+std::string normalsText(const GpuBenchSettings& s) { return s.packedNormals ? ", octahedral normals" : ""; }
 
 double median(std::vector<double> v) {
     if (v.empty()) return 0.0;
@@ -118,24 +124,26 @@ CaseSetup alchemyCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s,
     setup.description = "Alchemy AO, " + std::to_string(s.alchemySamples) +
                         " samples/px (paper defaults, r 0.5 m)" + blurText(s) + (fused ? "" : tiledText(s)) +
                         ", depth only" +
-                        (fused ? ", its horizontal pass fused into the estimator's dispatch" : "");
+                        (fused ? ", its horizontal pass fused into the estimator's dispatch" : "") + normalsText(s);
     setup.keepAlive = {spiral, logSpatial, raw, scratch, out};
+    const bool packed = s.packedNormals;
     if (fused) {
         // Estimator + rows: depth + normal in, rows out; columns: depth + rows in, AO out.
-        setup.bytes = double(px) * (4 + 12 + 4) + double(px) * (4 + 4 + 4);
-        setup.record = [&c, k, blur, spiral, logSpatial, scratch, out](
+        setup.bytes = double(px) * (4 + normalBytes(s) + 4) + double(px) * (4 + 4 + 4);
+        setup.record = [&c, k, blur, spiral, logSpatial, scratch, out, packed](
                            VkCommandBuffer cmd, const ResidentInput& in, int, const std::function<void(const char*)>& mark) {
-            recordAlchemyBlurred(c, cmd, {in.depth, in.normal, *spiral, in.depth, *logSpatial, *scratch, *out}, k, blur,
-                                 mark);
+            recordAlchemyBlurred(
+                c, cmd, {in.depth, in.normals(packed), *spiral, in.depth, *logSpatial, *scratch, *out, packed}, k,
+                blur, mark);
         };
         return setup;
     }
     // Estimator: depth + normal in, AO out; each blur dispatch: depth + AO in, AO out (normals unused).
     const BlurDispatch dispatch = blurDispatch(s);
-    setup.bytes = double(px) * (4 + 12 + 4) + blurDispatchCount(dispatch) * double(px) * (4 + 4 + 4);
-    setup.record = [&c, k, blur, spiral, logSpatial, raw, scratch, out, dispatch](
+    setup.bytes = double(px) * (4 + normalBytes(s) + 4) + blurDispatchCount(dispatch) * double(px) * (4 + 4 + 4);
+    setup.record = [&c, k, blur, spiral, logSpatial, raw, scratch, out, dispatch, packed](
                        VkCommandBuffer cmd, const ResidentInput& in, int, const std::function<void(const char*)>& mark) {
-        recordAlchemy(c, cmd, {in.depth, in.normal, *spiral, *raw}, k);
+        recordAlchemy(c, cmd, {in.depth, in.normals(packed), *spiral, *raw, packed}, k);
         mark("alchemy");
         computeBarrier(cmd);  // the blur reads the estimator's output
         recordSeparableBilateral(c, cmd, {in.depth, in.normal, *logSpatial, *raw, *scratch, *out}, blur, dispatch);
@@ -158,27 +166,27 @@ CaseSetup gtaoCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s, co
     CaseSetup setup;
     setup.description = presetText(s) + " (" + slicesText(settings) +
                         radiusText(settings) + "), visibility" + (s.bentNormals ? " + bent normal" : " only") +
-                        "," + blurText(s) + tiledText(s);
+                        "," + blurText(s) + tiledText(s) + normalsText(s);
     // GTAO: depth + normal in, visibility (+ bent normal) out; blur dispatches as in the alchemy case.
     const BlurDispatch dispatch = blurDispatch(s);
-    setup.bytes = double(px) * (4 + 12 + 4 + (s.bentNormals ? 12 : 0)) +
+    setup.bytes = double(px) * (4 + normalBytes(s) + 4 + (s.bentNormals ? 12 : 0)) +
                   blurDispatchCount(dispatch) * double(px) * (4 + 4 + 4);
     // Mip sampling: the chain's pass reads depth and writes the chain, which the GTAO pass reads.
     if (k.mipLevels > 0) setup.bytes += 4.0 * (double(px) + 2.0 * double(gtaoDepthMipsFloats(w, h, k.mipLevels)));
     setup.keepAlive = {logSpatial, visibility, bent, mips, scratch, out};
     setup.record = [&c, k, blur, logSpatial, visibility, bent, mips, scratch, out, bentNormals = s.bentNormals,
-                    dispatch](VkCommandBuffer cmd, const ResidentInput& in, int,
-                              const std::function<void(const char*)>& mark) {
+                    dispatch, packed = s.packedNormals](VkCommandBuffer cmd, const ResidentInput& in, int,
+                                                        const std::function<void(const char*)>& mark) {
         if (k.mipLevels > 0) {
             recordGtaoDepthMips(c, cmd, in.depth, *mips, k);
             mark("mips");
             computeBarrier(cmd);  // the GTAO pass reads the chain
         }
-        recordGtao(c, cmd, {in.depth, in.normal, *visibility, *bent, *mips}, k, 1, bentNormals);
+        recordGtao(c, cmd, {in.depth, in.normals(packed), *visibility, *bent, *mips}, k, 1, bentNormals, packed);
         mark("gtao");
         computeBarrier(cmd);  // the blur reads the visibility
-        recordSeparableBilateral(c, cmd, {in.depth, in.normal, *logSpatial, *visibility, *scratch, *out}, blur,
-                                 dispatch);
+        recordSeparableBilateral(
+            c, cmd, {in.depth, in.normals(packed), *logSpatial, *visibility, *scratch, *out, packed}, blur, dispatch);
         mark("blur");
     };
     return setup;
@@ -192,19 +200,20 @@ CaseSetup gtaoHalfCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s
     // Both blurs by depth alone: the 2-D one measured as accurate as the separable one there (docs/QUALITY.md).
     half.blur.mode = s.halfBlur2D ? ssao::BlurMode::TwoD : ssao::BlurMode::Separable;
     half.blur.normalWeight = ssao::NormalWeight::Off;
-    auto passes = std::make_shared<GtaoHalfResolutionPasses>(c, settings, half, w, h, s.bentNormals, blurDispatch(s));
+    auto passes = std::make_shared<GtaoHalfResolutionPasses>(c, settings, half, w, h, s.bentNormals, blurDispatch(s),
+                                                             s.packedNormals);
     CaseSetup setup;
     const std::string taps = std::to_string(2 * s.halfBlurRadius + 1);
     setup.description = "GTAO at half resolution (" + slicesText(settings) + radiusText(settings) + "), visibility" +
                         (s.bentNormals ? " + bent normal" : " only") +
                         (s.halfBlur2D ? " + 2-D bilateral there, " + taps + "x" + taps + " taps"
                                       : " + separable bilateral there, " + taps + " taps per axis" + tiledText(s)) +
-                        ", depth only + depth-aware upsample";
+                        ", depth only + depth-aware upsample" + normalsText(s);
     setup.bytes = double(passes->bytesPerFrame());
     setup.keepAlive = {passes};
-    setup.record = [passes](VkCommandBuffer cmd, const ResidentInput& in, int index,
-                            const std::function<void(const char*)>& mark) {
-        passes->record(cmd, in.depth, in.normal, in.camera, index, mark);
+    setup.record = [passes, packed = s.packedNormals](VkCommandBuffer cmd, const ResidentInput& in, int index,
+                                                      const std::function<void(const char*)>& mark) {
+        passes->record(cmd, in.depth, in.normals(packed), in.camera, index, mark);
     };
     return setup;
 }
@@ -235,7 +244,7 @@ CaseSetup temporalCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s
                         (gridHistory ? " on the grid + depth-aware upsample" : "") +
                         (s.bentNormals ? "" : ", visibility only") +
                         (temporal && s.callerKeepsDepth ? ", previous depth kept by the caller" : "") +
-                        (s.packedNormals ? ", octahedral normals" : "");
+                        normalsText(s);
     setup.bytes = double(passes->bytesPerFrame());
     setup.keepAlive = {passes};
     // The previous frame's depth: the rotating inputs stay resident, so it is still there (callerKeepsDepth).
@@ -243,8 +252,7 @@ CaseSetup temporalCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s
     const bool packedNormals = s.packedNormals;
     setup.record = [passes, previousDepth, packedNormals](VkCommandBuffer cmd, const ResidentInput& in, int index,
                                                           const std::function<void(const char*)>& mark) {
-        passes->record(cmd, {in.depth, packedNormals ? in.packedNormal : in.normal, in.camera, index, *previousDepth},
-                       mark);
+        passes->record(cmd, {in.depth, in.normals(packedNormals), in.camera, index, *previousDepth}, mark);
         *previousDepth = &in.depth;
     };
     return setup;

@@ -26,9 +26,10 @@ std::size_t gridPixels(int width, int height) {
 
 GtaoHalfResolutionPasses::GtaoHalfResolutionPasses(Context::Impl& c, const ssao::GtaoSettings& settings,
                                                    const ssao::GtaoHalfResolutionSettings& half, int width,
-                                                   int height, bool bentNormals, BlurDispatch blurDispatch)
+                                                   int height, bool bentNormals, BlurDispatch blurDispatch,
+                                                   bool packedNormals)
     : context_(c), settings_(settings), half_(half), width_(width), height_(height), gridWidth_((width + 1) / 2),
-      gridHeight_((height + 1) / 2), bentNormals_(bentNormals),
+      gridHeight_((height + 1) / 2), bentNormals_(bentNormals), packedNormals_(packedNormals),
       blur_(separableBilateral(half.blur, gridWidth_, gridHeight_)), blurDispatch_(blurDispatch),
       kernel2D_(ssao::gaussianHalfKernel(half.blur.radius)),
       blurWeights_(half.blur.mode == ssao::BlurMode::TwoD
@@ -57,16 +58,18 @@ void GtaoHalfResolutionPasses::record(VkCommandBuffer cmd, const Buffer& depth, 
         done("mips");
         computeBarrier(cmd);  // the GTAO pass reads the chain
     }
-    recordGtao(c, cmd, {depth, normal, rawVisibility_, rawBent_, depthMips_}, k, 2, bentNormals_);
+    recordGtao(c, cmd, {depth, normal, rawVisibility_, rawBent_, depthMips_}, k, 2, bentNormals_, packedNormals_);
     done("gtao");
     computeBarrier(cmd);  // the blur (or the upsampling) reads the grid
     const Buffer* low = &rawVisibility_;
     if (half_.blur.mode == ssao::BlurMode::Separable) {
-        recordSeparableBilateral(c, cmd, {depth, normal, blurWeights_, rawVisibility_, scratch_, filtered_}, blur_,
-                                 blurDispatch_);
+        recordSeparableBilateral(
+            c, cmd, {depth, normal, blurWeights_, rawVisibility_, scratch_, filtered_, packedNormals_}, blur_,
+            blurDispatch_);
         low = &filtered_;
     } else if (half_.blur.mode == ssao::BlurMode::TwoD) {
-        recordBilateral2D(c, cmd, {depth, normal, blurWeights_, rawVisibility_, filtered_}, blur_.constants);
+        recordBilateral2D(c, cmd, {depth, normal, blurWeights_, rawVisibility_, filtered_, packedNormals_},
+                          blur_.constants);
         low = &filtered_;
     }
     if (low != &rawVisibility_) {
@@ -84,12 +87,13 @@ std::size_t GtaoHalfResolutionPasses::bytesPerFrame() const {
     const std::size_t pixels = std::size_t(width_) * std::size_t(height_);
     const std::size_t grid = std::size_t(gridWidth_) * std::size_t(gridHeight_);
     const std::size_t b = bentNormals_ ? 3 : 0;  // floats of a bent normal
+    const std::size_t n = packedNormals_ ? 1 : 3;  // words of an input normal
     // GTAO: the search reads the whole depth plane, the normals of the grid pixels; writes 1 + b per grid pixel.
-    std::size_t bytes = f * (pixels + 3 * grid + (1 + b) * grid);
+    std::size_t bytes = f * (pixels + n * grid + (1 + b) * grid);
     const std::size_t chain = gtaoDepthMipsFloats(width_, height_, ssao::gtaoDepthMipLevels(settings_));
     if (chain > 0) bytes += f * (pixels + 2 * chain);
     // Blur: each pass reads the grid's guide depth (and normals) and values, writes values; 2-D: one pass.
-    const std::size_t guide = half_.blur.usesNormals() ? 4 : 1;
+    const std::size_t guide = half_.blur.usesNormals() ? 1 + n : 1;
     const std::size_t blurPasses = half_.blur.mode == ssao::BlurMode::Separable ? blurDispatchCount(blurDispatch_)
                                    : half_.blur.mode == ssao::BlurMode::TwoD   ? 1
                                                                                : 0;

@@ -25,10 +25,11 @@ public:
     // (kGtaoSpecBentNormal 0) and bentNormal() is not to be read.
     GtaoHalfResolutionPasses(Context::Impl& context, const ssao::GtaoSettings& settings,
                              const ssao::GtaoHalfResolutionSettings& half, int width, int height, bool bentNormals,
-                             BlurDispatch blurDispatch = BlurDispatch::TwoPasses);
+                             BlurDispatch blurDispatch = BlurDispatch::TwoPasses, bool packedNormals = false);
 
     // Records the frame for `camera` (of the passes' size) and frameIndex (ssao::gtaoConstants') from depth
-    // (width * height) and view normals (3 floats each), visible to compute shaders, with a barrier between
+    // (width * height) and view normals (3 floats each, or with packedNormals one octahedral word, as
+    // GtaoTemporalVariant::packedNormals), visible to compute shaders, with a barrier between
     // dependent dispatches. After each stage it calls mark(stage) if set: "mips" (mip sampling only),
     // "gtao" (the grid), "blur" (both axes; none without a blur) and "upsample" (visibility, and bent
     // normals with them). A caller that reads the result, or records another frame, records a barrier first.
@@ -49,6 +50,7 @@ private:
     ssao::GtaoHalfResolutionSettings half_;
     int width_, height_, gridWidth_, gridHeight_;
     bool bentNormals_;
+    bool packedNormals_;
     SeparableBilateral blur_;          // the grid's constants, guide at a stride of 2 in the full planes
     BlurDispatch blurDispatch_;        // of the separable blur
     std::vector<float> kernel2D_;      // the 2-D blur's half kernel

@@ -22,10 +22,6 @@ namespace obscura::gpu {
 
 namespace {
 
-std::vector<BindingKind> storageBuffers(int count) {
-    return std::vector<BindingKind>(std::size_t(count), BindingKind::StorageBuffer);
-}
-
 Buffer deviceFloats(Context::Impl& c, std::size_t count) { return Buffer(c, count * sizeof(float), MemoryUse::Device); }
 
 // Rows 0..2 of m into 12 floats, as the shader's transformPoint reads them.

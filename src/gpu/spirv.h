@@ -36,6 +36,11 @@ extern const Spirv bilateral_tiled;          // bilateral_tiled.comp
 // (sampler2D, sampler3D).
 enum class BindingKind : int { StorageBuffer, SampledImage };
 
+// The binding kinds of a shader whose `count` bindings are all storage buffers.
+inline std::vector<BindingKind> storageBuffers(int count) {
+    return std::vector<BindingKind>(std::size_t(count), BindingKind::StorageBuffer);
+}
+
 // What a compute shader declares: its resources and workgroup size.
 struct SpirvLayout {
     int bindings = 0;                    // descriptor bindings (all in set 0 here)

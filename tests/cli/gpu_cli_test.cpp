@@ -498,23 +498,23 @@ TEST_F(GpuCommands, BenchGpuAlternatingWindow) {
     expectFailure("bench --gpu --alternating-window --alternating-window-size 3", {"--alternating-window-size"});
 }
 
-// --packed-normals reaches the spatio-temporal cases (their description says so and their bytes fall by 8
-// per normal read) and no other. That the words reach the shaders is
+// --packed-normals reaches every case: the descriptions say so and the bytes fall by 8 per normal read. That
+// the words reach the shaders is GpuPackedNormals' and
 // GpuGtaoTemporal.PackedNormalsGiveTheFrameOfTheirDecodedNormals's to check.
 TEST_F(GpuCommands, BenchGpuPackedNormals) {
     const auto [a, b] = benchWithout("bench --gpu --sizes 40x24 --frames 2 --warmup 0 --inputs 2 --json "
-                                     "--visibility-only --cases gtao,gtao-spatial,gtao-temporal-grid",
-                                     "--packed-normals", "packed_normals", 3);
+                                     "--visibility-only --cases alchemy,alchemy-fused,gtao,gtao-half,gtao-spatial,"
+                                     "gtao-temporal-grid",
+                                     "--packed-normals", "packed_normals", 6);
     if (HasFailure()) return;
-    for (int i = 0; i < 3; ++i) {
+    // Normal reads: the estimator's and the GTAO pass's per pixel (960) or grid pixel (240; the half-resolution
+    // blur weighs by depth alone), and the spatio-temporal accumulation's (or resolve's) per pixel of its lattice.
+    const double reads[6] = {960, 960, 960, 240, 2 * 960, 2 * 240};
+    for (int i = 0; i < 6; ++i) {
         const std::string name = b["cases"][i]["case"];
-        const std::string description = b["cases"][i]["description"];
-        const bool applies = name != "gtao";
-        EXPECT_EQ(description.find("octahedral normals") != std::string::npos, applies) << description;
-        // gtao-spatial reads them in its GTAO pass and its resolve (960 pixels each), the grid's case in its
-        // GTAO pass and its accumulation (240 grid pixels each).
-        EXPECT_DOUBLE_EQ(bytesSaved(a, b, i), name == "gtao" ? 0.0 : name == "gtao-spatial" ? 8.0 * 2 * 960 : 8.0 * 2 * 240)
-            << name;
+        EXPECT_NE(b["cases"][i]["description"].get<std::string>().find("octahedral normals"), std::string::npos) << name;
+        EXPECT_EQ(a["cases"][i]["description"].get<std::string>().find("octahedral"), std::string::npos) << name;
+        EXPECT_DOUBLE_EQ(bytesSaved(a, b, i), 8.0 * reads[i]) << name;
     }
 }
 

@@ -112,8 +112,8 @@ void GpuBenchOptions::add(CLI::App& bench) {
                    "--gpu: the temporal cases read the previous frame's depth buffer instead of a copy in the history, "
                    "as an engine that keeps last frame's depth (for TAA, say) can");
     bench.add_flag("--packed-normals", packedNormals,
-                   "--gpu: the spatio-temporal cases read the G-buffer's normals as one octahedral word per pixel (two "
-                   "snorm16, as engines keep them) instead of 3 floats; the other cases read the floats");
+                   "--gpu: every case reads the G-buffer's normals as one octahedral word per pixel (two snorm16, as "
+                   "engines keep them) instead of 3 floats");
     bench.add_flag("--alternating-window", alternatingWindow,
                    "--gpu: the temporal cases reconstruct with a 4x4 window (16 taps instead of 25) whose place "
                    "alternates over 4 frames, which the history averages to the 5x5 window's weights");

@@ -23,7 +23,8 @@ layout(push_constant, std430) uniform Constants {
     BilateralConstants b;
 };
 layout(std430, binding = kAlchemyBindingDepth) readonly buffer DepthPlane { float depth[]; };
-layout(std430, binding = kAlchemyBindingNormal) readonly buffer NormalPlane { float normal[]; };
+layout(constant_id = kAlchemySpecPackedNormals) const int kPackedNormals = 0;
+layout(std430, binding = kAlchemyBindingNormal) readonly buffer NormalPlane { uint normalWords[]; };
 layout(std430, binding = kAlchemyBindingSpiral) readonly buffer Spiral { vec2 spiral[]; };  // as alchemy.comp's
 layout(std430, binding = kAlchemyBlurBindingLogSpatial) readonly buffer LogSpatial { float logSpatial[]; };
 layout(std430, binding = kAlchemyBlurBindingOutput) writeonly buffer Output { float aoOut[]; };

@@ -1,8 +1,16 @@
 // alchemyPixel, src/ssao/alchemy.cpp's kernel for one pixel, for the shaders that evaluate it (alchemy.comp
 // and alchemy_blur_row.comp). The includer declares what it reads: the push constants `k` (an
-// AlchemyConstants) and the storage buffers `depth`, `normal` and `spiral` of alchemy.comp's layout.
+// AlchemyConstants), the storage buffers `depth`, `normalWords` and `spiral` of alchemy.comp's layout, and
+// kPackedNormals (normal_plane.glsl reads the normals).
 
 bool isSkyDepth(float d) { return !(d < 1e30); }
+
+// ---- obscura/math.h's normalize, which decoding a packed normal ends with ----
+vec3 normalize3(vec3 a) {
+    const float l = sqrt(a.x * a.x + a.y * a.y + a.z * a.z);
+    return l > 0.0 ? a / l : vec3(0.0);
+}
+#include "normal_plane.glsl"
 
 int floorToInt(float v) { return int(floor(v)); }
 
@@ -21,7 +29,8 @@ float alchemyPixel(int x, int y) {
     if (isSkyDepth(d)) return 1.0;
     const float fx = float(x) + 0.5, fy = float(y) + 0.5;
     const float cx = (fx * k.viewScaleX + k.viewOffsetX) * d, cy = (fy * k.viewScaleY + k.viewOffsetY) * d, cz = -d;
-    const float nx = normal[3 * c], ny = normal[3 * c + 1], nz = normal[3 * c + 2];
+    const vec3 n = loadNormal(c);
+    const float nx = n.x, ny = n.y, nz = n.z;
     const float radiusPixels = min(k.radius * k.focalPixels / d, k.maxRadiusPixels);
     int count = k.samples;
     if (k.lodRadiusPixels > 0.0 && radiusPixels < k.lodRadiusPixels)

@@ -18,14 +18,21 @@ layout(constant_id = kBilateralSpecUseNormal) const int kUseNormal = 1;  // = k.
 
 layout(push_constant, std430) uniform Constants { BilateralConstants k; };
 layout(std430, binding = kBilateralBindingDepth) readonly buffer DepthPlane { float depth[]; };
-layout(std430, binding = kBilateralBindingNormal) readonly buffer NormalPlane { float normal[]; };
+layout(constant_id = kBilateralSpecPackedNormals) const int kPackedNormals = 0;
+layout(std430, binding = kBilateralBindingNormal) readonly buffer NormalPlane { uint normalWords[]; };
 layout(std430, binding = kBilateral2DBindingKernel) readonly buffer Kernel { float kernel[]; };
 layout(std430, binding = kBilateralBindingInput) readonly buffer Input { float aoIn[]; };
 layout(std430, binding = kBilateralBindingOutput) writeonly buffer Output { float aoOut[]; };
 
 #include "bilateral_guide.glsl"
+// ---- obscura/math.h's normalize, which decoding a packed normal ends with ----
+vec3 normalize3(vec3 a) {
+    const float l = sqrt(a.x * a.x + a.y * a.y + a.z * a.z);
+    return l > 0.0 ? a / l : vec3(0.0);
+}
+#include "normal_plane.glsl"
 
-vec3 normalAt(uint i) { return vec3(normal[3 * i], normal[3 * i + 1], normal[3 * i + 2]); }
+vec3 normalAt(uint i) { return loadNormal(i); }
 
 void main() {
     const ivec2 p = ivec2(gl_GlobalInvocationID.xy);

@@ -24,7 +24,8 @@ layout(constant_id = kBilateralSpecUseNormal) const int kUseNormal = 0;  // = k.
 
 layout(push_constant, std430) uniform Constants { BilateralConstants k; };
 layout(std430, binding = kBilateralBindingDepth) readonly buffer DepthPlane { float depth[]; };
-layout(std430, binding = kBilateralBindingNormal) readonly buffer NormalPlane { float normal[]; };
+layout(constant_id = kBilateralSpecPackedNormals) const int kPackedNormals = 0;
+layout(std430, binding = kBilateralBindingNormal) readonly buffer NormalPlane { uint normalWords[]; };
 layout(std430, binding = kBilateralBindingLogSpatial) readonly buffer Spatial { float logSpatial[]; };
 layout(std430, binding = kBilateralBindingInput) readonly buffer Input { float aoIn[]; };
 layout(std430, binding = kBilateralBindingOutput) writeonly buffer Output { float aoOut[]; };
@@ -44,6 +45,12 @@ shared float tileLogSpatial[2 * kBilateralMaxRadius + 1];
 int tileIndex(int line, int i) { return k.axis == 0 ? i : i * kBilateralVerticalTileX + line; }
 
 #include "bilateral_guide.glsl"
+// ---- obscura/math.h's normalize, which decoding a packed normal ends with ----
+vec3 normalize3(vec3 a) {
+    const float l = sqrt(a.x * a.x + a.y * a.y + a.z * a.z);
+    return l > 0.0 ? a / l : vec3(0.0);
+}
+#include "normal_plane.glsl"
 #include "bilateral_taps.glsl"
 
 void main() {
@@ -85,7 +92,7 @@ void main() {
     const float c = k.depthScale / (d * d);  // 0 on sky: its output is its input anyway
     // The normals are read from the guide: the centre's index there, and the taps' spacing.
     const uint g = bilateralGuideIndex(p.x, p.y);
-    const vec3 n = kUseNormal != 0 ? vec3(normal[3 * g], normal[3 * g + 1], normal[3 * g + 2]) : vec3(0.0);
+    const vec3 n = kUseNormal != 0 ? loadNormal(g) : vec3(0.0);
     const int guideStride = k.axis == 0 ? bilateralGuideStep() : int(bilateralGuideIndex(0, 1));
     // Taps inside the image along the axis: t in [tFirst, tLast].
     const int tFirst = max(-k.radius, -along), tLast = min(k.radius, length - 1 - along);

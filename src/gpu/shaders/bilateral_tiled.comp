@@ -20,7 +20,8 @@ layout(constant_id = kBilateralSpecUseNormal) const int kUseNormal = 0;  // = k.
 
 layout(push_constant, std430) uniform Constants { BilateralConstants k; };
 layout(std430, binding = kBilateralBindingDepth) readonly buffer DepthPlane { float depth[]; };
-layout(std430, binding = kBilateralBindingNormal) readonly buffer NormalPlane { float normal[]; };
+layout(constant_id = kBilateralSpecPackedNormals) const int kPackedNormals = 0;
+layout(std430, binding = kBilateralBindingNormal) readonly buffer NormalPlane { uint normalWords[]; };
 layout(std430, binding = kBilateralBindingLogSpatial) readonly buffer Spatial { float logSpatial[]; };
 layout(std430, binding = kBilateralBindingInput) readonly buffer Input { float aoIn[]; };
 layout(std430, binding = kBilateralBindingOutput) writeonly buffer Output { float aoOut[]; };
@@ -39,6 +40,12 @@ int gAxis;
 int tileIndex(int line, int i) { return gAxis == 0 ? line * kStride + i : i * kStride + line; }
 
 #include "bilateral_guide.glsl"
+// ---- obscura/math.h's normalize, which decoding a packed normal ends with ----
+vec3 normalize3(vec3 a) {
+    const float l = sqrt(a.x * a.x + a.y * a.y + a.z * a.z);
+    return l > 0.0 ? a / l : vec3(0.0);
+}
+#include "normal_plane.glsl"
 #include "bilateral_taps.glsl"
 
 // Slots loaded per invocation, every load issued before any store, and row-pass results per invocation.
@@ -81,7 +88,7 @@ void main() {
         const float d = tile[tileIndex(row, centre)].x;
         const float c = k.depthScale / (d * d);  // 0 on sky: its output is its input anyway
         const uint g = bilateralGuideIndex(px, py);
-        const vec3 n = kUseNormal != 0 ? vec3(normal[3 * g], normal[3 * g + 1], normal[3 * g + 2]) : vec3(0.0);
+        const vec3 n = kUseNormal != 0 ? loadNormal(g) : vec3(0.0);
         const int tFirst = max(-r, -px), tLast = min(r, k.width - 1 - px);
         rowResult[j] = bilateralTaps(row, centre, r, tFirst, tLast, d, c, n, g, bilateralGuideStep());
     }
@@ -103,7 +110,7 @@ void main() {
         const float d = tile[tileIndex(line, row)].x;
         const float c = k.depthScale / (d * d);
         const uint g = bilateralGuideIndex(px, py);
-        const vec3 n = kUseNormal != 0 ? vec3(normal[3 * g], normal[3 * g + 1], normal[3 * g + 2]) : vec3(0.0);
+        const vec3 n = kUseNormal != 0 ? loadNormal(g) : vec3(0.0);
         const int tFirst = max(-r, -py), tLast = min(r, k.height - 1 - py);
         aoOut[uint(py) * uint(k.width) + uint(px)] = bilateralTaps(line, row, r, tFirst, tLast, d, c, n, g, guideRow);
     }

@@ -16,12 +16,15 @@ namespace obscura::gpu {
 // ---- alchemy.comp (src/gpu/alchemy_pass.cpp) ----
 // Storage buffers of set 0 (float arrays, std430).
 OBSCURA_CONST int kAlchemyBindingDepth = 0;   // width * height linear depths, +inf for sky
-OBSCURA_CONST int kAlchemyBindingNormal = 1;  // width * height * 3 view normals
+OBSCURA_CONST int kAlchemyBindingNormal = 1;  // width * height * 3 view normals, or with kAlchemySpecPackedNormals 1
+                                              // width * height octahedral words (normal_plane.glsl)
 OBSCURA_CONST int kAlchemyBindingSpiral = 2;  // SpiralTable::offsets, concatenated (see alchemySpiralAt)
 OBSCURA_CONST int kAlchemyBindingOutput = 3;  // (width - 2 guardBand) * (height - 2 guardBand) obscurance
 OBSCURA_CONST int kAlchemyBindingCount = 4;
 // The push constants are one AlchemyConstants.
 OBSCURA_CONST int kAlchemyPushConstantBytes = 96;
+// constant_id of the normals' layout, as gtao.comp's kGtaoSpecPackedNormals (also alchemy_blur_row.comp's).
+OBSCURA_CONST int kAlchemySpecPackedNormals = 0;
 
 // ---- bilateral_separable.comp (src/gpu/bilateral_pass.cpp) ----
 // One 1-D pass of the separable cross-bilateral blur (src/ssao/bilateral_separable.cpp): a tap t in
@@ -78,6 +81,9 @@ OBSCURA_CONST int kBilateralMaxRadius = 32;
 // without it (the separable default) holds no normal reads: as with gtao.comp's modes, a branch on the push
 // constant leaves the compiler both paths.
 OBSCURA_CONST int kBilateralSpecUseNormal = 0;
+// constant_id of the normals' layout where the blur reads them (useNormal 1), as gtao.comp's
+// kGtaoSpecPackedNormals: 0 3 floats per pixel, 1 one octahedral word (also bilateral_2d.comp's).
+OBSCURA_CONST int kBilateralSpecPackedNormals = 1;
 
 // ---- alchemy_blur_row.comp (src/gpu/alchemy_pass.cpp) ----
 // Alchemy AO and the horizontal pass of its separable blur in one dispatch: a workgroup evaluates a row of

@@ -16,7 +16,8 @@ vec3 normalize3(vec3 a);  // the including shader's (obscura/math.h's normalize)
 vec3 loadNormal(uint pixel) {
     if (kPackedNormals != 0) return unpackOctahedral(normalWords[pixel]);
     const uint i = 3 * pixel;
-    return vec3(uintBitsToFloat(normalWords[i]), uintBitsToFloat(normalWords[i + 1]), uintBitsToFloat(normalWords[i + 2]));
+    return vec3(uintBitsToFloat(normalWords[i]), uintBitsToFloat(normalWords[i + 1]),
+                uintBitsToFloat(normalWords[i + 2]));
 }
 
 #endif
