@@ -55,6 +55,8 @@ struct GpuBenchSettings {
     bool packedNormals = false;  // every case reads the G-buffer's normals as one octahedral word per pixel, as
                                  // an engine keeps them, instead of 3 floats (GtaoTemporalVariant::packedNormals
                                  // and its likes)
+    bool packedOutput = false;  // the gtao-temporal-grid case writes its visibility as unorm16 pairs (an R16
+                                // image) instead of floats (GtaoTemporalVariant::packedOutput)
     bool bentNormals = true;  // the GTAO cases compute, filter and accumulate bent normals; false: visibility
                               // only (kGtaoSpecBentNormal 0), as an engine without bent-normal lighting runs them
     ssao::GtaoSampling sampling = ssao::GtaoSampling::Planar;  // the GTAO cases' horizon samples (GtaoSettings)

@@ -231,7 +231,8 @@ CaseSetup temporalCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s
     t.alternatingWindow = temporal && s.alternatingWindow;  // the spatial case has no history to average
     t.alternatingWindowSize = s.alternatingWindowSize;
     auto passes = std::make_shared<GtaoTemporalPasses>(
-        c, settings, t, w, h, GtaoTemporalVariant{s.bentNormals, s.callerKeepsDepth, s.packedNormals});
+        c, settings, t, w, h,
+        GtaoTemporalVariant{s.bentNormals, s.callerKeepsDepth, s.packedNormals, gridHistory && s.packedOutput});
     CaseSetup setup;
     setup.description = std::string(temporal ? "spatio-temporal" : "spatial") + " GTAO" +
                         (half ? " at half resolution" : "") + " (" + slicesText(settings) +
@@ -244,7 +245,7 @@ CaseSetup temporalCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s
                         (gridHistory ? " on the grid + depth-aware upsample" : "") +
                         (s.bentNormals ? "" : ", visibility only") +
                         (temporal && s.callerKeepsDepth ? ", previous depth kept by the caller" : "") +
-                        normalsText(s);
+                        normalsText(s) + (gridHistory && s.packedOutput ? ", unorm16 output" : "");
     setup.bytes = double(passes->bytesPerFrame());
     setup.keepAlive = {passes};
     // The previous frame's depth: the rotating inputs stay resident, so it is still there (callerKeepsDepth).

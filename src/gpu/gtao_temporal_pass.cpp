@@ -72,13 +72,14 @@ void recordReconstruct(Context::Impl& c, VkCommandBuffer cmd, const ReconstructB
 }
 
 void recordUpsample(Context::Impl& c, VkCommandBuffer cmd, const UpsampleBuffers& b, const UpsampleConstants& k,
-                    int channels, bool packedLow) {
+                    int channels, bool packedLow, bool packedOut) {
     assert(channels == 1 || channels == 3);
     assert(!packedLow || channels == 1);
+    assert(!packedOut || channels == 1);
     ComputePipeline& pipeline =
         c.pipeline("upsample_depth_aware", shaders::upsample_depth_aware, storageBuffers(kUpsampleBindingCount),
                    kUpsamplePushConstantBytes, kTemporalWorkgroupX, kTemporalWorkgroupY,
-                   {channels, packedLow ? 1 : 0});  // kUpsampleSpecChannels, PackedLow
+                   {channels, packedLow ? 1 : 0, packedOut ? 1 : 0});  // kUpsampleSpecChannels, PackedLow, PackedOut
     // In binding order: kUpsampleBindingLow, LowDepth, Depth, Output.
     // One invocation per 2x2 block of full-resolution pixels (the shader's main).
     pipeline.dispatchGrid(cmd, {&b.low, &b.lowDepth, &b.depth, &b.output}, &k, sizeof k, (k.width + 1) / 2,
@@ -94,6 +95,9 @@ GtaoTemporalPasses::GtaoTemporalPasses(Context::Impl& c, const ssao::GtaoSetting
       unused_(deviceFloats(c, 4)) {
     const bool bentNormals = variant.bentNormals;
     assert(width >= 1 && height >= 1);
+    if (variant.packedOutput && !gridHistory_)
+        fail("gtao temporal", "packedOutput needs the grid's history (half resolution, gridHistory): there the "
+                              "upsampling writes the frame's visibility");
     const std::size_t pixels = std::size_t(width) * std::size_t(height);
     const std::size_t grid = std::size_t(gridWidth_) * std::size_t(gridHeight_);
     const std::size_t lattice = gridHistory_ ? grid : pixels;  // the history's
@@ -107,7 +111,10 @@ GtaoTemporalPasses::GtaoTemporalPasses(Context::Impl& c, const ssao::GtaoSetting
     }
     if (bentNormals) bentView_ = deviceFloats(c, 3 * pixels);
     if (gridHistory_) {
-        upsampled_ = deviceFloats(c, pixels);
+        upsampled_ = variant.packedOutput
+                         ? Buffer(c, std::size_t(upsamplePackedRowWords(width)) * std::size_t(height) * 4,
+                                  MemoryUse::Device)
+                         : deviceFloats(c, pixels);
         if (bentNormals) bentGrid_ = deviceFloats(c, 3 * grid);
     }
     depthMips_ = gtaoDepthMipsBuffer(c, width, height, ssao::gtaoDepthMipLevels(settings));
@@ -210,7 +217,8 @@ void GtaoTemporalPasses::record(VkCommandBuffer cmd, const GtaoTemporalFrameInpu
         computeBarrier(cmd);  // the upsampling reads the accumulated grid
         const UpsampleConstants uk =
             upsampleConstants(width_, height_, gridWidth_, gridHeight_, width_, step_, temporal_.depthSigma);
-        recordUpsample(c, cmd, {next.visibility, in.depth, in.depth, upsampled_}, uk, 1, temporal_.packedHistory);
+        recordUpsample(c, cmd, {next.visibility, in.depth, in.depth, upsampled_}, uk, 1, temporal_.packedHistory,
+                       variant_.packedOutput);
         if (variant_.bentNormals) recordUpsample(c, cmd, {bentGrid_, in.depth, in.depth, bentView_}, uk, 3);
         stage("upsample");
     }
@@ -218,6 +226,18 @@ void GtaoTemporalPasses::record(VkCommandBuffer cmd, const GtaoTemporalFrameInpu
     current_ = 1 - current_;
     previousCamera_ = in.camera;
     ++recorded_;
+}
+
+Image unpackVisibilityPairs(const std::vector<std::uint32_t>& words, int width, int height) {
+    const std::size_t rowWords = std::size_t(upsamplePackedRowWords(width));
+    assert(words.size() == rowWords * std::size_t(height));
+    Image visibility(width, height, 1);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const std::uint32_t word = words[std::size_t(y) * rowWords + std::size_t(x / 2)];
+            visibility.at(x, y) = ssao::unpackUnorm16(x % 2 == 0 ? word & 0xffffu : word >> 16);
+        }
+    return visibility;
 }
 
 std::vector<std::uint32_t> packNormals(const Image& normal) {
@@ -267,7 +287,10 @@ std::size_t GtaoTemporalPasses::bytesPerFrame() const {
         // accumulated visibility (and b bent-normal channels) with its depth and the full depth in; 1 (and b)
         // per pixel out.
         bytes += f * grid * ((1 + b) + (1 + n) + history + written + b);
-        bytes += f * (grid * (1 + 1) + pixels * (1 + 1));
+        const std::size_t out = variant_.packedOutput
+                                    ? sizeof(std::uint32_t) * std::size_t(upsamplePackedRowWords(width_)) * height_
+                                    : f * pixels;
+        bytes += f * (grid * (1 + 1) + pixels) + out;
         if (b > 0) bytes += f * (grid * (b + 1) + pixels * (1 + b));
         return bytes;
     }

@@ -44,9 +44,14 @@ struct UpsampleBuffers {
     const Buffer& depth;
     const Buffer& output;
 };
-// packedLow: `low` holds packed visibility-and-length words (1 channel; kUpsampleSpecPackedLow).
+// packedLow: `low` holds packed visibility-and-length words (1 channel; kUpsampleSpecPackedLow). packedOut:
+// `output` receives unorm16 pairs (1 channel; kUpsampleSpecPackedOut, height rows of
+// upsamplePackedRowWords(width) words; unpackVisibilityPairs decodes them).
 void recordUpsample(Context::Impl& context, VkCommandBuffer cmd, const UpsampleBuffers& buffers,
-                    const UpsampleConstants& k, int channels, bool packedLow = false);
+                    const UpsampleConstants& k, int channels, bool packedLow = false, bool packedOut = false);
+
+// The visibility of packedOut's words as a width x height image.
+Image unpackVisibilityPairs(const std::vector<std::uint32_t>& words, int width, int height);
 
 // One frame's inputs, resident on the device and visible to compute shaders (the caller's barrier).
 struct GtaoTemporalFrameInputs {
@@ -72,6 +77,10 @@ struct GtaoTemporalVariant {
     // packNormals makes them) instead of 3 floats (kGtaoSpecPackedNormals, kReconstructSpecPackedNormals and
     // kTemporalSpecPackedNormals 1): the frame of those normals decoded (ssao::unpackOctahedral).
     bool packedNormals = false;
+    // true, with the grid's history (temporal.gridHistory): the upsampling writes the frame's visibility as
+    // unorm16 pairs (kUpsampleSpecPackedOut; unpackVisibilityPairs decodes visibility()), half the bytes of
+    // the largest plane the frame writes. The constructor throws obscura::Error without the grid's history.
+    bool packedOutput = false;
 };
 
 // The view normals of `normal` (3 channels) as one octahedral word per pixel, for packedNormals; and the
@@ -112,7 +121,8 @@ public:
     // history's lattice, historyWidth() x historyHeight()). With temporal.packedHistory the history's
     // visibility plane holds packed words of visibility and length (ssao::unpackVisibility,
     // ssao::unpackLength), historyLength() is not to be read, and visibility() is that plane unless the
-    // history is the grid's (visibilityPacked()).
+    // history is the grid's (visibilityPacked()); with GtaoTemporalVariant::packedOutput it holds unorm16
+    // pairs (unpackVisibilityPairs).
     const Buffer& visibility() const { return gridHistory_ ? upsampled_ : history_[current_].visibility; }
     bool visibilityPacked() const { return temporal_.packedHistory && !gridHistory_; }
     const Buffer& historyVisibility() const { return history_[current_].visibility; }

@@ -518,6 +518,22 @@ TEST_F(GpuCommands, BenchGpuPackedNormals) {
     }
 }
 
+// --packed-output reaches the gtao-temporal-grid case alone: its visibility plane, 4 bytes a pixel, becomes
+// 2 (40 is even: 20 words a row).
+TEST_F(GpuCommands, BenchGpuPackedOutput) {
+    const auto [a, b] = benchWithout("bench --gpu --sizes 40x24 --frames 2 --warmup 0 --inputs 2 --json "
+                                     "--visibility-only --cases gtao-half,gtao-temporal-half,gtao-temporal-grid",
+                                     "--packed-output", "packed_output", 3);
+    if (HasFailure()) return;
+    for (int i = 0; i < 3; ++i) {
+        const std::string name = b["cases"][i]["case"];
+        const bool applies = name == "gtao-temporal-grid";
+        EXPECT_EQ(b["cases"][i]["description"].get<std::string>().find("unorm16 output") != std::string::npos, applies)
+            << name;
+        EXPECT_DOUBLE_EQ(bytesSaved(a, b, i), applies ? 2.0 * 40 * 24 : 0.0) << name;
+    }
+}
+
 // --pipeline-stats and --pipeline-internals: what the driver says of each pipeline the cases compiled, or,
 // where it lacks VK_KHR_pipeline_executable_properties (lavapipe in Mesa 22.3), a note naming the device while
 // the timings still come; a folder that cannot be made fails in one line before any work.

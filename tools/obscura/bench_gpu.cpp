@@ -59,6 +59,7 @@ struct GpuBenchOptions {
     bool alternatingWindow = false;
     int alternatingWindowSize = 4;
     bool packedNormals = false;
+    bool packedOutput = false;
     std::string sampling = "planar";
     float mipRatio = 7.0f;
     float radius = 1.0f;
@@ -114,6 +115,9 @@ void GpuBenchOptions::add(CLI::App& bench) {
     bench.add_flag("--packed-normals", packedNormals,
                    "--gpu: every case reads the G-buffer's normals as one octahedral word per pixel (two snorm16, as "
                    "engines keep them) instead of 3 floats");
+    bench.add_flag("--packed-output", packedOutput,
+                   "--gpu: the gtao-temporal-grid case writes its visibility as unorm16, two pixels to a word (what an "
+                   "R16_UNORM image holds) instead of a float per pixel; the other cases write floats");
     bench.add_flag("--alternating-window", alternatingWindow,
                    "--gpu: the temporal cases reconstruct with a 4x4 window (16 taps instead of 25) whose place "
                    "alternates over 4 frames, which the history averages to the 5x5 window's weights");
@@ -244,6 +248,7 @@ void runGpuBench(const GpuBenchOptions& o) {
     settings.packedHistory = o.packedHistory;
     settings.callerKeepsDepth = o.keepPreviousDepth;
     settings.packedNormals = o.packedNormals;
+    settings.packedOutput = o.packedOutput;
     settings.alternatingWindow = o.alternatingWindow;
     settings.alternatingWindowSize = o.alternatingWindowSize;
     settings.sampling = gtaoSampling(o.sampling);
@@ -315,6 +320,7 @@ void runGpuBench(const GpuBenchOptions& o) {
     report["packed_history"] = settings.packedHistory;
     report["keep_previous_depth"] = settings.callerKeepsDepth;
     report["packed_normals"] = settings.packedNormals;
+    report["packed_output"] = settings.packedOutput;
     report["alternating_window"] = settings.alternatingWindow;
     report["alternating_window_size"] = settings.alternatingWindow ? settings.alternatingWindowSize : 0;
     report["gtao_sampling"] = o.sampling;
@@ -335,6 +341,7 @@ void runGpuBench(const GpuBenchOptions& o) {
         if (o.packedHistory) variants += ", packed history";
         if (o.keepPreviousDepth) variants += ", previous depth kept";
         if (o.packedNormals) variants += ", octahedral normals";
+        if (o.packedOutput) variants += ", unorm16 output (gtao-temporal-grid)";
         if (o.alternatingWindow)
             variants += o.alternatingWindowSize == 2 ? ", alternating 2x2 windows" : ", alternating 4x4 windows";
         ssao::GtaoSettings sampling;

@@ -68,6 +68,15 @@ OBSCURA_CONST int kUpsampleSpecChannels = 0;
 // visibility-and-length words of obscura/history_packing.h (the accumulation's visibility plane with
 // kTemporalSpecPackedHistory and kTemporalSpecHistoryStep 2), upsampled as the visibility they decode to.
 OBSCURA_CONST int kUpsampleSpecPackedLow = 1;
+// constant_id of the output's encoding (1 channel only): 0 (the default) a float per pixel; 1 unorm16
+// visibility (obscura/history_packing.h's packUnorm16, steps of 1/65535), two pixels to a word, pixel 2i of a
+// row in the low half and 2i + 1 in the high half, rows of upsamplePackedRowWords(width) words: what an
+// R16_UNORM image with an even row pitch holds, a sixteenth of a 1/4096 step, for an engine that reads AO
+// at 16 bits anyway.
+OBSCURA_CONST int kUpsampleSpecPackedOut = 2;
+#ifdef __cplusplus
+inline constexpr int upsamplePackedRowWords(int width) { return (width + 1) / 2; }
+#endif
 struct UpsampleConstants {
     int width;         // full-resolution size, px
     int height;
@@ -82,7 +91,8 @@ struct UpsampleConstants {
 OBSCURA_CONST int kUpsampleBindingLow = 0;       // lowWidth * lowHeight * channels
 OBSCURA_CONST int kUpsampleBindingLowDepth = 1;  // guide linear depths of the low-resolution pixels
 OBSCURA_CONST int kUpsampleBindingDepth = 2;     // width * height linear depths, +inf for sky
-OBSCURA_CONST int kUpsampleBindingOutput = 3;    // width * height * channels; sky 1 (1 channel) or 0
+OBSCURA_CONST int kUpsampleBindingOutput = 3;    // width * height * channels; sky 1 (1 channel) or 0; with
+                                                 // kUpsampleSpecPackedOut, height rows of (width + 1) / 2 words
 OBSCURA_CONST int kUpsampleBindingCount = 4;
 OBSCURA_CONST int kUpsamplePushConstantBytes = 32;
 

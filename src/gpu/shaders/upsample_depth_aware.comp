@@ -13,13 +13,15 @@ layout(local_size_x = kTemporalWorkgroupX, local_size_y = kTemporalWorkgroupY, l
 
 layout(constant_id = kUpsampleSpecChannels) const int kGridChannels = 1;
 layout(constant_id = kUpsampleSpecPackedLow) const int kPackedLow = 0;
+layout(constant_id = kUpsampleSpecPackedOut) const int kPackedOut = 0;
 
 layout(push_constant, std430) uniform Constants { UpsampleConstants k; };
 // Words: floats' bits, or with kPackedLow the packed visibility of obscura/history_packing.h.
 layout(std430, binding = kUpsampleBindingLow) readonly buffer Low { uint low[]; };
 layout(std430, binding = kUpsampleBindingLowDepth) readonly buffer LowDepth { float lowDepthPlane[]; };
 layout(std430, binding = kUpsampleBindingDepth) readonly buffer DepthPlane { float depthPlane[]; };
-layout(std430, binding = kUpsampleBindingOutput) writeonly buffer Output { float outValues[]; };
+// Words: floats' bits, or with kPackedOut two unorm16 visibilities (temporal_layouts.h).
+layout(std430, binding = kUpsampleBindingOutput) writeonly buffer Output { uint outWords[]; };
 
 // One invocation per 2x2 block of full-resolution pixels (2bx..2bx+1, 2by..2by+1): all four read the grid
 // pixels bx..bx+1 x by..by+1 (clamped at the grid's edge), so the invocation loads those once and the filter
@@ -67,14 +69,20 @@ void main() {
     [[unroll]] for (int j = 0; j < 2; ++j) {
         const int y = 2 * block.y + j;
         if (y >= k.height) break;
+        uint word = 0u;  // kPackedOut: the block's two pixels of row y
         [[unroll]] for (int i = 0; i < 2; ++i) {
             const int x = 2 * block.x + i;
             if (x >= k.width) break;
             float result[4];
             const float d = depthPlane[uint(y) * uint(k.width) + uint(x)];
             upsampleDepthAware(x, y, d, k.lowWidth, k.lowHeight, k.depthSigma, result);
+            if (kPackedOut != 0) {
+                word |= packUnorm16(result[0]) << (16 * i);
+                continue;
+            }
             const uint o = (uint(y) * uint(k.width) + uint(x)) * uint(kGridChannels);
-            for (int c = 0; c < kGridChannels; ++c) outValues[o + uint(c)] = result[c];
+            for (int c = 0; c < kGridChannels; ++c) outWords[o + uint(c)] = floatBitsToUint(result[c]);
         }
+        if (kPackedOut != 0) outWords[uint(y) * uint((k.width + 1) / 2) + uint(block.x)] = word;
     }
 }
