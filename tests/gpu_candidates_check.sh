@@ -97,7 +97,8 @@ grep -q "gone: $work/missing is not a folder" "$work/ab.err" || fail "$(cat "$wo
 # gpu-waiting: every part, each into its file, at a tiny size, with one round.
 "$src/scripts/gpu-waiting" --obscura "$tool" --candidates "$work/spv" --rounds 1 --small "$work/waiting" \
   -- --sizes 48x32 --frames 2 --warmup 0 --inputs 1 2>"$work/waiting.err" || fail "gpu-waiting: $(cat "$work/waiting.err")"
-for f in verify.txt grid-ab.txt grid-ab.json tiled-ab.txt tiled-ab.json normals-ab.txt normals-ab.json pipelines.json internals; do
+for f in verify.txt grid-ab.txt grid-ab.json tiled-ab.txt tiled-ab.json normals-ab.txt normals-ab.json pipelines.json \
+  internals; do
   [ -e "$work/waiting/$f" ] || fail "gpu-waiting wrote no $f: $(ls "$work/waiting")"
 done
 if [ ${#patches[@]} -gt 0 ]; then
@@ -111,7 +112,8 @@ fi
 grep -q "^gtao-half " "$work/waiting/tiled-ab.txt" || fail "tiled-ab.txt: $(cat "$work/waiting/tiled-ab.txt")"
 grep -q "^alchemy " "$work/waiting/normals-ab.txt" || fail "normals-ab.txt: $(cat "$work/waiting/normals-ab.txt")"
 grep -q "^gtao-temporal-grid .* upsample " "$work/waiting/grid-ab.txt" || fail "grid-ab.txt: $(cat "$work/waiting/grid-ab.txt")"
-grep -q "planar-nearest-window2 ms.*planar-nearest-window2-packed-normals ms.*planar-nearest-window2-packed-all ms" "$work/waiting/grid-ab.txt" || fail "grid-ab.txt, 2x2 windows: $(cat "$work/waiting/grid-ab.txt")"
+grep -q "planar-nearest-window2 ms.*planar-nearest-window2-packed-normals ms.*planar-nearest-window2-packed-all ms" \
+  "$work/waiting/grid-ab.txt" || fail "grid-ab.txt, 2x2 windows: $(cat "$work/waiting/grid-ab.txt")"
 grep -q "gpu-verify: ok\|max" "$work/waiting/verify.txt" || fail "verify.txt: $(cat "$work/waiting/verify.txt")"
 # A part that fails is named and the others still run: a bad --frames fails both timings, not the statistics
 # (one frame of their own) nor gpu-verify; the exit status says so.

@@ -30,9 +30,9 @@ std::vector<float> alchemySpiralOffsets(const ssao::AlchemyConstants& k) {
 }
 
 void recordAlchemy(Context::Impl& c, VkCommandBuffer cmd, const AlchemyBuffers& b, const ssao::AlchemyConstants& k) {
-    ComputePipeline& pipeline = c.pipeline("alchemy", shaders::alchemy, storageBuffers(kAlchemyBindingCount), kAlchemyPushConstantBytes,
-                                           ssao::kAlchemyWorkgroupX, ssao::kAlchemyWorkgroupY,
-                                           {b.packedNormals ? 1 : 0});  // kAlchemySpecPackedNormals
+    ComputePipeline& pipeline =
+        c.pipeline("alchemy", shaders::alchemy, storageBuffers(kAlchemyBindingCount), kAlchemyPushConstantBytes,
+                   ssao::kAlchemyWorkgroupX, ssao::kAlchemyWorkgroupY, {b.packedNormals ? 1 : 0});  // kAlchemySpecPackedNormals
     // In binding order: kAlchemyBindingDepth, Normal, Spiral, Output.
     pipeline.dispatchGrid(cmd, {&b.depth, &b.normal, &b.spiral, &b.output}, &k, sizeof k, k.width - 2 * k.guardBand,
                           k.height - 2 * k.guardBand);

@@ -271,6 +271,7 @@ void GpuBenchSettings::validate() const {
     check(alchemySamples >= 1 && alchemySamples <= 1024, "alchemy-samples", "[1, 1024]");
     check(blurRadius >= 1 && blurRadius <= ssao::kMaxBlurRadius, "blur-radius", "[1, 32] taps on each side");
     check(halfBlurRadius >= 1 && halfBlurRadius <= ssao::kMaxBlurRadius, "half-blur-radius", "[1, 32] taps on each side");
+    check(alternatingWindowSize == 4 || alternatingWindowSize == 2, "alternating-window-size", "{4, 2}");
     if (blurTiled) {
         const std::string most = std::to_string(kTiledBlurMaxRadius);
         if (blurRadius > kTiledBlurMaxRadius)

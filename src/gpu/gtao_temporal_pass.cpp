@@ -95,6 +95,7 @@ GtaoTemporalPasses::GtaoTemporalPasses(Context::Impl& c, const ssao::GtaoSetting
       unused_(deviceFloats(c, 4)) {
     const bool bentNormals = variant.bentNormals;
     assert(width >= 1 && height >= 1);
+    temporal.validate();  // cheap, and a window size or mode the shaders do not know must not reach them
     if (variant.packedOutput && !gridHistory_)
         fail("gtao temporal", "packedOutput needs the grid's history (half resolution, gridHistory): there the "
                               "upsampling writes the frame's visibility");

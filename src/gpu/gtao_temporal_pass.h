@@ -93,7 +93,7 @@ Image unpackNormals(const std::vector<std::uint32_t>& words, int width, int heig
 // set the previous one wrote and writes the other. Made once; no allocation per frame.
 class GtaoTemporalPasses {
 public:
-    // Assumes validated settings and width, height >= 1.
+    // Assumes validated GTAO settings and width, height >= 1; validates `temporal` (throws obscura::Error).
     GtaoTemporalPasses(Context::Impl& context, const ssao::GtaoSettings& settings,
                        const ssao::GtaoTemporalSettings& temporal, int width, int height,
                        GtaoTemporalVariant variant = {});

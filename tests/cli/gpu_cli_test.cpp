@@ -512,7 +512,8 @@ TEST_F(GpuCommands, BenchGpuPackedNormals) {
     const double reads[6] = {960, 960, 960, 240, 2 * 960, 2 * 240};
     for (int i = 0; i < 6; ++i) {
         const std::string name = b["cases"][i]["case"];
-        EXPECT_NE(b["cases"][i]["description"].get<std::string>().find("octahedral normals"), std::string::npos) << name;
+        const std::string description = b["cases"][i]["description"];
+        EXPECT_NE(description.find("octahedral normals"), std::string::npos) << name;
         EXPECT_EQ(a["cases"][i]["description"].get<std::string>().find("octahedral"), std::string::npos) << name;
         EXPECT_DOUBLE_EQ(bytesSaved(a, b, i), 8.0 * reads[i]) << name;
     }

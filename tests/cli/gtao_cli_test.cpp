@@ -136,9 +136,10 @@ TEST_F(GtaoCli, SamplingFlagReachesTheKernel) {
 // from the 4x4 windows' and from the 5x5 window's (which of them is nearer ray tracing is
 // GtaoTemporal.GridHistorySamplingsAgainstRayTracing's to say).
 TEST_F(GtaoCli, AlternatingWindowSizeReachesTheReconstruction) {
-    const std::string base = "render stairs --ao gtao --size 96x54 --frames 5 --gtao-half-res --gtao-grid-history -q -o " +
-                             path("f.png") + " --aov-dir ";
-    const char* variants[3] = {"", "--gtao-alternating-window", "--gtao-alternating-window --gtao-alternating-window-size 2"};
+    const std::string base = "render stairs --ao gtao --size 96x54 --frames 5 --gtao-half-res --gtao-grid-history -q "
+                             "-o " + path("f.png") + " --aov-dir ";
+    const char* variants[3] = {"", "--gtao-alternating-window",
+                               "--gtao-alternating-window --gtao-alternating-window-size 2"};
     obscura::Image ao[3];
     for (int i = 0; i < 3; ++i) {
         const std::string aovs = path("aov" + std::to_string(i));

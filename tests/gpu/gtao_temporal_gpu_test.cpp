@@ -328,6 +328,11 @@ TEST(GpuGtaoTemporal, AlternatingWindowMatchesTheCpuReference) {
         EXPECT_LE(d, kVisibilityBound) << phase;
     }
     EXPECT_THROW(reconstructInterleaved(context, raw.visibility, g.depth, g.normal, 0.05f, 8), Error);
+    // The passes validate the window's size, which the phase would otherwise take for 4.
+    ssao::GtaoTemporalSettings three = mode(true, true, true);
+    three.alternatingWindow = true;
+    three.alternatingWindowSize = 3;
+    EXPECT_THROW(GtaoTemporalPasses(context.impl(), preset(ssao::GtaoQuality::Low), three, 16, 8), Error);
     EXPECT_EQ(testing::validationReport(context), "");
 }
 
@@ -448,41 +453,47 @@ TEST(GpuGtaoTemporal, PackedNormalsGiveTheFrameOfTheirDecodedNormals) {
 
 // The visibility as unorm16 pairs (GtaoTemporalVariant::packedOutput, with the grid's history): each pixel's
 // half-word is the float frame's visibility rounded to 1/65535 (ssao::packUnorm16), at an odd width whose rows
-// end in a half-filled word, over 4 frames of the path; the output plane shrinks to (w + 1) / 2 words a row.
-// Without the grid's history there is no upsampling to write it, and the passes refuse it.
+// end in a half-filled word, over 4 frames of the path, with the float and the packed history (whose words the
+// upsampling then decodes too); the output plane shrinks to (w + 1) / 2 words a row. Without the grid's
+// history there is no upsampling to write it, and the passes refuse it.
 TEST(GpuGtaoTemporal, PackedOutputIsTheVisibilityInSixteenBits) {
     OBSCURA_GPU_CONTEXT(context);
     Context::Impl& c = context.impl();
     const DemoPath in;
     const auto& [gbuffers, settings, pixels] = in;
     const int w = DemoPath::w, h = DemoPath::h;
-    const ssao::GtaoTemporalSettings t = mode(true, true, true);
-    GtaoTemporalPasses floats(c, settings, t, w, h, {.bentNormals = false});
-    GtaoTemporalPasses words(c, settings, t, w, h, {.bentNormals = false, .packedOutput = true});
     const std::size_t rowWords = std::size_t(upsamplePackedRowWords(w));
-    int differing = 0, occluded = 0;
-    recordSideBySide(c, floats, words, gbuffers, [&](std::size_t) {
+    for (const bool packedHistory : {false, true}) {
+        ssao::GtaoTemporalSettings t = mode(true, true, true);
+        t.packedHistory = packedHistory;
+        GtaoTemporalPasses floats(c, settings, t, w, h, {.bentNormals = false});
+        GtaoTemporalPasses words(c, settings, t, w, h, {.bentNormals = false, .packedOutput = true});
+        int differing = 0, occluded = 0;
+        recordSideBySide(c, floats, words, gbuffers, [&](std::size_t) {
+            const std::vector<std::uint32_t> f = downloadWords(c, floats.visibility(), pixels);
+            const std::vector<std::uint32_t> p = downloadWords(c, words.visibility(), rowWords * std::size_t(h));
+            for (int y = 0; y < h; ++y)
+                for (int x = 0; x < w; ++x) {
+                    const float v = std::bit_cast<float>(f[std::size_t(y) * std::size_t(w) + std::size_t(x)]);
+                    const std::uint32_t word = p[std::size_t(y) * rowWords + std::size_t(x / 2)];
+                    differing += (x % 2 == 0 ? word & 0xffffu : word >> 16) != ssao::packUnorm16(v);
+                    occluded += v < 0.99f;
+                }
+            // w is odd: each row's last word holds one pixel.
+            for (int y = 0; y < h; ++y) differing += (p[std::size_t(y) * rowWords + rowWords - 1] >> 16) != 0;
+        });
+        EXPECT_EQ(differing, 0) << packedHistory;
+        EXPECT_GT(occluded, int(pixels) / 50);
+        // The same through the decoder.
+        const std::size_t packedWords = rowWords * std::size_t(h);
+        const Image decoded = unpackVisibilityPairs(downloadWords(c, words.visibility(), packedWords), w, h);
         const std::vector<std::uint32_t> f = downloadWords(c, floats.visibility(), pixels);
-        const std::vector<std::uint32_t> p = downloadWords(c, words.visibility(), rowWords * std::size_t(h));
-        for (int y = 0; y < h; ++y)
-            for (int x = 0; x < w; ++x) {
-                const float v = std::bit_cast<float>(f[std::size_t(y) * std::size_t(w) + std::size_t(x)]);
-                const std::uint32_t word = p[std::size_t(y) * rowWords + std::size_t(x / 2)];
-                differing += (x % 2 == 0 ? word & 0xffffu : word >> 16) != ssao::packUnorm16(v);
-                occluded += v < 0.99f;
-            }
-        for (int y = 0; y < h; ++y) differing += (p[std::size_t(y) * rowWords + rowWords - 1] >> 16) != 0;  // odd w
-    });
-    EXPECT_EQ(differing, 0);
-    EXPECT_GT(occluded, int(pixels) / 50);
-    // The same through the decoder.
-    const Image decoded = unpackVisibilityPairs(downloadWords(c, words.visibility(), rowWords * std::size_t(h)), w, h);
-    const std::vector<std::uint32_t> f = downloadWords(c, floats.visibility(), pixels);
-    double worst = 0;
-    for (std::size_t i = 0; i < pixels; ++i)
-        worst = std::max(worst, std::fabs(double(decoded.pixels[i]) - double(std::bit_cast<float>(f[i]))));
-    EXPECT_LE(worst, 0.5 / 65535 + 1e-7);
-    EXPECT_EQ(floats.bytesPerFrame() - words.bytesPerFrame(), 4 * (pixels - rowWords * std::size_t(h)));
+        double worst = 0;
+        for (std::size_t i = 0; i < pixels; ++i)
+            worst = std::max(worst, std::fabs(double(decoded.pixels[i]) - double(std::bit_cast<float>(f[i]))));
+        EXPECT_LE(worst, 0.5 / 65535 + 1e-7) << packedHistory;
+        EXPECT_EQ(floats.bytesPerFrame() - words.bytesPerFrame(), 4 * (pixels - rowWords * std::size_t(h)));
+    }
     EXPECT_THROW(GtaoTemporalPasses(c, settings, mode(true, true, false), w, h, {.packedOutput = true}), Error);
     EXPECT_EQ(testing::validationReport(context), "");
 }

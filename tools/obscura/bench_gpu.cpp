@@ -122,8 +122,8 @@ void GpuBenchOptions::add(CLI::App& bench) {
                    "--gpu: the temporal cases reconstruct with a 4x4 window (16 taps instead of 25) whose place "
                    "alternates over 4 frames, which the history averages to the 5x5 window's weights");
     bench.add_option("--alternating-window-size", alternatingWindowSize,
-                     "--gpu with --alternating-window: the windows' side, 4 (16 taps) or 2 (4 taps, each window holding "
-                     "the pixel, which the history averages to a 3x3 tent)")
+                     "--gpu with --alternating-window: the windows' side, 4 (16 taps) or 2 (4 taps, each window "
+                     "holding the pixel, which the history averages to a 3x3 tent)")
         ->capture_default_str();
     addGtaoSamplingOption(bench, sampling, mipRatio, "--gpu: how the GTAO cases' horizon samples read depth");
     gtao.add(bench, "--gpu, the GTAO cases", "; the temporal cases take --temporal-slices",

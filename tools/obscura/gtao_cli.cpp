@@ -159,8 +159,8 @@ void GtaoOptions::add(CLI::App& app) {
                  "GTAO temporal mode: reconstruct with a 4x4 window (16 taps instead of 25) whose place alternates "
                  "over 4 frames, so that the history averages it to the 5x5 window's weights");
     app.add_option("--gtao-alternating-window-size", alternatingWindowSize,
-                   "GTAO temporal mode with --gtao-alternating-window: the windows' side, 4 (16 taps) or 2 (2x2 windows "
-                   "that each hold the pixel, 4 taps, which the history averages to a 3x3 tent)")
+                   "GTAO temporal mode with --gtao-alternating-window: the windows' side, 4 (16 taps) or 2 (2x2 "
+                   "windows that each hold the pixel, 4 taps, which the history averages to a 3x3 tent)")
         ->capture_default_str();
     app.add_option("--gtao-thickness", thickness, "GTAO thin occluders: none, heuristic (eq. 9), bitmask")
         ->check(CLI::IsMember({"none", "heuristic", "bitmask"}))

@@ -1,7 +1,7 @@
 // The separable blur's tap loop for one centre, shared by its passes (bilateral_separable.comp) and by the
 // Alchemy pass that blurs its own rows (alchemy_blur_row.comp). The includer declares the shared arrays
-// tile (depth and input of each slot) and tileLogSpatial, tileIndex(line, i), the specialization constant kUseNormal and
-// loadNormal (normal_plane.glsl), which only a kUseNormal of 1 calls.
+// tile (depth and input of each slot) and tileLogSpatial, tileIndex(line, i), the specialization constant
+// kUseNormal and loadNormal (normal_plane.glsl), which only a kUseNormal of 1 calls.
 
 // The centre at tile position `centre` of line `line`, with depth d, c = depthScale / d^2, normal n and
 // index x in the normal plane; taps t in [tFirst, tLast] (those inside the image), `stride` pixels apart

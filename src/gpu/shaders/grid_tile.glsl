@@ -1,7 +1,8 @@
 // The grid that temporal_filters.glsl's reconstructInterleaved reads, staged in shared memory: each
-// workgroup copies the grid pixels its 5x5 gathers reach (its own and 2 around) into shared memory once,
-// and the 25 taps of each pixel read them there instead of 25 x (depth, normal, values) global loads. The
-// values are the same floats, so the filter's result is unchanged.
+// workgroup copies the grid pixels its gathers reach (its own and kGridTileReach around: 2 for the 5x5 and
+// 4x4 windows, 1 for the 2x2 ones) into shared memory once, and the taps of each pixel read them there
+// instead of (depth, normal, values) global loads per tap. The values are the same floats, so the filter's
+// result is unchanged.
 //
 // reconstruct_interleaved.comp uses it, and gtao_temporal.comp where it runs the same reconstruction inside
 // the accumulation (at full resolution, and on the grid with the grid's history). The half-resolution

@@ -1,8 +1,8 @@
 // Depth-aware upsampling of half-resolution GTAO: Jimenez, Wu, Pesce and Jarabo 2016, "Practical Realtime
 // Strategies for Accurate Indirect Occlusion", §4.1 (evaluation at half resolution), as a pass of its own:
-// one invocation per 2x2 block of full-resolution pixels; 1 or 3 channels by specialization constant. The filter is
-// temporal_filters.glsl's upsampleDepthAware; here the low-resolution depth is a guide plane read at a
-// stride (temporal_layouts.h), and `low` and `outValues` are the buffers below.
+// one invocation per 2x2 block of full-resolution pixels; 1 or 3 channels by specialization constant. The
+// filter is temporal_filters.glsl's upsampleDepthAware; here the low-resolution depth is a guide plane read
+// at a stride (temporal_layouts.h), and `low` and `outWords` are the buffers below.
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require
