@@ -65,7 +65,8 @@ void recordShade(Context::Impl& c, VkCommandBuffer cmd, const ShadeBuffers& b, c
         "shade", shaders::shade,
         {K::StorageBuffer, K::StorageBuffer, K::StorageBuffer, K::StorageBuffer, K::StorageBuffer, K::SampledImage,
          K::StorageBuffer, K::StorageBuffer},
-        kShadePushConstantBytes, kLightingWorkgroupX, kLightingWorkgroupY);
+        kShadePushConstantBytes, kLightingWorkgroupX, kLightingWorkgroupY,
+        {b.packedNormals ? 1 : 0});  // kShadeSpecPackedNormals
     pipeline.dispatchGrid(cmd, {&b.depth, &b.normal, &b.albedo, &b.occlusion, &b.irradiance, &b.environment, &b.color,
                                 &b.lighting},
                           &k, sizeof k, k.width, k.height);

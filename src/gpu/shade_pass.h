@@ -25,6 +25,7 @@ struct ShadeBuffers {
     const Texture& environment; // environmentTexture(environment)
     const Buffer& color;        // width * height * 3, output
     const Buffer& lighting;     // width * height * 3, output
+    bool packedNormals = false;  // `normal` holds one octahedral word per pixel (kShadeSpecPackedNormals 1)
 };
 
 // The SH9 as the shader evaluates it: term i (SH9's order) is A_l N_lm L_lm RGB (and a 0), formed in double

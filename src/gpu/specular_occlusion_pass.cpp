@@ -70,7 +70,8 @@ void recordSpecularOcclusion(Context::Impl& c, VkCommandBuffer cmd, const Specul
         c.pipeline("specular_occlusion", shaders::specular_occlusion,
                    {K::StorageBuffer, K::StorageBuffer, K::StorageBuffer, K::StorageBuffer, K::SampledImage,
                     K::StorageBuffer},
-                   kSpecularPushConstantBytes, kLightingWorkgroupX, kLightingWorkgroupY, {modeCode(mode), lookup});
+                   kSpecularPushConstantBytes, kLightingWorkgroupX, kLightingWorkgroupY,
+                   {modeCode(mode), lookup, b.packedNormals ? 1 : 0});  // kSpecularSpecMode, Lookup, PackedNormals
     pipeline.dispatchGrid(cmd, {&b.depth, &b.normal, &b.ao, &b.bentNormal, &b.table, &b.output}, &k, sizeof k,
                           k.width, k.height);
 }

@@ -20,6 +20,7 @@ struct SpecularOcclusionBuffers {
     const Buffer& bentNormal;  // width * height * 3 view bent normals
     const Texture& table;      // specularTable(mode)
     const Buffer& output;      // width * height S
+    bool packedNormals = false;  // `normal` holds one octahedral word per pixel (kSpecularSpecPackedNormals 1)
 };
 
 // The pass's constants for this G-buffer's camera and size; roughness checked by the caller.

@@ -201,8 +201,8 @@ TEST(GpuLighting, PipelinesCheckBindingKindsAndSpecializations) {
     ASSERT_EQ(shadeLayout.kinds.size(), std::size_t(kShadeBindingCount));
     EXPECT_EQ(shadeLayout.kinds[kShadeBindingEnvironment], K::SampledImage);
     EXPECT_EQ(shadeLayout.kinds[kShadeBindingColor], K::StorageBuffer);
-    EXPECT_EQ(shadeLayout.specConstants, 0);
-    EXPECT_EQ(reflect(shaders::specular_occlusion).specConstants, 2);
+    EXPECT_EQ(shadeLayout.specConstants, 1);
+    EXPECT_EQ(reflect(shaders::specular_occlusion).specConstants, 3);
     EXPECT_EQ(reflect(shaders::gtao).kinds, std::vector<K>(kGtaoBindingCount, K::StorageBuffer));
 
     Context::Impl& c = context.impl();
@@ -217,7 +217,7 @@ TEST(GpuLighting, PipelinesCheckBindingKindsAndSpecializations) {
         ComputePipeline(c, shaders::specular_occlusion, "specular_occlusion", kinds, kSpecularPushConstantBytes,
                         kLightingWorkgroupX, kLightingWorkgroupY, {kSpecularModeCone});
     });
-    EXPECT_NE(spec.find("declares 2 specialization constants, the host sets 1"), std::string::npos) << spec;
+    EXPECT_NE(spec.find("declares 3 specialization constants, the host sets 1"), std::string::npos) << spec;
     EXPECT_EQ(testing::validationReport(context), "");
 }
 

@@ -3,7 +3,8 @@
 // gives for the words' decoded normals as 3 floats (gpu::unpackNormals), which the other GPU tests hold to
 // the CPU reference. So packing the normals changes a frame exactly as much as the 16-bit code moves them
 // (within 1e-4 each; GtaoTemporal.OctahedralNormalsKeepTheAccuracy measures what that does to the error). The
-// spatio-temporal passes are GpuGtaoTemporal.PackedNormalsGiveTheFrameOfTheirDecodedNormals's.
+// spatio-temporal passes are GpuGtaoTemporal.PackedNormalsGiveTheFrameOfTheirDecodedNormals's; the lighting
+// passes (specular occlusion, shading) are here too.
 #include "gpu/alchemy_pass.h"
 #include "gpu/bilateral_2d_pass.h"
 #include "gpu/bilateral_pass.h"
@@ -12,13 +13,18 @@
 #include "gpu/gtao_pass.h"
 #include "gpu/gtao_temporal_pass.h"
 #include "gpu/image_planes.h"
+#include "gpu/shade_pass.h"
+#include "gpu/specular_occlusion_pass.h"
 #include "gpu_test_util.h"
 
 #include "obscura/alchemy.h"
 #include "obscura/bilateral.h"
 #include "obscura/gtao.h"
 #include "obscura/gtao_half_res.h"
+#include "obscura/render.h"
+#include "obscura/specular_occlusion.h"
 
+#include <array>
 #include <bit>
 #include <cstdint>
 #include <string>
@@ -182,5 +188,51 @@ TEST(GpuPackedNormals, GtaoReadsTheWordsAsTheirDecoding) {
     // The GTAO pass's normals and the blur's guide normals: 8 bytes fewer per grid pixel each.
     const std::size_t grid = std::size_t(floats.gridWidth()) * std::size_t(floats.gridHeight());
     EXPECT_EQ(floats.bytesPerFrame() - words.bytesPerFrame(), 2 * 8 * grid);
+    EXPECT_EQ(gpu::testing::validationReport(context), "");
+}
+
+// The lighting passes: specular occlusion from the G-buffer's normal (the cone mode reads it beside the bent
+// normal) and the shading, whose irradiance and reflection turn on the normal.
+TEST(GpuPackedNormals, LightingReadsTheWordsAsTheirDecoding) {
+    OBSCURA_GPU_CONTEXT(context);
+    Context::Impl& c = context.impl();
+    const NormalPlanes planes = uploadPlanes(c, "demo", 97, 61);
+    const GBuffer& g = planes.g;
+    const ssao::GtaoResult ao = ssao::computeGtao(g, ssao::gtaoConstants(ssao::GtaoSettings{}, g.camera));
+    const std::size_t pixels = planes.px;
+    const Buffer visibility = uploadChannels(c, ao.visibility, 1);
+    const Buffer bent = uploadChannels(c, ao.bentNormal, 3);
+    using ssao::SpecularOcclusionMode;
+    for (const SpecularOcclusionMode mode : {SpecularOcclusionMode::Cone, SpecularOcclusionMode::Lut4}) {
+        const Texture table = specularTable(c, mode, TextureFilter::Nearest);
+        const SpecularConstants k = specularConstants(g, 0.4f);
+        const Buffer a = deviceFloats(c, pixels), b = deviceFloats(c, pixels);
+        c.submit([&](VkCommandBuffer cmd) {
+            recordSpecularOcclusion(c, cmd, {planes.depth, planes.floats, visibility, bent, table, a}, k, mode,
+                                    kSpecularLookupFetch);
+            recordSpecularOcclusion(c, cmd, {planes.depth, planes.words, visibility, bent, table, b, true}, k, mode,
+                                    kSpecularLookupFetch);
+        });
+        int occluded = 0;
+        EXPECT_EQ(differing(c, a, b, pixels, &occluded), 0) << int(mode);
+        EXPECT_GT(occluded, int(pixels) / 50) << int(mode);
+    }
+
+    const Image sky = render::proceduralSky(64, 32);
+    const std::array<float, 36> terms = irradianceTerms(render::projectEnvironment(sky));
+    const Buffer irradiance = upload(c, terms.data(), sizeof terms);
+    const Texture environment = environmentTexture(c, sky);
+    const Buffer albedo = uploadChannels(c, g.albedo, 3);
+    const ShadeConstants k = shadeConstants(g.camera, 1, sky);
+    const Buffer colorA = deviceFloats(c, 3 * pixels), colorB = deviceFloats(c, 3 * pixels), lightA = deviceFloats(c, 3 * pixels),
+                 lightB = deviceFloats(c, 3 * pixels);
+    c.submit([&](VkCommandBuffer cmd) {
+        recordShade(c, cmd, {planes.depth, planes.floats, albedo, visibility, irradiance, environment, colorA, lightA},
+                    k);
+        recordShade(c, cmd,
+                    {planes.depth, planes.words, albedo, visibility, irradiance, environment, colorB, lightB, true}, k);
+    });
+    EXPECT_EQ(differing(c, colorA, colorB, 3 * pixels), 0);
+    EXPECT_EQ(differing(c, lightA, lightB, 3 * pixels), 0);
     EXPECT_EQ(gpu::testing::validationReport(context), "");
 }

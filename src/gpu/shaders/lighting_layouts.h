@@ -41,6 +41,9 @@ OBSCURA_CONST int kSpecularLookupFetch = 0;     // texelFetch of the 2^d nodes, 
 OBSCURA_CONST int kSpecularLookupHardware = 1;  // the sampler's trilinear filter (the 4-D table: two, lerped)
 OBSCURA_CONST int kSpecularSpecMode = 0;        // constant_id of the mode
 OBSCURA_CONST int kSpecularSpecLookup = 1;      // constant_id of the lookup
+// constant_id of the normals' layout, as gtao.comp's kGtaoSpecPackedNormals (layouts.h): 0 3 floats per pixel,
+// 1 one octahedral word (normal_plane.glsl).
+OBSCURA_CONST int kSpecularSpecPackedNormals = 2;
 // Table textures, R32_SFLOAT, node (i alpha_v, j beta, k roughness, l theta_o) of
 // ssao::SpecularOcclusionTable at texel:
 //   4-D: (i, j, l * 32 + k) of a 32 x 32 x 1024 3-D image (theta_o and roughness share the z axis),
@@ -86,7 +89,9 @@ struct ShadeConstants {
     float worldFromView[12];  // rows 0..2 of Camera::worldFromView, 4 floats each (the 4th unused)
 };
 OBSCURA_CONST int kShadeBindingDepth = 0;        // width * height linear depths, +inf for sky
-OBSCURA_CONST int kShadeBindingNormal = 1;       // width * height * 3 view normals
+OBSCURA_CONST int kShadeBindingNormal = 1;       // width * height * 3 view normals (or words, kShadeSpecPackedNormals)
+// constant_id of the normals' layout, as kSpecularSpecPackedNormals.
+OBSCURA_CONST int kShadeSpecPackedNormals = 0;
 OBSCURA_CONST int kShadeBindingAlbedo = 2;       // width * height * 3 albedo
 OBSCURA_CONST int kShadeBindingOcclusion = 3;    // width * height * aoChannels (one float when 0)
 OBSCURA_CONST int kShadeBindingIrradiance = 4;   // 9 x 4 floats: A_l N_lm L_lm RGB per basis term (shade_pass.h)

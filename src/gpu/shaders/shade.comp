@@ -14,9 +14,11 @@
 
 layout(local_size_x = kLightingWorkgroupX, local_size_y = kLightingWorkgroupY, local_size_z = 1) in;
 
+layout(constant_id = kShadeSpecPackedNormals) const int kPackedNormals = 0;
+
 layout(push_constant, std430) uniform Constants { ShadeConstants k; };
 layout(std430, binding = kShadeBindingDepth) readonly buffer DepthPlane { float depth[]; };
-layout(std430, binding = kShadeBindingNormal) readonly buffer NormalPlane { float normal[]; };
+layout(std430, binding = kShadeBindingNormal) readonly buffer NormalPlane { uint normalWords[]; };
 layout(std430, binding = kShadeBindingAlbedo) readonly buffer AlbedoPlane { float albedo[]; };
 layout(std430, binding = kShadeBindingOcclusion) readonly buffer Occlusion { float occlusion[]; };
 layout(std430, binding = kShadeBindingIrradiance) readonly buffer Irradiance { vec4 sh[9]; };
@@ -25,6 +27,13 @@ layout(std430, binding = kShadeBindingColor) writeonly buffer Color { float colo
 layout(std430, binding = kShadeBindingLighting) writeonly buffer Lighting { float lighting[]; };
 
 const float kPi = 3.14159265358979;
+
+// ---- obscura/math.h's normalize, which decoding a packed normal ends with ----
+vec3 normalize3(vec3 a) {
+    const float l = sqrt(a.x * a.x + a.y * a.y + a.z * a.z);
+    return l > 0.0 ? a / l : vec3(0.0);
+}
+#include "normal_plane.glsl"
 
 vec3 worldFromView(vec3 v) {
     return vec3(dot(vec3(k.worldFromView[0], k.worldFromView[1], k.worldFromView[2]), v),
@@ -87,7 +96,7 @@ void main() {
         store(x, sampleEquirect(normalize(worldFromView(view))), vec3(0.0));  // no surface to light
         return;
     }
-    const vec3 n = normalize(worldFromView(vec3(normal[3 * x], normal[3 * x + 1], normal[3 * x + 2])));
+    const vec3 n = normalize(worldFromView(loadNormal(x)));
     const vec3 light = irradiance(n) * (1.0 / kPi);
     const vec3 a = vec3(albedo[3 * x], albedo[3 * x + 1], albedo[3 * x + 2]);
     vec3 o = vec3(1.0);

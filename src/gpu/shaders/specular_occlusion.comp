@@ -22,10 +22,11 @@ layout(local_size_x = kLightingWorkgroupX, local_size_y = kLightingWorkgroupY, l
 
 layout(constant_id = kSpecularSpecMode) const int kMode = kSpecularModeLut4;
 layout(constant_id = kSpecularSpecLookup) const int kLookup = kSpecularLookupFetch;
+layout(constant_id = kSpecularSpecPackedNormals) const int kPackedNormals = 0;
 
 layout(push_constant, std430) uniform Constants { SpecularConstants k; };
 layout(std430, binding = kSpecularBindingDepth) readonly buffer DepthPlane { float depth[]; };
-layout(std430, binding = kSpecularBindingNormal) readonly buffer NormalPlane { float normal[]; };
+layout(std430, binding = kSpecularBindingNormal) readonly buffer NormalPlane { uint normalWords[]; };
 layout(std430, binding = kSpecularBindingAo) readonly buffer AoPlane { float ao[]; };
 layout(std430, binding = kSpecularBindingBentNormal) readonly buffer BentPlane { float bent[]; };
 layout(binding = kSpecularBindingTable) uniform sampler3D table;
@@ -98,9 +99,15 @@ float specularOcclusionCone(float alphaV, float beta, float roughness) {
     return clamp(capIntersectionSolidAngle(alphaV, alphaS, beta) / specular, 0.0, 1.0);
 }
 
+// ---- obscura/math.h's normalize, which decoding a packed normal ends with ----
+vec3 normalize3(vec3 a) {
+    const float l = sqrt(a.x * a.x + a.y * a.y + a.z * a.z);
+    return l > 0.0 ? a / l : vec3(0.0);
+}
+#include "normal_plane.glsl"
+
 vec3 vec3At(uint i, bool bentPlane) {
-    return bentPlane ? vec3(bent[3 * i], bent[3 * i + 1], bent[3 * i + 2])
-                     : vec3(normal[3 * i], normal[3 * i + 1], normal[3 * i + 2]);
+    return bentPlane ? vec3(bent[3 * i], bent[3 * i + 1], bent[3 * i + 2]) : loadNormal(i);
 }
 
 void main() {
