@@ -61,6 +61,9 @@ Image reconstructInterleaved(const Image& values, const Image& depth, const Imag
 // The windowPhase of frame frameIndex: -1 without alternatingWindow, else 0, 1, 3, 2 in turn, plus 4 for
 // alternatingWindowSize 2.
 int reconstructWindowPhase(const GtaoTemporalSettings& settings, int frameIndex);
+// Throws obscura::Error("reconstruct interleaved: ...") for a windowPhase outside -1..7 (both
+// reconstructInterleaved, the CPU's and gpu::reconstructInterleaved, check with it).
+void checkReconstructWindowPhase(int windowPhase);
 
 // Depth-aware upsampling of a half-resolution image (pixel (x, y) taken at full-resolution (2x, 2y)) to the
 // G-buffer's size: bilinear weights times the depth weight of each low-resolution tap.

@@ -9,6 +9,7 @@
 #include "gpu/gtao_half_res_pass.h"
 #include "gpu/gtao_pass.h"
 #include "gpu/gtao_temporal_pass.h"
+#include "gpu/image_planes.h"
 
 #include "obscura/alchemy.h"
 #include "obscura/error.h"
@@ -27,12 +28,11 @@ namespace obscura::gpu {
 
 namespace {
 
-// One input G-buffer on the device; packedNormal, its normals as octahedral words, only with
-// GpuBenchSettings::packedNormals.
+// One input G-buffer on the device: its normals as 3 floats, or as octahedral words with
+// GpuBenchSettings::packedNormals (every case then tells its passes so).
 struct ResidentInput {
-    Buffer depth, normal, packedNormal;
+    Buffer depth, normal;
     Camera camera;
-    const Buffer& normals(bool packed) const { return packed ? packedNormal : normal; }
 };
 
 // Bytes of a normal in the inputs: one octahedral word with GpuBenchSettings::packedNormals, else 3 floats.
@@ -133,7 +133,7 @@ CaseSetup alchemyCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s,
         setup.record = [&c, k, blur, spiral, logSpatial, scratch, out, packed](
                            VkCommandBuffer cmd, const ResidentInput& in, int, const std::function<void(const char*)>& mark) {
             recordAlchemyBlurred(
-                c, cmd, {in.depth, in.normals(packed), *spiral, in.depth, *logSpatial, *scratch, *out, packed}, k,
+                c, cmd, {in.depth, in.normal, *spiral, in.depth, *logSpatial, *scratch, *out, packed}, k,
                 blur, mark);
         };
         return setup;
@@ -143,10 +143,11 @@ CaseSetup alchemyCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s,
     setup.bytes = double(px) * (4 + normalBytes(s) + 4) + blurDispatchCount(dispatch) * double(px) * (4 + 4 + 4);
     setup.record = [&c, k, blur, spiral, logSpatial, raw, scratch, out, dispatch, packed](
                        VkCommandBuffer cmd, const ResidentInput& in, int, const std::function<void(const char*)>& mark) {
-        recordAlchemy(c, cmd, {in.depth, in.normals(packed), *spiral, *raw, packed}, k);
+        recordAlchemy(c, cmd, {in.depth, in.normal, *spiral, *raw, packed}, k);
         mark("alchemy");
         computeBarrier(cmd);  // the blur reads the estimator's output
-        recordSeparableBilateral(c, cmd, {in.depth, in.normal, *logSpatial, *raw, *scratch, *out}, blur, dispatch);
+        recordSeparableBilateral(c, cmd, {in.depth, in.normal, *logSpatial, *raw, *scratch, *out, packed}, blur,
+                                 dispatch);
         mark("blur");
     };
     return setup;
@@ -182,11 +183,11 @@ CaseSetup gtaoCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s, co
             mark("mips");
             computeBarrier(cmd);  // the GTAO pass reads the chain
         }
-        recordGtao(c, cmd, {in.depth, in.normals(packed), *visibility, *bent, *mips}, k, 1, bentNormals, packed);
+        recordGtao(c, cmd, {in.depth, in.normal, *visibility, *bent, *mips}, k, 1, bentNormals, packed);
         mark("gtao");
         computeBarrier(cmd);  // the blur reads the visibility
         recordSeparableBilateral(
-            c, cmd, {in.depth, in.normals(packed), *logSpatial, *visibility, *scratch, *out, packed}, blur, dispatch);
+            c, cmd, {in.depth, in.normal, *logSpatial, *visibility, *scratch, *out, packed}, blur, dispatch);
         mark("blur");
     };
     return setup;
@@ -213,7 +214,7 @@ CaseSetup gtaoHalfCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s
     setup.keepAlive = {passes};
     setup.record = [passes, packed = s.packedNormals](VkCommandBuffer cmd, const ResidentInput& in, int index,
                                                       const std::function<void(const char*)>& mark) {
-        passes->record(cmd, in.depth, in.normals(packed), in.camera, index, mark);
+        passes->record(cmd, in.depth, in.normal, in.camera, index, mark);
     };
     return setup;
 }
@@ -253,7 +254,7 @@ CaseSetup temporalCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s
     const bool packedNormals = s.packedNormals;
     setup.record = [passes, previousDepth, packedNormals](VkCommandBuffer cmd, const ResidentInput& in, int index,
                                                           const std::function<void(const char*)>& mark) {
-        passes->record(cmd, {in.depth, in.normals(packedNormals), in.camera, index, *previousDepth}, mark);
+        passes->record(cmd, {in.depth, in.normal, in.camera, index, *previousDepth}, mark);
         *previousDepth = &in.depth;
     };
     return setup;
@@ -327,20 +328,22 @@ GpuBenchCase benchGpuCase(Context& context, const std::string& name, const std::
     std::vector<ResidentInput> resident;
     for (const GBuffer& g : inputs) {
         const std::size_t px = g.depth.pixelCount();
-        Buffer packed;
+        Buffer normal;
         if (settings.packedNormals) {
             const std::vector<std::uint32_t> words = packNormals(g.normal);
-            packed = upload(c, words.data(), words.size() * sizeof(std::uint32_t));
+            normal = upload(c, words.data(), words.size() * sizeof(std::uint32_t));
+        } else {
+            normal = upload(c, g.normal.pixels.data(), 3 * px * sizeof(float));
         }
-        resident.push_back({upload(c, g.depth.pixels.data(), px * sizeof(float)),
-                            upload(c, g.normal.pixels.data(), 3 * px * sizeof(float)), std::move(packed), g.camera});
+        resident.push_back({upload(c, g.depth.pixels.data(), px * sizeof(float)), std::move(normal), g.camera});
     }
     const CaseSetup setup = name == "alchemy" || name == "alchemy-fused"
                                 ? alchemyCase(c, w, h, settings, inputs[0].camera, name == "alchemy-fused")
                             : name == "gtao"      ? gtaoCase(c, w, h, settings, inputs[0].camera)
                             : name == "gtao-half" ? gtaoHalfCase(c, w, h, settings)
                                               : temporalCase(c, w, h, settings, name != "gtao-spatial",
-                                                             name == "gtao-temporal-half" || name == "gtao-temporal-grid",
+                                                             name == "gtao-temporal-half" ||
+                                                                 name == "gtao-temporal-grid",
                                                              name == "gtao-temporal-grid");
 
     GpuBenchCase result;

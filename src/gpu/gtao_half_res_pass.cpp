@@ -16,8 +16,6 @@ namespace obscura::gpu {
 
 namespace {
 
-Buffer deviceFloats(Context::Impl& c, std::size_t count) { return Buffer(c, count * sizeof(float), MemoryUse::Device); }
-
 std::size_t gridPixels(int width, int height) {
     return std::size_t((width + 1) / 2) * std::size_t((height + 1) / 2);
 }

@@ -22,8 +22,6 @@ namespace obscura::gpu {
 
 namespace {
 
-Buffer deviceFloats(Context::Impl& c, std::size_t count) { return Buffer(c, count * sizeof(float), MemoryUse::Device); }
-
 // Rows 0..2 of m into 12 floats, as the shader's transformPoint reads them.
 void rows(const Mat4& m, float* out) {
     for (int r = 0; r < 3; ++r)
@@ -241,26 +239,6 @@ Image unpackVisibilityPairs(const std::vector<std::uint32_t>& words, int width, 
     return visibility;
 }
 
-std::vector<std::uint32_t> packNormals(const Image& normal) {
-    assert(normal.channels == 3);
-    std::vector<std::uint32_t> words(std::size_t(normal.width) * std::size_t(normal.height));
-    for (std::size_t i = 0; i < words.size(); ++i)
-        words[i] = ssao::packOctahedral({normal.pixels[3 * i], normal.pixels[3 * i + 1], normal.pixels[3 * i + 2]});
-    return words;
-}
-
-Image unpackNormals(const std::vector<std::uint32_t>& words, int width, int height) {
-    assert(words.size() == std::size_t(width) * std::size_t(height));
-    Image normal(width, height, 3);
-    for (std::size_t i = 0; i < words.size(); ++i) {
-        const Vec3 n = ssao::unpackOctahedral(words[i]);
-        normal.pixels[3 * i] = n.x;
-        normal.pixels[3 * i + 1] = n.y;
-        normal.pixels[3 * i + 2] = n.z;
-    }
-    return normal;
-}
-
 std::size_t GtaoTemporalPasses::bytesPerFrame() const {
     const std::size_t f = sizeof(float);
     const std::size_t pixels = std::size_t(width_) * std::size_t(height_);
@@ -309,9 +287,7 @@ Image reconstructInterleaved(Context& context, const Image& values, const Image&
     if (depth.width != w || depth.height != h || normal.width != w || normal.height != h || normal.channels < 3)
         fail("reconstruct interleaved", "depth (1 channel) and normal (3 channels) must match the " +
                                             std::to_string(w) + "x" + std::to_string(h) + " values");
-    if (windowPhase < -1 || windowPhase > 7)
-        fail("reconstruct interleaved", "window phase must be -1 (5x5), 0..3 (4x4) or 4..7 (2x2), not " +
-                                            std::to_string(windowPhase));
+    ssao::checkReconstructWindowPhase(windowPhase);  // the CPU's check and message
     if (values.empty()) return values;
     Context::Impl& c = context.impl();
     const Buffer in = uploadChannels(c, values, values.channels);

@@ -74,7 +74,7 @@ struct GtaoTemporalVariant {
     // the previous frame's depth buffer from GtaoTemporalFrameInputs::previousDepth.
     bool callerKeepsDepth = false;
     // true: GtaoTemporalFrameInputs::normal holds one octahedral word per pixel (ssao::packOctahedral, as
-    // packNormals makes them) instead of 3 floats (kGtaoSpecPackedNormals, kReconstructSpecPackedNormals and
+    // gpu::packNormals of gpu/image_planes.h makes them) instead of 3 floats (kGtaoSpecPackedNormals, kReconstructSpecPackedNormals and
     // kTemporalSpecPackedNormals 1): the frame of those normals decoded (ssao::unpackOctahedral).
     bool packedNormals = false;
     // true, with the grid's history (temporal.gridHistory): the upsampling writes the frame's visibility as
@@ -82,11 +82,6 @@ struct GtaoTemporalVariant {
     // the largest plane the frame writes. The constructor throws obscura::Error without the grid's history.
     bool packedOutput = false;
 };
-
-// The view normals of `normal` (3 channels) as one octahedral word per pixel, for packedNormals; and the
-// normals a pass reading those words sees, for a CPU reference of that frame.
-std::vector<std::uint32_t> packNormals(const Image& normal);
-Image unpackNormals(const std::vector<std::uint32_t>& words, int width, int height);
 
 // The resident buffers of ssao::GtaoTemporal for one size: the frame's intermediates and two sets of history
 // (depth, world normals, visibility, world bent normals, history length), written in turn: a frame reads the

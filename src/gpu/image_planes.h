@@ -1,16 +1,51 @@
-// Uploads of obscura::Image planes for the passes in src/gpu: the first `channels` channels of every pixel,
-// interleaved, as the shaders' float arrays expect (an image with more channels is repacked on the host).
+// The planes the passes in src/gpu read and write, to and from the host: obscura::Image uploads (the first
+// `channels` channels of every pixel, interleaved, as the shaders' float arrays expect; an image with more
+// channels is repacked on the host), device-only float planes, downloads as 32-bit words, and the G-buffer's
+// normals as the octahedral words the passes take instead of 3 floats (normal_plane.glsl).
 #pragma once
 
 #include "gpu/buffer.h"
 #include "gpu/context.h"
 
+#include "obscura/history_packing.h"
 #include "obscura/image.h"
 
 #include <cassert>
+#include <cstdint>
 #include <vector>
 
 namespace obscura::gpu {
+
+inline Buffer deviceFloats(Context::Impl& context, std::size_t count) {
+    return Buffer(context, count * sizeof(float), MemoryUse::Device);
+}
+
+inline std::vector<std::uint32_t> downloadWords(Context::Impl& context, const Buffer& buffer, std::size_t count) {
+    std::vector<std::uint32_t> words(count);
+    download(context, buffer, words.data(), count * sizeof(std::uint32_t));
+    return words;
+}
+
+// The view normals of `normal` (3 channels) as one octahedral word per pixel (ssao::packOctahedral), for the
+// passes' packedNormals; and the normals a pass reading those words sees, for a CPU reference of that frame.
+inline std::vector<std::uint32_t> packNormals(const Image& normal) {
+    assert(normal.channels == 3);
+    std::vector<std::uint32_t> words(normal.pixelCount());
+    for (std::size_t i = 0; i < words.size(); ++i)
+        words[i] = ssao::packOctahedral({normal.pixels[3 * i], normal.pixels[3 * i + 1], normal.pixels[3 * i + 2]});
+    return words;
+}
+inline Image unpackNormals(const std::vector<std::uint32_t>& words, int width, int height) {
+    assert(words.size() == std::size_t(width) * std::size_t(height));
+    Image normal(width, height, 3);
+    for (std::size_t i = 0; i < words.size(); ++i) {
+        const Vec3 n = ssao::unpackOctahedral(words[i]);
+        normal.pixels[3 * i] = n.x;
+        normal.pixels[3 * i + 1] = n.y;
+        normal.pixels[3 * i + 2] = n.z;
+    }
+    return normal;
+}
 
 inline Buffer uploadChannels(Context::Impl& context, const Image& image, int channels) {
     assert(image.channels >= channels && channels > 0 && !image.empty());

@@ -56,11 +56,15 @@ int reconstructWindowPhase(const GtaoTemporalSettings& settings, int frameIndex)
     return settings.alternatingWindowSize == 2 ? 4 + phase : phase;
 }
 
-Image reconstructInterleaved(const Image& values, const Image& depth, const Image& normal, float depthSigma,
-                             int windowPhase) {
+void checkReconstructWindowPhase(int windowPhase) {
     if (windowPhase < -1 || windowPhase > 7)
         fail("reconstruct interleaved", "window phase must be -1 (5x5), 0..3 (4x4) or 4..7 (2x2), not " +
                                             std::to_string(windowPhase));
+}
+
+Image reconstructInterleaved(const Image& values, const Image& depth, const Image& normal, float depthSigma,
+                             int windowPhase) {
+    checkReconstructWindowPhase(windowPhase);
     Image out = values;
     const int w = values.width, h = values.height, channels = values.channels;
     const int side = reconstructWindowSide(windowPhase);

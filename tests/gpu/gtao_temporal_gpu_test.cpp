@@ -153,12 +153,6 @@ ssao::GtaoTemporalSettings mode(bool temporal, bool half, bool gridHistory = fal
     return t;
 }
 
-std::vector<std::uint32_t> downloadWords(Context::Impl& c, const Buffer& b, std::size_t count) {
-    std::vector<std::uint32_t> v(count);
-    download(c, b, v.data(), count * sizeof(std::uint32_t));
-    return v;
-}
-
 // The side-by-side tests' input: 4 frames of the demo path at an odd size, the medium preset.
 struct DemoPath {
     static constexpr int w = 97, h = 61;

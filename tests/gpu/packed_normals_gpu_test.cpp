@@ -53,12 +53,6 @@ NormalPlanes uploadPlanes(Context::Impl& c, const std::string& scene, int w, int
     return {std::move(g), std::move(depth), std::move(floats), std::move(packed), px};
 }
 
-std::vector<std::uint32_t> downloadWords(Context::Impl& c, const Buffer& b, std::size_t count) {
-    std::vector<std::uint32_t> v(count);
-    download(c, b, v.data(), count * sizeof(std::uint32_t));
-    return v;
-}
-
 // Words of `a` and `b` that differ, and (through occluded) how many of a's are below 0.99, so that a test
 // sees it compared something.
 int differing(Context::Impl& c, const Buffer& a, const Buffer& b, std::size_t count, int* occluded = nullptr) {
@@ -70,8 +64,6 @@ int differing(Context::Impl& c, const Buffer& a, const Buffer& b, std::size_t co
     }
     return n;
 }
-
-Buffer deviceFloats(Context::Impl& c, std::size_t count) { return Buffer(c, count * sizeof(float), MemoryUse::Device); }
 
 } // namespace
 

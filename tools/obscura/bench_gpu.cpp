@@ -263,8 +263,6 @@ void runGpuBench(const GpuBenchOptions& o) {
     }
     if (o.inputs < 1 || o.inputs > 16) fail("--inputs", "must be in [1, 16]");
     if (!(o.peakGbps > 0.0 && o.peakGbps < 1e6)) fail("--peak-gbps", "must be in (0, 1e6) GB/s");
-    if (o.alternatingWindowSize != 4 && o.alternatingWindowSize != 2)
-        fail("--alternating-window-size", "must be 4 or 2, not " + std::to_string(o.alternatingWindowSize));
     if (o.alternatingWindowSize != 4 && !o.alternatingWindow)
         fail("--alternating-window-size", "needs --alternating-window");
     GpuFlags device{true, o.device};

@@ -5,11 +5,6 @@
 
 bool isSkyDepth(float d) { return !(d < 1e30); }
 
-// ---- obscura/math.h's normalize, which decoding a packed normal ends with ----
-vec3 normalize3(vec3 a) {
-    const float l = sqrt(a.x * a.x + a.y * a.y + a.z * a.z);
-    return l > 0.0 ? a / l : vec3(0.0);
-}
 #include "normal_plane.glsl"
 
 int floorToInt(float v) { return int(floor(v)); }

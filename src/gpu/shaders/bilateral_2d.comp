@@ -25,11 +25,6 @@ layout(std430, binding = kBilateralBindingInput) readonly buffer Input { float a
 layout(std430, binding = kBilateralBindingOutput) writeonly buffer Output { float aoOut[]; };
 
 #include "bilateral_guide.glsl"
-// ---- obscura/math.h's normalize, which decoding a packed normal ends with ----
-vec3 normalize3(vec3 a) {
-    const float l = sqrt(a.x * a.x + a.y * a.y + a.z * a.z);
-    return l > 0.0 ? a / l : vec3(0.0);
-}
 #include "normal_plane.glsl"
 
 vec3 normalAt(uint i) { return loadNormal(i); }

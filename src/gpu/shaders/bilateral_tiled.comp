@@ -40,11 +40,6 @@ int gAxis;
 int tileIndex(int line, int i) { return gAxis == 0 ? line * kStride + i : i * kStride + line; }
 
 #include "bilateral_guide.glsl"
-// ---- obscura/math.h's normalize, which decoding a packed normal ends with ----
-vec3 normalize3(vec3 a) {
-    const float l = sqrt(a.x * a.x + a.y * a.y + a.z * a.z);
-    return l > 0.0 ? a / l : vec3(0.0);
-}
 #include "normal_plane.glsl"
 #include "bilateral_taps.glsl"
 

@@ -77,13 +77,7 @@ uint hashCombine(uint seed, uint value) { return hash32(seed ^ (value + 0x9e3779
 float toUnitFloat(uint x) { return float(x >> 8) * (1.0 / 16777216.0); }
 
 // ---- obscura/math.h ----
-float dot3(vec3 a, vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-vec3 cross3(vec3 a, vec3 b) { return vec3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x); }
-float length3(vec3 a) { return sqrt(dot3(a, a)); }
-vec3 normalize3(vec3 a) {
-    const float l = length3(a);
-    return l > 0.0 ? a / l : vec3(0.0);
-}
+#include "vector_math.glsl"
 
 // ---- src/ssao/gtao.cpp ----
 float saturate(float v) { return clamp(v, 0.0, 1.0); }

@@ -10,7 +10,7 @@
 #ifndef OBSCURA_GPU_NORMAL_PLANE_GLSL
 #define OBSCURA_GPU_NORMAL_PLANE_GLSL
 
-vec3 normalize3(vec3 a);  // the including shader's (obscura/math.h's normalize), which the decoding ends with
+#include "vector_math.glsl"  // normalize3, which the decoding ends with
 #include "obscura/history_packing.h"
 
 vec3 loadNormal(uint pixel) {

@@ -28,11 +28,6 @@ layout(std430, binding = kShadeBindingLighting) writeonly buffer Lighting { floa
 
 const float kPi = 3.14159265358979;
 
-// ---- obscura/math.h's normalize, which decoding a packed normal ends with ----
-vec3 normalize3(vec3 a) {
-    const float l = sqrt(a.x * a.x + a.y * a.y + a.z * a.z);
-    return l > 0.0 ? a / l : vec3(0.0);
-}
 #include "normal_plane.glsl"
 
 vec3 worldFromView(vec3 v) {

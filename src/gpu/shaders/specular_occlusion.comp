@@ -99,11 +99,6 @@ float specularOcclusionCone(float alphaV, float beta, float roughness) {
     return clamp(capIntersectionSolidAngle(alphaV, alphaS, beta) / specular, 0.0, 1.0);
 }
 
-// ---- obscura/math.h's normalize, which decoding a packed normal ends with ----
-vec3 normalize3(vec3 a) {
-    const float l = sqrt(a.x * a.x + a.y * a.y + a.z * a.z);
-    return l > 0.0 ? a / l : vec3(0.0);
-}
 #include "normal_plane.glsl"
 
 vec3 vec3At(uint i, bool bentPlane) {

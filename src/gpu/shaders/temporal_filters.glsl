@@ -21,12 +21,7 @@
 
 #include "obscura/reconstruct_window.h"
 
-// ---- obscura/math.h ----
-float dot3(vec3 a, vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-vec3 normalize3(vec3 a) {
-    const float l = sqrt(dot3(a, a));
-    return l > 0.0 ? a / l : vec3(0.0);
-}
+#include "vector_math.glsl"  // ---- obscura/math.h ----
 
 // ---- obscura/bilateral.h ----
 float tapWeight(float spatial, float d, vec3 n, float di, vec3 ni, float invTwoSigmaD2, bool useNormal) {
