@@ -18,4 +18,9 @@ public:
 // Throws Error("<what>: <problem>"), the form every message takes (what = a file path or a flag name).
 [[noreturn]] void fail(const std::string& what, const std::string& problem);
 
+// A number as a message shows it: the shortest text that reads back as the same value (0.05, 1e+05, -1, nan,
+// inf), where std::to_string prints 0.050000 and 100000.000000.
+std::string numberText(float value);
+std::string numberText(double value);
+
 } // namespace obscura

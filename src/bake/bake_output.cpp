@@ -47,10 +47,10 @@ void writeFile(const std::string& path, const std::string& temp, Write&& write) 
 } // namespace
 
 void ArtistControls::validate() const {
-    if (!(blend >= 0.0f && blend <= 1.0f)) fail("--blend", "must be in [0, 1], got " + std::to_string(blend));
-    if (!(gamma > 0.0f && gamma <= 16.0f)) fail("--gamma", "must be in (0, 16], got " + std::to_string(gamma));
-    if (!(low >= 0.0f && low <= 1.0f)) fail("--remap-min", "must be in [0, 1], got " + std::to_string(low));
-    if (!(high >= 0.0f && high <= 1.0f)) fail("--remap-max", "must be in [0, 1], got " + std::to_string(high));
+    if (!(blend >= 0.0f && blend <= 1.0f)) fail("--blend", "must be in [0, 1], got " + numberText(blend));
+    if (!(gamma > 0.0f && gamma <= 16.0f)) fail("--gamma", "must be in (0, 16], got " + numberText(gamma));
+    if (!(low >= 0.0f && low <= 1.0f)) fail("--remap-min", "must be in [0, 1], got " + numberText(low));
+    if (!(high >= 0.0f && high <= 1.0f)) fail("--remap-max", "must be in [0, 1], got " + numberText(high));
 }
 
 float ArtistControls::shade(float shortAO, float longAO) const {

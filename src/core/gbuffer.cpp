@@ -55,7 +55,7 @@ void GBuffer::validate(const std::string& what) const {
             float d = depth.at(x, y);
             if (std::isnan(d) || d <= 0.0f || d == -INFINITY)
                 fail(what, "depth at pixel (" + std::to_string(x) + ", " + std::to_string(y) +
-                               ") is " + std::to_string(d) + " (must be positive or +inf)");
+                               ") is " + numberText(d) + " (must be positive or +inf)");
             if (!isFinite(viewNormal(x, y)))
                 fail(what, "normal at pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") is not finite");
         }

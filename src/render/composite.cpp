@@ -89,7 +89,7 @@ Frame shade(const GBuffer& gbuffer, const SH9& sh, const Image& ao, const Image&
 
 Image toDisplay(const Image& linear, const ShadeSettings& settings) {
     if (!std::isfinite(settings.exposure) || settings.exposure < -20.0f || settings.exposure > 20.0f)
-        fail("exposure", "must be in [-20, 20] EV, got " + std::to_string(settings.exposure));
+        fail("exposure", "must be in [-20, 20] EV, got " + numberText(settings.exposure));
     if (!linear.empty() && linear.channels != 1 && linear.channels < 3)
         fail("image", "needs 1 (grey) or at least 3 (RGB) channels to display, got " + std::to_string(linear.channels));
 

@@ -12,6 +12,8 @@
 #include <atomic>
 #include <cassert>
 #include <cmath>
+#include <string>
+#include <type_traits>
 
 namespace obscura::ssao {
 
@@ -28,23 +30,27 @@ inline int floorToInt(float v) {
 // 4 x 4 Bayer order: neighbouring pixels get rotations far apart, so a small blur sees all of them.
 constexpr int kBayer4[16] = {0, 8, 2, 10, 12, 4, 14, 6, 3, 11, 1, 9, 15, 7, 13, 5};
 
-void checkRange(bool ok, const char* field, const std::string& range, double value) {
-    if (!ok) fail(field, "must be in " + range + ", is " + std::to_string(value));
+template <class T> void checkRange(bool ok, const char* field, const std::string& range, T value) {
+    if constexpr (std::is_integral_v<T>) {
+        if (!ok) fail(field, "must be in " + range + ", is " + std::to_string(value));
+    } else {
+        if (!ok) fail(field, "must be in " + range + ", is " + numberText(value));
+    }
 }
 
 } // namespace
 
 void AlchemySettings::validate() const {
-    checkRange(radius > 0.0f && radius <= 1e4f, "radius", "(0, 1e4] m", double(radius));
-    checkRange(intensity >= 0.0f && intensity <= 1000.0f, "intensity", "[0, 1000]", double(intensity));
-    checkRange(contrast >= 0.01f && contrast <= 100.0f, "contrast", "[0.01, 100]", double(contrast));
-    checkRange(bias >= 0.0f && bias <= 1.0f, "bias", "[0, 1] m", double(bias));
-    checkRange(epsilon > 0.0f && epsilon <= 1.0f, "epsilon", "(0, 1] m^2", double(epsilon));
+    checkRange(radius > 0.0f && radius <= 1e4f, "radius", "(0, 1e4] m", radius);
+    checkRange(intensity >= 0.0f && intensity <= 1000.0f, "intensity", "[0, 1000]", intensity);
+    checkRange(contrast >= 0.01f && contrast <= 100.0f, "contrast", "[0.01, 100]", contrast);
+    checkRange(bias >= 0.0f && bias <= 1.0f, "bias", "[0, 1] m", bias);
+    checkRange(epsilon > 0.0f && epsilon <= 1.0f, "epsilon", "(0, 1] m^2", epsilon);
     checkRange(samples >= 1 && samples <= kAlchemyMaxSamples, "samples", "[1, 1024]", samples);
     checkRange(maxRadiusPixels >= 1.0f && maxRadiusPixels <= 4096.0f, "max-radius-px", "[1, 4096] px",
-               double(maxRadiusPixels));
+               maxRadiusPixels);
     checkRange(lodRadiusPixels >= 0.0f && lodRadiusPixels <= 4096.0f, "lod-radius-px", "[0, 4096] px",
-               double(lodRadiusPixels));
+               lodRadiusPixels);
     // The level of detail keeps one offset table per sample count; 256 counts x 16 classes is 4 MB.
     if (lodRadiusPixels > 0.0f && samples > 256) fail("samples", "at most 256 with the level of detail on");
     checkRange(guardBand >= 0 && guardBand <= 1024, "guard-band", "[0, 1024] px", guardBand);

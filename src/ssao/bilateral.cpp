@@ -19,7 +19,7 @@ void BilateralSettings::validate() const {
     if (radius < 1 || radius > kMaxBlurRadius)
         fail("blur-radius", "must be in [1, " + std::to_string(kMaxBlurRadius) + "] taps, is " + std::to_string(radius));
     if (!(depthSigma > 0.0f && depthSigma <= 10.0f))
-        fail("blur-depth-sigma", "must be in (0, 10] (relative to depth), is " + std::to_string(depthSigma));
+        fail("blur-depth-sigma", "must be in (0, 10] (relative to depth), is " + numberText(depthSigma));
 }
 
 std::vector<float> gaussianHalfKernel(int radius) {

@@ -171,6 +171,63 @@ TEST_F(GtaoCli, CompareMeasuresNearestSampling) {
     EXPECT_NEAR(nearest, planar, 0.005);
 }
 
+// `render` takes the flags of every --ao method; one given with another method is ignored, and says so on
+// stderr (a warning, not an error: a script may pass one set of flags to every method) without a change to
+// the frame.
+TEST_F(GtaoCli, FlagsOfAnotherMethodWarn) {
+    auto render = [&](const std::string& flags) {
+        const Result r = run("render corner --size 48x32 -q -o " + path("f.png") + " --aov-dir " + path("aov") + " " +
+                             flags);
+        EXPECT_EQ(r.code, 0) << flags << ": " << r.out;
+        return std::make_pair(r.out, obscura::readExr(path("aov/ao.exr")).pixels);
+    };
+    const auto [plainOut, plain] = render("--ao gtao");
+    EXPECT_EQ(plainOut.find("warning"), std::string::npos) << plainOut;
+    const auto [out, withAlchemyFlags] = render("--ao gtao --blur-radius 1000 --ao-samples 4 --ao-rays 8");
+    EXPECT_EQ(withAlchemyFlags, plain);
+    EXPECT_NE(out.find("warning: --blur-radius: applies to --ao alchemy, not --ao gtao; ignored"), std::string::npos)
+        << out;
+    EXPECT_NE(out.find("warning: --ao-samples: applies to --ao alchemy"), std::string::npos) << out;
+    EXPECT_NE(out.find("warning: --ao-rays: applies to --ao raytraced, not --ao gtao"), std::string::npos) << out;
+    const auto [alchemyOut, alchemy] = render("--ao alchemy");
+    const auto [alchemyGtaoOut, alchemyWithGtaoFlags] = render("--ao alchemy --gtao-slices 7 --frames 3");
+    EXPECT_EQ(alchemyWithGtaoFlags, alchemy);
+    EXPECT_EQ(alchemyOut.find("warning"), std::string::npos) << alchemyOut;
+    EXPECT_NE(alchemyGtaoOut.find("warning: --gtao-slices: applies to --ao gtao, not --ao alchemy"), std::string::npos)
+        << alchemyGtaoOut;
+    EXPECT_NE(alchemyGtaoOut.find("warning: --frames: applies to --ao gtao"), std::string::npos) << alchemyGtaoOut;
+}
+
+// `ao --ao-radius` sets the GTAO methods' radius too (their default 1 m): the same bits as `render --ao gtao`
+// with that radius on the buffers render wrote, and the other Alchemy flags warn with a GTAO method.
+TEST_F(GtaoCli, AoRadiusReachesTheGtaoMethods) {
+    auto renderAo = [&](const std::string& flags, const std::string& aovDir) {
+        const Result r = run("render corner --ao gtao --size 48x32 -q -o " + path("f.png") + " --aov-dir " +
+                             path(aovDir) + " " + flags);
+        EXPECT_EQ(r.code, 0) << flags << ": " << r.out;
+        return obscura::readExr(path(aovDir + "/ao.exr")).pixels;
+    };
+    const std::vector<float> metre = renderAo("", "one"), quarter = renderAo("--ao-radius 0.25", "quarter");
+    EXPECT_NE(metre, quarter);
+    auto ao = [&](const std::string& flags) {
+        const Result r = run("ao --method gtao --depth " + path("one/depth.exr") + " --normal " + path("one/normal.exr") +
+                             " --camera " + path("one/camera.json") + " -o " + path("a.exr") + " --blur none " + flags);
+        EXPECT_EQ(r.code, 0) << flags << ": " << r.out;
+        return std::make_pair(r.out, obscura::readExr(path("a.exr")).pixels);
+    };
+    EXPECT_EQ(ao("").second, metre);
+    EXPECT_EQ(ao("--ao-radius 1").second, metre);
+    EXPECT_EQ(ao("--ao-radius 0.25").second, quarter);
+    const auto [out, withSamples] = ao("--ao-samples 4");
+    EXPECT_EQ(withSamples, metre);
+    EXPECT_NE(out.find("warning: --ao-samples: applies to the alchemy methods, not gtao; ignored"), std::string::npos)
+        << out;
+    expectFailure("ao --method gtao --depth " + path("one/depth.exr") + " --camera " + path("one/camera.json") +
+                      " --normal " + path("one/normal.exr") + " -o " + path("b.exr") + " --ao-radius 0",
+                  {"--ao-radius", "(0, 1e4]", "is 0"});
+    EXPECT_FALSE(fs::exists(path("b.exr")));
+}
+
 // --gtao-slices, --gtao-steps, --gtao-jitter and --gtao-interleave reach the kernel in render, ao and compare:
 // the preset's own counts change nothing, other counts, the jitter and the interleave change the AO, and
 // `render` and `ao` agree bit for bit (the gtao-half method with render's --gtao-half-res too)
@@ -197,7 +254,7 @@ TEST_F(GtaoCli, SliceFlagsReachTheKernel) {
                                 path("aov/normal.exr") + " --camera " + path("aov/camera.json") + " -o " + path("ao.exr");
     Result r = run(buffers + " --blur none --gtao-slices 2 --gtao-steps 4 --gtao-jitter");
     ASSERT_EQ(r.code, 0) << r.out;
-    EXPECT_EQ(obscura::readExr(path("ao.exr")).pixels, render("--blur none --gtao-slices 2 --gtao-steps 4 --gtao-jitter"));
+    EXPECT_EQ(obscura::readExr(path("ao.exr")).pixels, render("--gtao-slices 2 --gtao-steps 4 --gtao-jitter"));
     // The gtao-half method: 2 interleaved slices x 4 steps at half resolution, --blur on the grid; render's
     // --gtao-half-res with the same counts and a 5-tap grid blur gives the same bits.
     r = run("ao --method gtao-half --depth " + path("aov/depth.exr") + " --normal " + path("aov/normal.exr") +

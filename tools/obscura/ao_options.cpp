@@ -57,7 +57,9 @@ void AlchemyFlags::add(CLI::App& app, bool withRadius) {
                             ->check(CLI::IsMember({"paper", "chapter"}))
                             ->capture_default_str();
     if (withRadius)
-        radiusOption = app.add_option("--ao-radius", radius, "Alchemy radius r in meters, (0, 1e4]")->capture_default_str();
+        radiusOption = app.add_option("--ao-radius", radius,
+                                      "Radius r in meters, (0, 1e4]: Alchemy's r (default 0.5, or the preset's), or the "
+                                      "GTAO methods' (default 1)");
     intensityOption = app.add_option("--ao-intensity", intensity, "Alchemy intensity: sigma (paper) or scale (chapter)")
                           ->capture_default_str();
     contrastOption = app.add_option("--ao-contrast", contrast, "Alchemy contrast k, [0.01, 100]")->capture_default_str();

@@ -14,6 +14,7 @@
 #include <sstream>
 #include <ctime>
 #include <unistd.h>
+#include <utility>
 
 namespace obscura::cli {
 
@@ -108,6 +109,20 @@ Camera CameraOptions::apply(Camera c) const {
         fail("camera flags", std::string(e.what()).substr(8));  // drop the "camera: " prefix
     }
     return c;
+}
+
+std::vector<const CLI::Option*> optionsAddedBy(CLI::App& app, const std::function<void()>& add) {
+    const std::size_t before = app.get_options().size();
+    add();
+    const std::vector<const CLI::Option*> all = std::as_const(app).get_options();
+    // get_options lists them in the order they were added.
+    return {all.begin() + std::ptrdiff_t(before), all.end()};
+}
+
+void warnIgnored(const std::vector<const CLI::Option*>& options, const std::string& why) {
+    for (const CLI::Option* option : options)
+        if (option->count() > 0)
+            std::fprintf(stderr, "obscura: warning: %s: %s; ignored\n", option->get_name().c_str(), why.c_str());
 }
 
 void checkOutputPath(const std::string& flag, const std::string& path, const std::vector<std::string>& extensions) {

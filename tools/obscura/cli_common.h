@@ -13,6 +13,7 @@
 
 namespace CLI {
 class App;
+class Option;
 }
 
 namespace obscura::cli {
@@ -40,6 +41,14 @@ struct CameraOptions {
     void add(CLI::App& app);
     Camera apply(Camera base) const;
 };
+
+// The options that add() put on app: those app has after it that it did not have before, so that a command can
+// tell later which of a group of flags the command line gave.
+std::vector<const CLI::Option*> optionsAddedBy(CLI::App& app, const std::function<void()>& add);
+// A warning on stderr for each of `options` that the command line gave, with `why` (e.g. "applies to --ao
+// alchemy, not --ao gtao"): a flag that the chosen method ignores is otherwise dropped without a word, its
+// value unchecked. A warning, not an error, so that a script passing one set of flags to every method runs on.
+void warnIgnored(const std::vector<const CLI::Option*>& options, const std::string& why);
 
 // Fails early, before any work, if the output cannot be written: wrong extension or missing directory.
 void checkOutputPath(const std::string& flag, const std::string& path, const std::vector<std::string>& extensions);

@@ -34,6 +34,8 @@ struct AoOptions {
     BlurFlags blur;
     GtaoSliceFlags gtao;
     float gtaoMipRatio = 0.0f;  // eval::MethodOptions::gtaoMipRatio
+    // The Alchemy flags but --ao-radius, which every method takes: the GTAO methods ignore them, and say so.
+    std::vector<const CLI::Option*> alchemyOnlyFlags;
 };
 
 // The whole image when it has exactly names.size() channels, or the channels `names` of a combined
@@ -75,6 +77,11 @@ void run(const AoOptions& o) {
     const ssao::BilateralSettings blur = o.blur.settings();
     ssao::AlchemySettings alchemy = o.alchemy.settings("");
     if (o.method == "alchemy-chapter") alchemy.formulation = ssao::AlchemyFormulation::Chapter;
+    const bool radiusGiven = o.alchemy.radiusOption->count() > 0;
+    if (!o.method.starts_with("alchemy")) {
+        // --ao-radius was checked with the Alchemy settings: the same range, (0, 1e4] m.
+        warnIgnored(o.alchemyOnlyFlags, "applies to the alchemy methods, not " + o.method);
+    }
     if (!o.method.starts_with("alchemy") && o.normal.empty())
         fail("--normal", "method " + o.method + " needs a normal buffer");
     o.gpu.validate();
@@ -98,7 +105,7 @@ void run(const AoOptions& o) {
             const float d = g.depth.at(x, y);
             if (std::isnan(d) || d <= 0.0f)
                 fail(o.depth, "depth at pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") is " +
-                                  std::to_string(d) + " (linear view depth in m must be > 0, or +inf for sky)");
+                                  numberText(d) + " (linear view depth in m must be > 0, or +inf for sky)");
         }
     if (o.normal.empty()) {
         alchemy.normalsFromDepth = true;
@@ -126,6 +133,7 @@ void run(const AoOptions& o) {
         mo.blur = blur;
         mo.gtao = o.gtao.value;
         mo.gtaoMipRatio = o.gtaoMipRatio;
+        if (radiusGiven) mo.radius = alchemy.radius;  // else the method's own (1 m)
         mo.gpu = context.get();
         ao = method.compute(g, mo);
     }
@@ -152,7 +160,9 @@ void addAoCommand(CLI::App& app) {
     cmd->add_option("--method", o->method, "AO method: " + eval::aoMethodNames() + " (see `obscura compare --help`)")->capture_default_str();
     cmd->add_option("--threads", o->threads, "Worker threads (0 = all cores)")->capture_default_str();
     o->gpu.add(*cmd, "the AO method and the blur");
-    o->alchemy.add(*cmd, true);
+    const std::vector<const CLI::Option*> alchemyFlags = optionsAddedBy(*cmd, [&] { o->alchemy.add(*cmd, true); });
+    for (const CLI::Option* option : alchemyFlags)
+        if (option != o->alchemy.radiusOption) o->alchemyOnlyFlags.push_back(option);
     o->blur.add(*cmd);
     o->gtao.add(*cmd, "GTAO methods");
     addGtaoMipRatioOverride(*cmd, o->gtaoMipRatio);

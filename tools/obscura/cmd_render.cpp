@@ -50,6 +50,8 @@ struct RenderOptions {
     GpuFlags gpu;
     bool fusedBlur = false;  // --gpu-fused-blur
     bool tiledBlur = false;  // --gpu-tiled-blur
+    // The flags of one --ao method each: the others ignore them, and say so when one is given.
+    std::vector<const CLI::Option*> raytracedFlags, alchemyFlags, gtaoFlags;
 };
 
 const std::map<std::string, trace::Falloff> kFalloffs = {
@@ -62,6 +64,10 @@ void run(const RenderOptions& o) {
     // Everything that can be checked before the work is checked first.
     checkOutputPath("-o", o.output, {".png", ".exr"});
     if (!o.aovDir.empty()) checkOutputDirectory("--aov-dir", o.aovDir, true);
+    const std::string notThis = ", not --ao " + o.ao;
+    if (o.ao != "raytraced") warnIgnored(o.raytracedFlags, "applies to --ao raytraced" + notThis);
+    if (o.ao != "alchemy") warnIgnored(o.alchemyFlags, "applies to --ao alchemy" + notThis);
+    if (o.ao != "gtao") warnIgnored(o.gtaoFlags, "applies to --ao gtao" + notThis);
     trace::ObscuranceSettings aoSettings;
     aoSettings.falloff = kFalloffs.at(o.falloff);
     aoSettings.radius = parseRadius("--ao-radius", o.radius);
@@ -214,15 +220,17 @@ void addRenderCommand(CLI::App& app) {
     o->radiusOption = cmd->add_option("--ao-radius", o->radius,
                                       "Occlusion radius r in meters, or inf (alchemy: finite, default 0.5 or the preset's)")
                           ->capture_default_str();
-    cmd->add_option("--ao-rays", o->rays, "Rays per pixel, [1, 1048576]")->capture_default_str();
-    cmd->add_option("--ao-falloff", o->falloff,
-                    "binary (occlusion within r), alchemy (g = u t / max(u,t)^2 within r), "
-                    "exponential (rho = 1 - exp(ln(0.5) t / d))")
-        ->check(CLI::IsMember({"binary", "alchemy", "exponential"}))
-        ->capture_default_str();
-    cmd->add_option("--ao-distance", o->distance, "Half-visibility distance d of the exponential falloff, meters")
-        ->capture_default_str();
-    cmd->add_option("--ao-u", o->alchemyU, "Falloff constant u of the alchemy falloff, meters")->capture_default_str();
+    o->raytracedFlags = optionsAddedBy(*cmd, [&] {
+        cmd->add_option("--ao-rays", o->rays, "Rays per pixel, [1, 1048576]")->capture_default_str();
+        cmd->add_option("--ao-falloff", o->falloff,
+                        "binary (occlusion within r), alchemy (g = u t / max(u,t)^2 within r), "
+                        "exponential (rho = 1 - exp(ln(0.5) t / d))")
+            ->check(CLI::IsMember({"binary", "alchemy", "exponential"}))
+            ->capture_default_str();
+        cmd->add_option("--ao-distance", o->distance, "Half-visibility distance d of the exponential falloff, meters")
+            ->capture_default_str();
+        cmd->add_option("--ao-u", o->alchemyU, "Falloff constant u of the alchemy falloff, meters")->capture_default_str();
+    });
     cmd->add_option("--env", o->env, "Equirectangular environment (.hdr or .exr); default: a built-in procedural sky");
     cmd->add_option("--exposure", o->exposure, "Exposure in EV stops, [-20, 20]")->capture_default_str();
     cmd->add_option("--tonemap", o->tonemap, "aces, reinhard or none")
@@ -236,9 +244,11 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_option("--threads", o->threads, "Worker threads (0 = all cores)")->capture_default_str();
     cmd->add_flag("-q,--quiet", o->quiet, "No progress bars");
     o->camera.add(*cmd);
-    o->alchemy.add(*cmd, false);
-    o->blur.add(*cmd);
-    o->gtao.add(*cmd);
+    o->alchemyFlags = optionsAddedBy(*cmd, [&] {
+        o->alchemy.add(*cmd, false);
+        o->blur.add(*cmd);
+    });
+    o->gtaoFlags = optionsAddedBy(*cmd, [&] { o->gtao.add(*cmd); });
     o->gpu.add(*cmd, "the screen-space AO (alchemy, gtao: every pass) and the composite", "Ray-traced AO stays on the CPU.");
     cmd->add_flag("--gpu-fused-blur", o->fusedBlur,
                   "With --gpu --ao alchemy and the separable blur by depth alone: evaluate the estimator and the "
