@@ -18,6 +18,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <utility>
 
 namespace fs = std::filesystem;
 
@@ -137,6 +138,30 @@ TEST_F(AlchemyCli, AoRejectsBadBuffers) {
     expectFailure("ao --depth " + path("g/depth.exr") + cam + " --ao-radius 0 -o " + path("ao.exr"), {"--ao-radius"});
     expectFailure("ao --depth " + path("g/depth.exr") + cam + " --ao-guard-band 12 -o " + path("ao.exr"), {"guard-band"});
     expectFailure("ao --depth " + path("g/depth.exr") + cam + " -o " + path("ao.png"), {"ao.png", "unsupported"});
+    // Normals that are not unit vectors: another buffer (albedo), or unit normals stored as n * 0.5 + 0.5.
+    // Sky pixels are not checked: the corner's sky normals are 0.
+    expectFailure("ao --depth " + path("g/depth.exr") + " --normal " + path("g/albedo.exr") + cam + " -o " +
+                      path("ao.exr"),
+                  {"albedo.exr", "has length", "outside [0.9, 1.1]", "unit view-space normals"});
+    obscura::Image normal = obscura::readExr(path("g/normal.exr"));
+    obscura::Image encoded = normal;
+    for (float& v : encoded.pixels) v = v * 0.5f + 0.5f;
+    obscura::writeExr(path("encoded.exr"), encoded);
+    expectFailure("ao --depth " + path("g/depth.exr") + " --normal " + path("encoded.exr") + cam + " -o " +
+                      path("ao.exr"),
+                  {"encoded.exr", "n * 0.5 + 0.5"});
+    // 5% short everywhere is inside the tolerance (half-float storage, interpolated normals), 15% is not.
+    for (const auto& [scale, ok] : {std::pair{0.95f, true}, std::pair{0.85f, false}}) {
+        obscura::Image scaled = normal;
+        for (float& v : scaled.pixels) v *= scale;
+        obscura::writeExr(path("scaled.exr"), scaled);
+        const std::string args = "ao --depth " + path("g/depth.exr") + " --normal " + path("scaled.exr") + cam +
+                                 " -o " + path("scaled_ao.exr");
+        if (ok)
+            EXPECT_EQ(run(args).code, 0) << scale;
+        else
+            expectFailure(args, {"scaled.exr", "has length 0.8"});
+    }
 }
 
 TEST_F(AlchemyCli, RenderRejectsBadAlchemyFlags) {

@@ -70,6 +70,29 @@ void checkSize(const Image& img, const Camera& camera, const std::string& path, 
                        std::to_string(camera.width) + "x" + std::to_string(camera.height));
 }
 
+// The estimators take the normals as unit vectors (docs/FORMATS.md): a normal of another length scales the
+// obscurance or tilts the horizons without a word. Far from 1 it is most likely another buffer or an
+// encoding: albedo, zeros, or n * 0.5 + 0.5 (whose camera-facing (0, 0, 1) is 1.22 long). Sky pixels are
+// never read. 10% either way leaves room for half-float storage and for normals interpolated unnormalized.
+void checkUnitNormals(const GBuffer& g, const std::string& path) {
+    std::size_t bad = 0;
+    int firstX = 0, firstY = 0;
+    float firstLength = 0.0f;
+    for (int y = 0; y < g.height(); ++y)
+        for (int x = 0; x < g.width(); ++x) {
+            if (!std::isfinite(g.depth.at(x, y))) continue;
+            const float length = std::sqrt(g.normal.at(x, y, 0) * g.normal.at(x, y, 0) +
+                                           g.normal.at(x, y, 1) * g.normal.at(x, y, 1) +
+                                           g.normal.at(x, y, 2) * g.normal.at(x, y, 2));
+            if (length >= 0.9f && length <= 1.1f) continue;
+            if (bad++ == 0) firstX = x, firstY = y, firstLength = length;
+        }
+    if (bad > 0)
+        fail(path, "normal at pixel (" + std::to_string(firstX) + ", " + std::to_string(firstY) + ") has length " +
+                       numberText(firstLength) + " (" + std::to_string(bad) + " pixel" + (bad > 1 ? "s" : "") +
+                       " outside [0.9, 1.1]): unit view-space normals expected, decoded if stored as n * 0.5 + 0.5");
+}
+
 void run(const AoOptions& o) {
     auto start = std::chrono::steady_clock::now();
     checkOutputPath("-o", o.output, {".exr"});
@@ -116,6 +139,7 @@ void run(const AoOptions& o) {
         for (std::size_t i = 0; i < g.normal.pixels.size(); ++i)
             if (!std::isfinite(g.normal.pixels[i]))
                 fail(o.normal, "normal at pixel index " + std::to_string(i / 3) + " is not finite");
+        checkUnitNormals(g, o.normal);
     }
 
     Image ao;
