@@ -22,22 +22,22 @@ void BakeSettings::validate() const {
     if (distances.empty() || distances.size() > 2)
         fail("--distances", "expected 1 or 2 distances, got " + std::to_string(distances.size()));
     for (float d : distances)
-        if (!(d > 0.0f && d <= 1e6f)) fail("--distances", "each distance must be in (0, 1e6] m, got " + std::to_string(d));
+        if (!(d > 0.0f && d <= 1e6f)) fail("--distances", "each distance must be in (0, 1e6] m, got " + numberText(d));
     if (rays < 1 || rays > 65536) fail("--rays", "must be in [1, 65536], got " + std::to_string(rays));
-    if (!(alpha >= 0.0f && alpha <= 1e6f)) fail("--alpha", "must be in [0, 1e6], got " + std::to_string(alpha));
+    if (!(alpha >= 0.0f && alpha <= 1e6f)) fail("--alpha", "must be in [0, 1e6], got " + numberText(alpha));
     if (maxSamplesPerFace < 1 || maxSamplesPerFace > 4096)
         fail("--max-samples-per-face", "must be in [1, 4096], got " + std::to_string(maxSamplesPerFace));
     if (minSamplesPerFace < 1 || minSamplesPerFace > maxSamplesPerFace)
         fail("--min-samples-per-face", "must be in [1, max-samples-per-face = " + std::to_string(maxSamplesPerFace) +
                                            "], got " + std::to_string(minSamplesPerFace));
     if (!(sampleDensity > 0.0f && sampleDensity <= 1e6f))
-        fail("--sample-density", "must be in (0, 1e6] samples per m^2, got " + std::to_string(sampleDensity));
+        fail("--sample-density", "must be in (0, 1e6] samples per m^2, got " + numberText(sampleDensity));
     if (!(backFaceLimit >= 0.0f && backFaceLimit <= 1.0f))
-        fail("--back-face-limit", "must be in [0, 1], got " + std::to_string(backFaceLimit));
+        fail("--back-face-limit", "must be in [0, 1], got " + numberText(backFaceLimit));
     if (!(weldTolerance >= 0.0f && weldTolerance <= 1e-2f))
-        fail("--weld-tolerance", "must be in [0, 0.01] (relative to the scene diagonal), got " + std::to_string(weldTolerance));
+        fail("--weld-tolerance", "must be in [0, 0.01] (relative to the scene diagonal), got " + numberText(weldTolerance));
     if (!(creaseAngle >= 0.0f && creaseAngle <= 180.0f))
-        fail("--crease-angle", "must be in [0, 180] degrees, got " + std::to_string(creaseAngle));
+        fail("--crease-angle", "must be in [0, 180] degrees, got " + numberText(creaseAngle));
 }
 
 namespace detail {

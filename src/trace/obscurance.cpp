@@ -15,7 +15,7 @@
 namespace obscura::trace {
 
 void ObscuranceSettings::validate() const {
-    if (!(radius > 0.0f)) fail("ao-radius", "must be > 0 (or inf), got " + std::to_string(radius));
+    if (!(radius > 0.0f)) fail("ao-radius", "must be > 0 (or inf), got " + numberText(radius));
     if (!(alchemyU > 0.0f) || !std::isfinite(alchemyU)) fail("alchemy-u", "must be a finite value > 0");
     if (!(alchemyScale >= 0.0f) || !std::isfinite(alchemyScale)) fail("alchemy-scale", "must be a finite value >= 0");
     if (!(halfDistance > 0.0f) || !std::isfinite(halfDistance)) fail("ao-distance", "must be a finite value > 0");

@@ -98,7 +98,7 @@ Camera CameraOptions::apply(Camera c) const {
     if (!to.empty()) c.target = parseVec3("--camera-to", to);
     if (!up.empty()) c.up = parseVec3("--camera-up", up);
     if (fov != 0.0f) {
-        if (!(fov > 0.0f && fov < 180.0f)) fail("--fov", "must be in (0, 180) degrees, got " + std::to_string(fov));
+        if (!(fov > 0.0f && fov < 180.0f)) fail("--fov", "must be in (0, 180) degrees, got " + numberText(fov));
         c.fovY = fov;
     }
     if (nearZ != 0.0f) c.nearZ = nearZ;
