@@ -35,7 +35,7 @@ write("normals-ab.json", normals, [
                                                  ("alchemy", "1920x1080", "frame", 0.0950)]),
 ])
 write("alchemy-combined-ab.json", ["--cases", "alchemy"], [
-    variant("embedded", [], "", [("alchemy", "1920x1080", "frame", 0.0990)]),
+    variant("embedded", [], "", [("alchemy", "1920x1080", "frame", 0.0990), ("alchemy-fused", "1920x1080", "frame", 0.0985)]),
     variant("packed-tiled-float-floor", ["--packed-normals", "--blur-tiled"], "/x/candidates/alchemy-float-floor/",
             [("alchemy", "1920x1080", "frame", 0.0812)]),
 ])
@@ -60,6 +60,7 @@ grep -q "^note:" "$work/out" && fail "an H100's figures got the other-device not
 # --all lists the slower configurations too.
 "$targets" --all "$work" >"$work/all" 2>&1 || fail "--all failed: $(cat "$work/all")"
 grep -q "0.3300 .*gtao-temporal-half (grid-ab: planar-nearest" "$work/all" || fail "--all: $(cat "$work/all")"
+grep -q "0.0985 .*alchemy-fused (alchemy-combined-ab: embedded)" "$work/all" || fail "--all: $(cat "$work/all")"
 
 # A missing file leaves its target unanswered; a corrupt one fails, naming it.
 rm "$work/grid-ab.json"
