@@ -196,6 +196,17 @@ TEST_F(GtaoCli, FlagsOfAnotherMethodWarn) {
     EXPECT_NE(alchemyGtaoOut.find("warning: --gtao-slices: applies to --ao gtao, not --ao alchemy"), std::string::npos)
         << alchemyGtaoOut;
     EXPECT_NE(alchemyGtaoOut.find("warning: --frames: applies to --ao gtao"), std::string::npos) << alchemyGtaoOut;
+
+    // compare: the GTAO flags with no GTAO method among --methods.
+    const std::string compare = "compare corner --size 32x24 --rays 4 -q -o " + path("c.png") + " --methods ";
+    Result r = run(compare + "alchemy --gtao-slices 5");
+    EXPECT_EQ(r.code, 0) << r.out;
+    EXPECT_NE(r.out.find("warning: --gtao-slices: applies to the gtao methods, and --methods has none; ignored"),
+              std::string::npos)
+        << r.out;
+    r = run(compare + "alchemy,gtao --gtao-slices 5");
+    EXPECT_EQ(r.code, 0) << r.out;
+    EXPECT_EQ(r.out.find("warning"), std::string::npos) << r.out;
 }
 
 // `ao --ao-radius` sets the GTAO methods' radius too (their default 1 m): the same bits as `render --ao gtao`

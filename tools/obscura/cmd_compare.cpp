@@ -46,6 +46,7 @@ struct CompareOptions {
     GpuFlags gpu;
     GtaoSliceFlags gtao;
     float gtaoMipRatio = 0.0f;  // eval::MethodOptions::gtaoMipRatio
+    std::vector<const CLI::Option*> gtaoFlags;  // ignored, with a warning, when no GTAO method is compared
 };
 
 // 3 x 5 glyphs of the legend's labels, one row of 3 bits per line, top first.
@@ -91,6 +92,8 @@ Image aoPicture(const Image& ao) {
 void run(const CompareOptions& o) {
     checkOutputPath("-o", o.output, {".png"});
     const std::vector<const eval::AoMethod*> methods = eval::parseMethodList(o.methods);
+    if (std::none_of(methods.begin(), methods.end(), [](const eval::AoMethod* m) { return m->name.starts_with("gtao"); }))
+        warnIgnored(o.gtaoFlags, "applies to the gtao methods, and --methods has none");
     if (o.rays < 1 || o.rays > 65536) fail("--rays", "must be in [1, 65536]");
     if (o.samples < 0 || o.samples > 1024) fail("--samples", "must be in [0, 1024] (0: the method's default)");
     if (!(o.radius >= 0.0f && o.radius <= 1e4f)) fail("--radius", "must be in [0, 1e4] m (0: the method's default)");
@@ -251,8 +254,10 @@ void addCompareCommand(CLI::App& app) {
     cmd->add_option("--threads", o->threads, "Worker threads (0 = all cores)")->capture_default_str();
     cmd->add_flag("--json", o->json, "Print JSON instead of a table");
     cmd->add_flag("-q,--quiet", o->quiet, "No progress bars");
-    o->gtao.add(*cmd, "GTAO methods");
-    addGtaoMipRatioOverride(*cmd, o->gtaoMipRatio);
+    o->gtaoFlags = optionsAddedBy(*cmd, [&] {
+        o->gtao.add(*cmd, "GTAO methods");
+        addGtaoMipRatioOverride(*cmd, o->gtaoMipRatio);
+    });
     o->camera.add(*cmd);
     o->gpu.add(*cmd, "the methods (estimators and blur)", "The reference stays ray traced on the CPU.");
     cmd->callback([o] { run(*o); });
