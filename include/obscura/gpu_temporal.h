@@ -45,6 +45,18 @@ Image reconstructInterleaved(Context& context, const Image& values, const Image&
 Image upsampleDepthAware(Context& context, const Image& low, const Image& lowDepth, const GBuffer& full,
                          float depthSigma);
 
+// How GtaoTemporal lays out what it exchanges with its passes, as an engine may keep them (docs/INTEGRATION.md):
+// each changes the result by its rounding alone.
+struct GtaoTemporalFormats {
+    // The G-buffer's normals uploaded as one octahedral word per pixel (two snorm16, ssao::packOctahedral)
+    // instead of 3 floats: the frame of the words' decoded normals (within 1e-4 of the floats).
+    bool packedNormals = false;
+    // With half resolution and the grid's history (GtaoTemporalSettings::gridHistory): the frame's visibility
+    // written as unorm16 (an R16 image's bytes), each value the float's rounded to 1/65535. The constructor
+    // throws obscura::Error without the grid's history.
+    bool packedOutput = false;
+};
+
 // ssao::GtaoTemporal on the GPU. The context must outlive it. Results differ from the CPU's by the GPU's
 // trigonometry in the GTAO pass and its exp in the filters, and by what they feed through the rejection
 // tests over frames. It keeps the previous frame's uploaded depth for the reprojection, as an engine with TAA
@@ -55,7 +67,7 @@ public:
     // the passes compute, filter and accumulate visibility alone: the same visibility and history length bit
     // for bit, and frame()'s bentNormal is empty.
     GtaoTemporal(Context& context, const ssao::GtaoSettings& settings, const ssao::GtaoTemporalSettings& temporal,
-                 GtaoOutputs outputs = GtaoOutputs::VisibilityAndBentNormal);
+                 GtaoOutputs outputs = GtaoOutputs::VisibilityAndBentNormal, GtaoTemporalFormats formats = {});
     ~GtaoTemporal();
     GtaoTemporal(GtaoTemporal&&) noexcept;
     GtaoTemporal& operator=(GtaoTemporal&&) noexcept;
@@ -76,6 +88,7 @@ private:
     ssao::GtaoSettings settings_;
     ssao::GtaoTemporalSettings temporal_;
     GtaoOutputs outputs_;
+    GtaoTemporalFormats formats_;
     int frame_ = 0;
     ssao::GtaoResult result_;
     std::unique_ptr<GtaoTemporalPasses> passes_;  // made for the first frame's size

@@ -325,10 +325,15 @@ Image upsampleDepthAware(Context& context, const Image& low, const Image& lowDep
 }
 
 GtaoTemporal::GtaoTemporal(Context& context, const ssao::GtaoSettings& settings,
-                           const ssao::GtaoTemporalSettings& temporal, GtaoOutputs outputs)
-    : context_(&context), settings_(settings), temporal_(temporal), outputs_(outputs) {
+                           const ssao::GtaoTemporalSettings& temporal, GtaoOutputs outputs,
+                           GtaoTemporalFormats formats)
+    : context_(&context), settings_(settings), temporal_(temporal), outputs_(outputs), formats_(formats) {
     settings_.validate();
     temporal_.validate();
+    // GtaoTemporalPasses' check, before the first frame makes them.
+    if (formats.packedOutput && !(temporal.halfResolution && temporal.gridHistory))
+        fail("gtao temporal", "packedOutput needs the grid's history (half resolution, gridHistory): there the "
+                              "upsampling writes the frame's visibility");
 }
 
 GtaoTemporal::~GtaoTemporal() = default;
@@ -350,11 +355,15 @@ const ssao::GtaoResult& GtaoTemporal::frame(const GBuffer& g) {
     Context::Impl& c = context_->impl();
     const bool bentNormals = outputs_ == GtaoOutputs::VisibilityAndBentNormal;
     if (!passes_)
-        passes_ = std::make_unique<GtaoTemporalPasses>(c, settings_, temporal_, w, h,
-                                                       GtaoTemporalVariant{bentNormals, /*callerKeepsDepth=*/true});
+        passes_ = std::make_unique<GtaoTemporalPasses>(
+            c, settings_, temporal_, w, h,
+            GtaoTemporalVariant{bentNormals, /*callerKeepsDepth=*/true, formats_.packedNormals, formats_.packedOutput});
     const std::size_t pixels = std::size_t(w) * std::size_t(h);
     auto depth = std::make_unique<Buffer>(uploadChannels(c, g.depth, 1));
-    const Buffer normal = uploadChannels(c, g.normal, 3);
+    std::vector<std::uint32_t> words;
+    if (formats_.packedNormals) words = packNormals(g.normal);
+    const Buffer normal = formats_.packedNormals ? upload(c, words.data(), words.size() * sizeof(std::uint32_t))
+                                                 : uploadChannels(c, g.normal, 3);
     c.submit([&](VkCommandBuffer cmd) { passes_->record(cmd, {*depth, normal, g.camera, frame_, previousDepth_.get()}); },
              true);
     previousDepth_ = std::move(depth);  // the submission has completed: the next frame may read it
@@ -378,6 +387,11 @@ Image GtaoTemporal::historyPlane(bool length) const {
     // The visibility has the image's size; the length the history's (the grid's with gridHistory).
     Image image = length ? Image(passes_->historyWidth(), passes_->historyHeight(), 1)
                          : Image(passes_->width(), passes_->height(), 1);
+    if (!length && formats_.packedOutput) {
+        const std::size_t count = std::size_t(upsamplePackedRowWords(passes_->width())) * std::size_t(passes_->height());
+        return unpackVisibilityPairs(downloadWords(c, passes_->visibility(), count), passes_->width(),
+                                     passes_->height());
+    }
     const bool packed = length ? passes_->packedHistory() : passes_->visibilityPacked();
     if (!packed) {
         download(c, length ? passes_->historyLength() : passes_->visibility(), image.pixels.data(),

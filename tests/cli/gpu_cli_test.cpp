@@ -165,6 +165,32 @@ TEST_F(GpuCommands, RenderGtaoMatchesTheCpu) {
     }
 }
 
+// --gpu-packed-normals and --gpu-packed-output (gpu::GtaoTemporalFormats): the spatio-temporal target's
+// configuration with the G-buffer's normals as octahedral words and a 16-bit visibility matches the CPU's
+// float frame within the bounds of every other GPU frame, says so in its summary, and each flag refuses what
+// it cannot serve in one line, writing nothing.
+TEST_F(GpuCommands, RenderGtaoPackedFormatsMatchTheCpu) {
+    const std::string args = "render demo --size 97x55 --ao gtao --frames 5 --gtao-half-res --gtao-grid-history "
+                             "--gtao-packed-history --gtao-alternating-window --gtao-alternating-window-size 2 "
+                             "--gtao-sampling planar-nearest -q";
+    const CliResult cpu = runCli(args + " -o " + path("cpu.exr") + " --aov-dir " + path("cpu"));
+    ASSERT_EQ(cpu.code, 0) << cpu.out;
+    const CliResult gpu = runGpu(args + " --gpu-packed-normals --gpu-packed-output -o " + path("gpu.exr") +
+                                 " --aov-dir " + path("gpu"));
+    EXPECT_NE(gpu.out.find(", octahedral normals, 16-bit visibility)"), std::string::npos) << gpu.out;
+    const Difference frame = difference(obscura::readExr(path("cpu.exr")), obscura::readExr(path("gpu.exr")));
+    const Difference ao = difference(obscura::readExr(path("cpu/ao.exr")), obscura::readExr(path("gpu/ao.exr")));
+    EXPECT_LE(frame.mean, 1e-3);
+    EXPECT_LE(ao.max, 2e-3);
+    std::printf("[ measured ] packed formats: frame mean |diff| %.2e, AO max |diff| %.2e\n", frame.mean, ao.max);
+
+    const std::string base = "render demo --size 48x32 --ao gtao -q -o " + path("x.png");
+    expectFailure(base + " --frames 3 --gpu-packed-normals", {"--gpu-packed-normals", "needs --gpu"});
+    expectFailure(base + " --gpu --gpu-packed-normals", {"--gpu-packed-normals", "spatial or temporal mode"});
+    expectFailure(base + " --gpu --frames 3 --gtao-half-res --gpu-packed-output",
+                  {"--gpu-packed-output", "--gtao-grid-history"});
+}
+
 // The GPU computes the bent normal only where something reads it (GtaoOutputs; RenderGtaoMatchesTheCpu runs
 // the AO-only frames). Asked for with --ao-output, the last frame's bent_normal.exr matches the CPU's to the
 // passes' bound (1e-2 per component, tests/gpu), with one frame and with the history.

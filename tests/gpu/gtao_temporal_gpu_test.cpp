@@ -492,6 +492,57 @@ TEST(GpuGtaoTemporal, PackedOutputIsTheVisibilityInSixteenBits) {
     EXPECT_EQ(testing::validationReport(context), "");
 }
 
+// The public gpu::GtaoTemporal with its formats (GtaoTemporalFormats): with packedNormals it uploads the
+// words and gives, bit for bit, the frame of the same object fed the words' decoded normals; with packedOutput
+// each visibility is the float frame's rounded to 1/65535 (ssao::packUnorm16); both together, the frame of
+// the decoded normals so rounded. Four frames of the path, with the bent normal and without, at half
+// resolution with the grid's history and the 2x2 windows (the spatio-temporal target's configuration).
+TEST(GpuGtaoTemporal, PublicFormatsGiveTheFrameOfTheirRounding) {
+    OBSCURA_GPU_CONTEXT(context);
+    const DemoPath in;
+    const auto& [gbuffers, settings, pixels] = in;
+    const int w = DemoPath::w, h = DemoPath::h;
+    ssao::GtaoTemporalSettings t = mode(true, true, true);
+    t.packedHistory = true;
+    t.alternatingWindow = true;
+    t.alternatingWindowSize = 2;
+    for (const GtaoOutputs outputs : {GtaoOutputs::VisibilityAndBentNormal, GtaoOutputs::Visibility}) {
+        GtaoTemporal floats(context, settings, t, outputs), decodedFloats(context, settings, t, outputs);
+        GtaoTemporal words(context, settings, t, outputs, {.packedNormals = true});
+        GtaoTemporal sixteen(context, settings, t, outputs, {.packedOutput = true});
+        GtaoTemporal both(context, settings, t, outputs, {.packedNormals = true, .packedOutput = true});
+        int differing = 0, rounded = 0, occluded = 0, fromFloats = 0;
+        for (const GBuffer& g : gbuffers) {
+            GBuffer decoded = g;
+            decoded.normal = unpackNormals(packNormals(g.normal), w, h);
+            const ssao::GtaoResult f = floats.frame(g), d = decodedFloats.frame(decoded), p = words.frame(g);
+            const ssao::GtaoResult s = sixteen.frame(g), b = both.frame(g);
+            for (std::size_t i = 0; i < pixels; ++i) {
+                differing += std::bit_cast<std::uint32_t>(p.visibility.pixels[i]) !=
+                             std::bit_cast<std::uint32_t>(d.visibility.pixels[i]);
+                const float r = ssao::unpackUnorm16(ssao::packUnorm16(f.visibility.pixels[i]));
+                const float rd = ssao::unpackUnorm16(ssao::packUnorm16(d.visibility.pixels[i]));
+                differing += s.visibility.pixels[i] != r;
+                differing += b.visibility.pixels[i] != rd;
+                rounded += s.visibility.pixels[i] != f.visibility.pixels[i];
+                fromFloats += p.visibility.pixels[i] != f.visibility.pixels[i];
+                occluded += f.visibility.pixels[i] < 0.99f;
+            }
+            EXPECT_EQ(p.bentNormal.pixels, d.bentNormal.pixels);
+            EXPECT_EQ(s.bentNormal.pixels, f.bentNormal.pixels);  // the 16 bits are the visibility's alone
+            EXPECT_EQ(p.bentNormal.empty(), outputs == GtaoOutputs::Visibility);
+        }
+        EXPECT_EQ(differing, 0);
+        EXPECT_GT(rounded, 0);     // the rounding is there to see
+        EXPECT_GT(fromFloats, 0);  // and so is the decoding: the words' frame is not the floats'
+        EXPECT_GT(occluded, int(pixels) / 50);
+        EXPECT_EQ(words.historyLength().pixels, decodedFloats.historyLength().pixels);
+    }
+    ssao::GtaoTemporalSettings full = mode(true, true, false);
+    EXPECT_THROW(GtaoTemporal(context, settings, full, GtaoOutputs::Visibility, {.packedOutput = true}), Error);
+    EXPECT_EQ(testing::validationReport(context), "");
+}
+
 // Visibility alone (no bent normal computed, filtered or accumulated, kGtaoSpecBentNormal and
 // kTemporalSpecBentNormal 0) gives the full frame's visibility and history length bit for bit: the
 // bent normal feeds neither. Four frames of the path, so the history is read and written, at both

@@ -94,6 +94,10 @@ void run(const RenderOptions& o) {
     }
 
     o.gpu.validate();
+    if (o.ao == "gtao" && !o.gpu.gpu) {
+        if (o.gtao.gpuPackedNormals) fail("--gpu-packed-normals", "needs --gpu: the CPU reads the normals as floats");
+        if (o.gtao.gpuPackedOutput) fail("--gpu-packed-output", "needs --gpu: the CPU writes the visibility as floats");
+    }
     if (o.fusedBlur && !(o.gpu.gpu && o.ao == "alchemy" && blur.mode == ssao::BlurMode::Separable && !blur.usesNormals()))
         fail("--gpu-fused-blur", "needs --gpu, --ao alchemy and the separable blur by depth alone (--blur separable, "
                                  "no normal weight)");
@@ -196,6 +200,8 @@ void run(const RenderOptions& o) {
         if (o.gtao.gridHistory) variants += ", history on the grid";
         if (o.gtao.alternatingWindow)
             variants += o.gtao.alternatingWindowSize == 2 ? ", alternating 2x2 windows" : ", alternating 4x4 windows";
+        if (o.gtao.gpuPackedNormals) variants += ", octahedral normals";
+        if (o.gtao.gpuPackedOutput) variants += ", 16-bit visibility";
         std::printf(" (%s: %d slice(s) x %d steps%s, r = %s m, %d frame(s)%s)", o.gtao.quality.c_str(), g.sliceCount,
                     g.stepsPerSide, g.interleave ? ", 4x4 interleave" : g.jitter ? ", jittered" : "", o.radius.c_str(),
                     o.gtao.frames, variants.c_str());

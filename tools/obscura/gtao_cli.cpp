@@ -162,6 +162,12 @@ void GtaoOptions::add(CLI::App& app) {
                    "GTAO temporal mode with --gtao-alternating-window: the windows' side, 4 (16 taps) or 2 (2x2 "
                    "windows that each hold the pixel, 4 taps, which the history averages to a 3x3 tent)")
         ->capture_default_str();
+    app.add_flag("--gpu-packed-normals", gpuPackedNormals,
+                 "GTAO spatial and temporal modes with --gpu: upload the normals as one octahedral word per pixel "
+                 "(two snorm16, as engines keep them) instead of 3 floats; the frame of those normals decoded");
+    app.add_flag("--gpu-packed-output", gpuPackedOutput,
+                 "GTAO with --gpu, --gtao-half-res and --gtao-grid-history: the passes write the visibility as "
+                 "unorm16 (an R16 image), each value rounded to 1/65535");
     app.add_option("--gtao-thickness", thickness, "GTAO thin occluders: none, heuristic (eq. 9), bitmask")
         ->check(CLI::IsMember({"none", "heuristic", "bitmask"}))
         ->capture_default_str();
@@ -222,6 +228,11 @@ void GtaoOptions::validate(const std::string& aovDir) const {
     if (gridHistory && (!halfResolution || !(mode == "spatial" || temporal)))
         fail("--gtao-grid-history", "needs --gtao-half-res in the spatial or temporal mode (--gtao-mode spatial or "
                                     "temporal, or auto with --frames > 1)");
+    if (gpuPackedNormals && !(mode == "spatial" || temporal))
+        fail("--gpu-packed-normals", "needs the spatial or temporal mode (--gtao-mode spatial or temporal, or auto with "
+                                     "--frames > 1)");
+    if (gpuPackedOutput && !gridHistory)
+        fail("--gpu-packed-output", "needs --gtao-grid-history: there the upsampling writes the frame's visibility");
     if (sliceFlags.value.jitter && (mode == "spatial" || temporal))
         fail("--gtao-jitter", "needs --gtao-mode full (or auto with one frame): the interleave rotates the slices of the "
                               "spatial and temporal modes");
@@ -251,7 +262,8 @@ GtaoFrame renderGtaoFrames(const GtaoOptions& o, float radius, const trace::Trac
     std::optional<ssao::GtaoTemporal> temporal;
     std::optional<gpu::GtaoTemporal> gpuTemporal;
     if (mode != "full" && context)
-        gpuTemporal.emplace(*context, settings, temporalSettings, outputs);
+        gpuTemporal.emplace(*context, settings, temporalSettings, outputs,
+                            gpu::GtaoTemporalFormats{o.gpuPackedNormals, o.gpuPackedOutput});
     else if (mode != "full")
         temporal.emplace(settings, temporalSettings);
 
