@@ -49,7 +49,8 @@ for patch in "${patches[@]}"; do
               "stairs --size 120x70 --ao alchemy --blur-radius 32" \
               "stairs --size 120x70 --ao alchemy --ao-guard-band 8 --gpu-fused-blur" \
               "stairs --size 97x63 --ao gtao --frames 3" \
-              "demo --size 133x77 --ao gtao --frames 4 --gtao-half-res --gtao-grid-history --gtao-alternating-window"; do
+              "demo --size 133x77 --ao gtao --frames 4 --gtao-half-res --gtao-grid-history --gtao-alternating-window" \
+              "stairs --size 97x63 --ao gtao --frames 5 --gtao-half-res --gtao-grid-history --gtao-packed-history --gtao-alternating-window --gtao-alternating-window-size 2"; do
     # shellcheck disable=SC2086  # the list's words are separate arguments
     "$tool" render $args -q --gpu -o "$work/e.png" --aov-dir "$work/e" >/dev/null
     # shellcheck disable=SC2086
