@@ -111,10 +111,19 @@ private:
     std::unique_ptr<Impl> impl_;
 };
 
+// How the Alchemy passes take the G-buffer's normals, as an engine may keep them (docs/INTEGRATION.md).
+struct AlchemyFormats {
+    // Uploaded as one octahedral word per pixel (two snorm16, ssao::packOctahedral) instead of 3 floats: the
+    // obscurance of the words' decoded normals (within 1e-4 of the floats). Not with normalsFromDepth, whose
+    // normals the GPU rebuilds as floats (obscura::Error).
+    bool packedNormals = false;
+};
+
 // ssao::alchemyAO on the GPU: the same settings, validation, errors and output (raw obscurance, guard band
 // cropped, sky 1); equal to ssao::alchemyPixel to within GPU rounding (tests/gpu bound the difference).
 // Normals rebuilt from depth (settings.normalsFromDepth) come from the GPU mirror of ssao::normalsFromDepth.
-Image alchemyAO(Context& context, const GBuffer& gbuffer, const ssao::AlchemySettings& settings);
+Image alchemyAO(Context& context, const GBuffer& gbuffer, const ssao::AlchemySettings& settings,
+                AlchemyFormats formats = {});
 
 // bilateralFilter(alchemyAO(gbuffer, settings), the guard band's inner G-buffer, blur) in two dispatches
 // instead of three: the estimator evaluates rows of pixels into shared memory and blurs them there, so its raw
@@ -122,7 +131,7 @@ Image alchemyAO(Context& context, const GBuffer& gbuffer, const ssao::AlchemySet
 // without the normal weight (obscura::Error otherwise). The same bits as the three dispatches where the device
 // rounds both alike (lavapipe); `obscura bench --gpu` times both (cases alchemy and alchemy-fused).
 Image alchemyAOBlurred(Context& context, const GBuffer& gbuffer, const ssao::AlchemySettings& settings,
-                       const ssao::BilateralSettings& blur);
+                       const ssao::BilateralSettings& blur, AlchemyFormats formats = {});
 
 // ssao::bilateralFilter on the GPU: BlurMode::Separable as two 1-D passes, BlurMode::TwoD as one square pass
 // (src/gpu/bilateral_2d_pass.cpp), BlurMode::None returns a copy; the same settings, validation and errors;

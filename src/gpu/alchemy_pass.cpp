@@ -8,6 +8,7 @@
 #include "gpu/compute_pipeline.h"
 #include "gpu/context.h"
 #include "gpu/depth_prep_pass.h"
+#include "gpu/image_planes.h"
 #include "gpu/spirv.h"
 #include "shaders/layouts.h"
 
@@ -63,10 +64,30 @@ void recordAlchemyBlurred(Context::Impl& c, VkCommandBuffer cmd, const AlchemyBl
     if (mark) mark("blur-columns");
 }
 
+namespace {
+
+void checkFormats(const ssao::AlchemySettings& s, AlchemyFormats formats) {
+    if (formats.packedNormals && s.normalsFromDepth)
+        fail("alchemy", "packed normals are the G-buffer's; with normalsFromDepth the GPU rebuilds them as floats");
+}
+
+// The G-buffer's normals as the pass reads them (3 floats, or with packedNormals a word each), or with
+// normalsFromDepth a device plane for normals_from_depth.comp to fill.
+Buffer normalPlane(Context::Impl& c, const GBuffer& g, const ssao::AlchemySettings& s, AlchemyFormats formats) {
+    const std::size_t pixels = g.depth.pixelCount();
+    if (s.normalsFromDepth) return Buffer(c, 3 * pixels * sizeof(float), MemoryUse::Device);
+    if (!formats.packedNormals) return upload(c, g.normal.pixels.data(), 3 * pixels * sizeof(float));
+    const std::vector<std::uint32_t> words = packNormals(g.normal);
+    return upload(c, words.data(), words.size() * sizeof(std::uint32_t));
+}
+
+} // namespace
+
 Image alchemyAOBlurred(Context& context, const GBuffer& g, const ssao::AlchemySettings& s,
-                       const ssao::BilateralSettings& blur) {
+                       const ssao::BilateralSettings& blur, AlchemyFormats formats) {
     const ssao::AlchemyConstants k = ssao::alchemyConstants(s, g.camera);
     ssao::validateAlchemyGBuffer(g, s);
+    checkFormats(s, formats);
     if (blur.mode != ssao::BlurMode::Separable || blur.usesNormals())
         fail("alchemy blur", "the fused pass blurs separably by depth alone (BlurMode::Separable, no normal weight)");
     const GBuffer cropped = ssao::cropGuardBand(g, ssao::guardBandCamera(g.camera, -k.guardBand), k.guardBand);
@@ -76,8 +97,7 @@ Image alchemyAOBlurred(Context& context, const GBuffer& g, const ssao::AlchemySe
     Context::Impl& c = context.impl();
     const std::size_t pixels = std::size_t(k.width) * std::size_t(k.height), out = cropped.depth.pixelCount();
     const Buffer depth = upload(c, g.depth.pixels.data(), pixels * sizeof(float));
-    const Buffer normal = s.normalsFromDepth ? Buffer(c, 3 * pixels * sizeof(float), MemoryUse::Device)
-                                             : upload(c, g.normal.pixels.data(), 3 * pixels * sizeof(float));
+    const Buffer normal = normalPlane(c, g, s, formats);
     const Buffer table = upload(c, offsets.data(), offsets.size() * sizeof(float));
     const Buffer blurDepth = upload(c, cropped.depth.pixels.data(), out * sizeof(float));
     const Buffer spatial = upload(c, f.logSpatial.data(), f.logSpatial.size() * sizeof(float));
@@ -89,7 +109,8 @@ Image alchemyAOBlurred(Context& context, const GBuffer& g, const ssao::AlchemySe
                 recordNormalsFromDepth(c, cmd, depth, normal, ssao::depthPrepConstants({}, g.camera));
                 computeBarrier(cmd);
             }
-            recordAlchemyBlurred(c, cmd, {depth, normal, table, blurDepth, spatial, rows, result}, k, f);
+            recordAlchemyBlurred(c, cmd,
+                                 {depth, normal, table, blurDepth, spatial, rows, result, formats.packedNormals}, k, f);
         },
         true);
     Image image(cropped.width(), cropped.height(), 1);
@@ -97,19 +118,19 @@ Image alchemyAOBlurred(Context& context, const GBuffer& g, const ssao::AlchemySe
     return image;
 }
 
-Image alchemyAO(Context& context, const GBuffer& g, const ssao::AlchemySettings& s) {
+Image alchemyAO(Context& context, const GBuffer& g, const ssao::AlchemySettings& s, AlchemyFormats formats) {
     const ssao::AlchemyConstants k = ssao::alchemyConstants(s, g.camera);
     // ssao::alchemyAO's checks and messages (the shader checks nothing, and a NaN depth would reach a
     // float-to-int conversion).
     ssao::validateAlchemyGBuffer(g, s);
+    checkFormats(s, formats);
     const std::vector<float> offsets = alchemySpiralOffsets(k);
 
     Context::Impl& c = context.impl();
     const std::size_t pixels = std::size_t(k.width) * std::size_t(k.height);
     const Buffer depth = upload(c, g.depth.pixels.data(), pixels * sizeof(float));
     // Normals rebuilt from depth: normals_from_depth.comp, ssao::normalsFromDepth's mirror, before the pass.
-    const Buffer normal = s.normalsFromDepth ? Buffer(c, 3 * pixels * sizeof(float), MemoryUse::Device)
-                                             : upload(c, g.normal.pixels.data(), 3 * pixels * sizeof(float));
+    const Buffer normal = normalPlane(c, g, s, formats);
     const Buffer table = upload(c, offsets.data(), offsets.size() * sizeof(float));
     Image out(k.width - 2 * k.guardBand, k.height - 2 * k.guardBand, 1);
     const Buffer ao(c, out.pixels.size() * sizeof(float), MemoryUse::Device);
@@ -119,7 +140,7 @@ Image alchemyAO(Context& context, const GBuffer& g, const ssao::AlchemySettings&
                 recordNormalsFromDepth(c, cmd, depth, normal, ssao::depthPrepConstants({}, g.camera));
                 computeBarrier(cmd);
             }
-            recordAlchemy(c, cmd, {depth, normal, table, ao}, k);
+            recordAlchemy(c, cmd, {depth, normal, table, ao, formats.packedNormals}, k);
         },
         true);
     download(c, ao, out.pixels.data(), out.pixels.size() * sizeof(float));

@@ -165,11 +165,12 @@ TEST_F(GpuCommands, RenderGtaoMatchesTheCpu) {
     }
 }
 
-// --gpu-packed-normals and --gpu-packed-output (gpu::GtaoTemporalFormats): the spatio-temporal target's
-// configuration with the G-buffer's normals as octahedral words and a 16-bit visibility matches the CPU's
-// float frame within the bounds of every other GPU frame, says so in its summary, and each flag refuses what
-// it cannot serve in one line, writing nothing.
-TEST_F(GpuCommands, RenderGtaoPackedFormatsMatchTheCpu) {
+// --gpu-packed-normals and --gpu-packed-output (gpu::GtaoTemporalFormats, gpu::AlchemyFormats): the
+// spatio-temporal target's configuration with the G-buffer's normals as octahedral words and a 16-bit
+// visibility, and the Alchemy target's with the words and the tiled blur, match the CPU's float frames within
+// the bounds of every other GPU frame and say so in their summaries; each flag refuses what it cannot serve
+// in one line, writing nothing.
+TEST_F(GpuCommands, RenderPackedFormatsMatchTheCpu) {
     const std::string args = "render demo --size 97x55 --ao gtao --frames 5 --gtao-half-res --gtao-grid-history "
                              "--gtao-packed-history --gtao-alternating-window --gtao-alternating-window-size 2 "
                              "--gtao-sampling planar-nearest -q";
@@ -183,6 +184,16 @@ TEST_F(GpuCommands, RenderGtaoPackedFormatsMatchTheCpu) {
     EXPECT_LE(frame.mean, 1e-3);
     EXPECT_LE(ao.max, 2e-3);
     std::printf("[ measured ] packed formats: frame mean |diff| %.2e, AO max |diff| %.2e\n", frame.mean, ao.max);
+
+    // The Alchemy estimator with the words, and the blur in one tiled dispatch (the Alchemy target's variant).
+    const std::string alchemy = "render stairs --size 81x47 --ao alchemy -q";
+    ASSERT_EQ(runCli(alchemy + " -o " + path("a_cpu.exr") + " --aov-dir " + path("a_cpu")).code, 0);
+    const CliResult alchemyGpu = runGpu(alchemy + " --gpu-packed-normals --gpu-tiled-blur -o " + path("a_gpu.exr") +
+                                        " --aov-dir " + path("a_gpu"));
+    EXPECT_NE(alchemyGpu.out.find(", octahedral normals)"), std::string::npos) << alchemyGpu.out;
+    EXPECT_LE(difference(obscura::readExr(path("a_cpu/ao.exr")), obscura::readExr(path("a_gpu/ao.exr"))).max, 2e-3);
+    expectFailure(alchemy + " -o " + path("y.png") + " --gpu --gpu-packed-normals --ao-normals-from-depth",
+                  {"--gpu-packed-normals", "--ao-normals-from-depth"});
 
     const std::string base = "render demo --size 48x32 --ao gtao -q -o " + path("x.png");
     expectFailure(base + " --frames 3 --gpu-packed-normals", {"--gpu-packed-normals", "needs --gpu"});

@@ -2,6 +2,8 @@
 // lavapipe in CI, with validation on and no message allowed.
 #include "gpu_test_util.h"
 
+#include "gpu/image_planes.h"
+
 #include "obscura/alchemy.h"
 #include "obscura/error.h"
 #include "obscura/gpu.h"
@@ -227,6 +229,35 @@ TEST(GpuAlchemy, FusedRowBlurMatchesTheSeparatePasses) {
     bad.radius = -1;
     EXPECT_EQ(testing::errorMessage([&] { alchemyAOBlurred(context, g, bad, {}); }),
               testing::errorMessage([&] { ssao::alchemyAO(g, bad); }));
+    EXPECT_EQ(testing::validationReport(context), "");
+}
+
+
+// gpu::AlchemyFormats::packedNormals: the public passes upload the normals as octahedral words and give, bit for
+// bit, the obscurance of the same calls fed the words' decoded normals, with and without the fused row blur and
+// with a guard band; which is not the float normals' (the decoding is there to see). With normals rebuilt from
+// depth there are none to pack, and the call says so.
+TEST(GpuAlchemy, PackedNormalsGiveTheObscuranceOfTheirDecodedNormals) {
+    OBSCURA_GPU_CONTEXT(context);
+    ssao::AlchemySettings band;
+    band.guardBand = 7;
+    for (const ssao::AlchemySettings& s : {ssao::AlchemySettings{}, band}) {
+        const GBuffer g = testing::render("demo", 133, 77);
+        GBuffer decoded = g;
+        decoded.normal = unpackNormals(packNormals(g.normal), g.width(), g.height());
+        const AlchemyFormats packed{.packedNormals = true};
+        const Image words = alchemyAO(context, g, s, packed), floats = alchemyAO(context, g, s);
+        EXPECT_EQ(words.pixels, alchemyAO(context, decoded, s).pixels) << s.guardBand;
+        EXPECT_NE(words.pixels, floats.pixels) << s.guardBand;
+        EXPECT_LE(compare(words, floats, 2e-3).max, 2e-3);
+        EXPECT_EQ(alchemyAOBlurred(context, g, s, {}, packed).pixels, alchemyAOBlurred(context, decoded, s, {}).pixels);
+    }
+    ssao::AlchemySettings rebuilt;
+    rebuilt.normalsFromDepth = true;
+    const GBuffer g = testing::render("plane", 16, 16);
+    EXPECT_NE(testing::errorMessage([&] { alchemyAO(context, g, rebuilt, {.packedNormals = true}); })
+                  .find("normalsFromDepth"),
+              std::string::npos);
     EXPECT_EQ(testing::validationReport(context), "");
 }
 

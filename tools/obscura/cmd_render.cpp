@@ -94,10 +94,16 @@ void run(const RenderOptions& o) {
     }
 
     o.gpu.validate();
-    if (o.ao == "gtao" && !o.gpu.gpu) {
-        if (o.gtao.gpuPackedNormals) fail("--gpu-packed-normals", "needs --gpu: the CPU reads the normals as floats");
-        if (o.gtao.gpuPackedOutput) fail("--gpu-packed-output", "needs --gpu: the CPU writes the visibility as floats");
+    if (o.gtao.gpuPackedNormals && o.ao != "alchemy" && o.ao != "gtao")
+        std::fprintf(stderr, "obscura: warning: --gpu-packed-normals: applies to --ao alchemy or gtao, not --ao %s; "
+                             "ignored\n", o.ao.c_str());
+    else if (o.gtao.gpuPackedNormals) {
+        if (!o.gpu.gpu) fail("--gpu-packed-normals", "needs --gpu: the CPU reads the normals as floats");
+        if (o.ao == "alchemy" && alchemy.normalsFromDepth)
+            fail("--gpu-packed-normals", "packs the G-buffer's normals, and --ao-normals-from-depth rebuilds them");
     }
+    if (o.ao == "gtao" && o.gtao.gpuPackedOutput && !o.gpu.gpu)
+        fail("--gpu-packed-output", "needs --gpu: the CPU writes the visibility as floats");
     if (o.fusedBlur && !(o.gpu.gpu && o.ao == "alchemy" && blur.mode == ssao::BlurMode::Separable && !blur.usesNormals()))
         fail("--gpu-fused-blur", "needs --gpu, --ao alchemy and the separable blur by depth alone (--blur separable, "
                                  "no normal weight)");
@@ -138,14 +144,15 @@ void run(const RenderOptions& o) {
         gbuffer = trace::renderGBuffer(*tracer, gbufferCamera, gs, [&](double f) { p(f); });
     }
     Image ao;
+    const gpu::AlchemyFormats alchemyFormats{o.gtao.gpuPackedNormals};
     if (o.ao == "raytraced") {
         Progress p("ambient occlusion", showProgress);
         ao = trace::ambientObscurance(*tracer, gbuffer, aoSettings, [&](double f) { p(f); });
     } else if (o.ao == "alchemy" && o.fusedBlur) {
-        ao = gpu::alchemyAOBlurred(*context, gbuffer, alchemy, blur);
+        ao = gpu::alchemyAOBlurred(*context, gbuffer, alchemy, blur, alchemyFormats);
         gbuffer = ssao::cropGuardBand(gbuffer, camera, alchemy.guardBand);
     } else if (o.ao == "alchemy") {
-        Image raw = context ? gpu::alchemyAO(*context, gbuffer, alchemy) : ssao::alchemyAO(gbuffer, alchemy);
+        Image raw = context ? gpu::alchemyAO(*context, gbuffer, alchemy, alchemyFormats) : ssao::alchemyAO(gbuffer, alchemy);
         gbuffer = ssao::cropGuardBand(gbuffer, camera, alchemy.guardBand);
         ao = o.tiledBlur ? gpu::bilateralFilterTiled(*context, raw, gbuffer, blur)
              : context   ? gpu::bilateralFilter(*context, raw, gbuffer, blur)
@@ -188,12 +195,13 @@ void run(const RenderOptions& o) {
                 o.ao.c_str());
     if (o.ao == "raytraced") std::printf(" (%s, r = %s m, %d rays)", o.falloff.c_str(), o.radius.c_str(), o.rays);
     if (o.ao == "alchemy")
-        std::printf(" (%s, r = %g m, intensity %g, contrast %g, %d samples, blur %s%s)",
+        std::printf(" (%s, r = %g m, intensity %g, contrast %g, %d samples, blur %s%s%s)",
                     alchemy.formulation == ssao::AlchemyFormulation::Paper ? "paper" : "chapter", double(alchemy.radius),
                     double(alchemy.intensity), double(alchemy.contrast), alchemy.samples, o.blur.mode.c_str(),
                     o.fusedBlur   ? ", rows fused into the estimator"
                     : o.tiledBlur ? ", both passes in one tiled dispatch"
-                                  : "");
+                                  : "",
+                    alchemyFormats.packedNormals ? ", octahedral normals" : "");
     if (o.ao == "gtao") {
         const ssao::GtaoSettings g = o.gtao.settings(aoSettings.radius);
         std::string variants = o.gtao.halfResolution ? ", half resolution" : "";
@@ -255,6 +263,10 @@ void addRenderCommand(CLI::App& app) {
         o->blur.add(*cmd);
     });
     o->gtaoFlags = optionsAddedBy(*cmd, [&] { o->gtao.add(*cmd); });
+    cmd->add_flag("--gpu-packed-normals", o->gtao.gpuPackedNormals,
+                  "With --gpu and --ao alchemy (its estimator), or gtao in its spatial and temporal modes: upload the "
+                  "normals as one octahedral word per pixel (two snorm16, as engines keep them) instead of 3 floats; "
+                  "the AO of those normals decoded");
     o->gpu.add(*cmd, "the screen-space AO (alchemy, gtao: every pass) and the composite", "Ray-traced AO stays on the CPU.");
     cmd->add_flag("--gpu-fused-blur", o->fusedBlur,
                   "With --gpu --ao alchemy and the separable blur by depth alone: evaluate the estimator and the "

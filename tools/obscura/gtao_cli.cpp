@@ -162,9 +162,6 @@ void GtaoOptions::add(CLI::App& app) {
                    "GTAO temporal mode with --gtao-alternating-window: the windows' side, 4 (16 taps) or 2 (2x2 "
                    "windows that each hold the pixel, 4 taps, which the history averages to a 3x3 tent)")
         ->capture_default_str();
-    app.add_flag("--gpu-packed-normals", gpuPackedNormals,
-                 "GTAO spatial and temporal modes with --gpu: upload the normals as one octahedral word per pixel "
-                 "(two snorm16, as engines keep them) instead of 3 floats; the frame of those normals decoded");
     app.add_flag("--gpu-packed-output", gpuPackedOutput,
                  "GTAO with --gpu, --gtao-half-res and --gtao-grid-history: the passes write the visibility as "
                  "unorm16 (an R16 image), each value rounded to 1/65535");

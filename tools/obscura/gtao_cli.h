@@ -44,7 +44,8 @@ struct GtaoOptions {
     bool gridHistory = false;  // spatial/temporal modes at half resolution: accumulate on the grid
     bool alternatingWindow = false;  // temporal mode: 4x4 reconstruction windows alternating over 4 frames
     int alternatingWindowSize = 4;   // ... or 2x2 ones (GtaoTemporalSettings::alternatingWindowSize)
-    bool gpuPackedNormals = false;   // --gpu: gpu::GtaoTemporalFormats::packedNormals
+    bool gpuPackedNormals = false;   // --gpu: gpu::GtaoTemporalFormats::packedNormals (render registers the flag,
+                                     // which --ao alchemy takes too)
     bool gpuPackedOutput = false;    // --gpu: gpu::GtaoTemporalFormats::packedOutput
     std::string thickness = "none";
     float falloffStart = 1.0f;
