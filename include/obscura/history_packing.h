@@ -47,18 +47,18 @@ inline Vec3 packNormalize(Vec3 v) { return normalize(v); }
 OBSCURA_PACK_INLINE float packInverse65535() { return packFromBits(0x37800080u); }
 OBSCURA_PACK_INLINE float packInverse32767() { return packFromBits(0x38000100u); }
 
-// x in [0, 1] -> 0..65535, to nearest (x is clamped).
+// x in [0, 1] -> 0..65535, to nearest (x is clamped; a NaN packs as 0, not through an undefined conversion).
 OBSCURA_PACK_INLINE OBSCURA_PACK_UINT packUnorm16(float x) {
-    const float c = x < 0.0f ? 0.0f : (x > 1.0f ? 1.0f : x);
+    const float c = x > 0.0f ? (x < 1.0f ? x : 1.0f) : 0.0f;
     OBSCURA_PACK_PRECISE const float scaled = c * 65535.0f + 0.5f;
     return OBSCURA_PACK_UINT(packFloor(scaled));
 }
 OBSCURA_PACK_INLINE float unpackUnorm16(OBSCURA_PACK_UINT q) { return float(q) * packInverse65535(); }
 
-// x in [-1, 1] -> -32767..32767 to nearest (x is clamped), stored offset as 1..65535 so that the rounding
-// sees no negative number; code 0 is unused.
+// x in [-1, 1] -> -32767..32767 to nearest (x is clamped; a NaN packs as -1), stored offset as 1..65535 so
+// that the rounding sees no negative number; code 0 is unused.
 OBSCURA_PACK_INLINE OBSCURA_PACK_UINT packSnorm16(float x) {
-    const float c = x < -1.0f ? -1.0f : (x > 1.0f ? 1.0f : x);
+    const float c = x > -1.0f ? (x < 1.0f ? x : 1.0f) : -1.0f;
     OBSCURA_PACK_PRECISE const float scaled = c * 32767.0f + 32767.5f;  // 0.5..65534.5
     return OBSCURA_PACK_UINT(packFloor(scaled)) + 1u;
 }

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <random>
 
 namespace obscura::ssao {
@@ -45,6 +46,21 @@ TEST(HistoryPacking, Snorm16EndsAndZeroAreExact) {
     for (float x : {-1.0f, 0.0f, 1.0f}) EXPECT_EQ(unpackSnorm16(packSnorm16(x)), x);
     EXPECT_EQ(unpackSnorm16(packSnorm16(-3.0f)), -1.0f);
     EXPECT_EQ(unpackSnorm16(packSnorm16(3.0f)), 1.0f);
+}
+
+// A NaN (a corrupt normal or visibility that reached the packing) clamps to an end instead of going through
+// a float-to-int conversion of NaN, which C++ leaves undefined; so do the infinities.
+TEST(HistoryPacking, NanAndInfinitiesClampToAnEnd) {
+    const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+    EXPECT_EQ(packUnorm16(nan), 0u);
+    EXPECT_EQ(packSnorm16(nan), packSnorm16(-1.0f));
+    EXPECT_EQ(packUnorm16(inf), 65535u);
+    EXPECT_EQ(packUnorm16(-inf), 0u);
+    EXPECT_EQ(packSnorm16(inf), packSnorm16(1.0f));
+    EXPECT_EQ(packSnorm16(-inf), packSnorm16(-1.0f));
+    // A NaN normal packs to some direction of the unit sphere, never to an out-of-range code.
+    const Vec3 n = unpackOctahedral(packOctahedral(Vec3(nan, 0.0f, 1.0f)));
+    EXPECT_NEAR(length(n), 1.0f, 1e-4f);
 }
 
 TEST(HistoryPacking, OctahedralRoundTripOverTheSphere) {
