@@ -36,6 +36,9 @@ struct GBuffer {
     // depth and normal (branch-free; validate() then names the first bad pixel).
     void validateShape(const std::string& what) const;
     bool pixelsValid(int x0, int x1, int y0, int y1) const;
+    // validate()'s scan of the depths and normals alone (in parallel; throws naming the first bad pixel), for a
+    // caller that has checked the sizes its own way.
+    void validatePixels(const std::string& what) const;
 };
 
 // One pixel's test of pixelsValid, for kernels that check the pixels they load: depth > 0 (+inf for sky;

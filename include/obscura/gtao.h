@@ -150,7 +150,8 @@ struct GtaoResult {
 };
 
 // Throws obscura::Error if the G-buffer does not match the constants' size (or its normals are not 3
-// channels): computeGtao's check, and its GPU pass's.
+// channels), or if a depth is NaN, zero or negative or a normal not finite (naming the first such pixel):
+// computeGtao's check, and its GPU pass's.
 void checkGtaoBuffers(const GBuffer& gbuffer, const GtaoConstants& constants);
 
 // Every pixel. Throws obscura::Error if the G-buffer does not match the constants' size.

@@ -43,6 +43,10 @@ bool GBuffer::pixelsValid(int x0, int x1, int y0, int y1) const {
 
 void GBuffer::validate(const std::string& what) const {
     validateShape(what);
+    validatePixels(what);
+}
+
+void GBuffer::validatePixels(const std::string& what) const {
     // Every frame of a screen-space pass validates its G-buffer, so the scan is branch-free and rows run in
     // parallel; only a bad buffer takes the per-pixel loop below, which names the first bad pixel.
     std::atomic<bool> bad{false};

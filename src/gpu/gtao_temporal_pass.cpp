@@ -346,6 +346,7 @@ const ssao::GtaoResult& GtaoTemporal::frame(const GBuffer& g) {
     if (g.depth.width != w || g.depth.height != h || g.normal.width != w || g.normal.height != h ||
         g.normal.channels != 3)
         fail("gtao temporal", "G-buffer images do not match its camera's size");
+    g.validatePixels("gtao temporal");  // the CPU's check of the depths and normals; the shaders check nothing
     if (frame_ > 0 && (w != passes_->width() || h != passes_->height()))
         fail("gtao temporal", "frame size changed from " + std::to_string(passes_->width()) + "x" +
                                   std::to_string(passes_->height()) + " to " + std::to_string(w) + "x" +

@@ -415,6 +415,9 @@ void checkGtaoBuffers(const GBuffer& gbuffer, const GtaoConstants& constants) {
     if (constants.mipLevels < 0 || constants.mipLevels > GTAO_MAX_MIP_LEVELS)
         fail("gtao", "the constants ask for " + std::to_string(constants.mipLevels) +
                          " depth MIP levels; the chain has 0 to " + std::to_string(GTAO_MAX_MIP_LEVELS));
+    // A NaN depth or normal would give NaN visibility without a word (and reach float-to-int conversions on
+    // the CPU); as ssao::alchemyAO does, name the first bad pixel instead.
+    gbuffer.validatePixels("gtao");
 }
 
 GtaoResult computeGtao(const GBuffer& gbuffer, const GtaoConstants& constants) {

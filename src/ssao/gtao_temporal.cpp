@@ -157,6 +157,7 @@ const GtaoResult& GtaoTemporal::frame(const GBuffer& g) {
     if (g.depth.width != w || g.depth.height != h || g.normal.width != w || g.normal.height != h ||
         g.normal.channels != 3)
         fail("gtao temporal", "G-buffer images do not match its camera's size");
+    g.validatePixels("gtao temporal");  // computeGtao's check of the depths and normals
     if (frame_ > 0 && (w != previousCamera_.width || h != previousCamera_.height))
         fail("gtao temporal", "frame size changed from " + std::to_string(previousCamera_.width) + "x" +
                                   std::to_string(previousCamera_.height) + " to " + std::to_string(w) + "x" +

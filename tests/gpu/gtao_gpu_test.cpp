@@ -264,6 +264,18 @@ TEST(GpuGtao, RejectsBadInputAsTheCpuPassDoes) {
     for (const auto& [buffer, constants] : {std::pair{small, k}, std::pair{twoChannels, k}, std::pair{g, wider}})
         testing::expectSameError([&] { ssao::computeGtao(buffer, constants); },
                                  [&] { computeGtao(context, buffer, constants); });
+    // A NaN or zero depth and a NaN normal: one message naming the first bad pixel, on both paths (the
+    // shader checks nothing; a NaN would come out as NaN visibility).
+    GBuffer nanDepth = g, zeroDepth = g, nanNormal = g;
+    nanDepth.depth.at(3, 5) = std::nanf("");
+    zeroDepth.depth.at(7, 2) = 0.0f;
+    nanNormal.normal.at(9, 11, 1) = std::nanf("");
+    for (const auto& [buffer, pixel] : {std::pair{nanDepth, "(3, 5)"}, std::pair{zeroDepth, "(7, 2)"},
+                                        std::pair{nanNormal, "(9, 11)"}}) {
+        testing::expectSameError([&] { ssao::computeGtao(buffer, k); }, [&] { computeGtao(context, buffer, k); });
+        EXPECT_NE(testing::errorMessage([&] { computeGtao(context, buffer, k); }).find(pixel), std::string::npos)
+            << pixel;
+    }
     EXPECT_EQ(testing::validationReport(context), "");
 }
 

@@ -686,10 +686,19 @@ TEST(GpuGtaoTemporal, RejectsBadInputAsTheCpuPassDoes) {
     small.normal = Image(8, 8, 3);
     GBuffer twoChannels = g;
     twoChannels.normal = Image(16, 16, 2);
-    for (const GBuffer& bad : {small, twoChannels}) {
+    GBuffer nanDepth = g, nanNormal = g;
+    nanDepth.depth.at(3, 5) = std::nanf("");
+    nanNormal.normal.at(9, 11, 2) = std::nanf("");
+    for (const GBuffer& bad : {small, twoChannels, nanDepth, nanNormal}) {
         ssao::GtaoTemporal cpu(settings, {});
         GtaoTemporal gpu(context, settings, {});
         testing::expectSameError([&] { cpu.frame(bad); }, [&] { gpu.frame(bad); });
+    }
+    {
+        GtaoTemporal gpu(context, settings, {});
+        const std::string message = testing::errorMessage([&] { gpu.frame(nanDepth); });
+        EXPECT_NE(message.find("(3, 5)"), std::string::npos) << message;
+        EXPECT_EQ(gpu.framesRendered(), 0);  // nothing ran
     }
     // The size may not change between frames.
     const GBuffer larger = testing::render("plane", 24, 16);

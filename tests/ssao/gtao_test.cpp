@@ -15,6 +15,9 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
+#include <string>
+#include <tuple>
 
 using namespace obscura;
 using namespace obscura::ssao;
@@ -215,6 +218,26 @@ TEST(Gtao, BadSettingsAndBuffersThrow) {
     Camera other = g.camera;
     other.width = 33;
     EXPECT_THROW(computeGtao(g, gtaoConstants(GtaoSettings{}, other)), Error);
+    // A NaN depth or normal, or a negative depth, is named rather than turned into NaN visibility; +inf (sky)
+    // is a depth like any other.
+    for (const auto& [what, x, y] : {std::tuple{"nan depth", 4, 7}, std::tuple{"negative depth", 30, 1},
+                                     std::tuple{"nan normal", 12, 20}}) {
+        GBuffer bad = g;
+        if (std::string(what) == "nan depth") bad.depth.at(x, y) = std::nanf("");
+        if (std::string(what) == "negative depth") bad.depth.at(x, y) = -2.0f;
+        if (std::string(what) == "nan normal") bad.normal.at(x, y, 0) = std::nanf("");
+        try {
+            computeGtao(bad, GtaoSettings{});
+            ADD_FAILURE() << what << " ran";
+        } catch (const Error& e) {
+            const std::string pixel = "(" + std::to_string(x) + ", " + std::to_string(y) + ")";
+            EXPECT_EQ(std::string(e.what()).rfind("gtao: ", 0), 0u) << e.what();
+            EXPECT_NE(std::string(e.what()).find(pixel), std::string::npos) << what << ": " << e.what();
+        }
+    }
+    GBuffer sky = g;
+    sky.depth.at(0, 0) = std::numeric_limits<float>::infinity();
+    EXPECT_NO_THROW(computeGtao(sky, GtaoSettings{}));
 }
 
 TEST(Gtao, SameBitsOnAnyThreadCount) {
