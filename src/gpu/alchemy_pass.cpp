@@ -74,11 +74,8 @@ void checkFormats(const ssao::AlchemySettings& s, AlchemyFormats formats) {
 // The G-buffer's normals as the pass reads them (3 floats, or with packedNormals a word each), or with
 // normalsFromDepth a device plane for normals_from_depth.comp to fill.
 Buffer normalPlane(Context::Impl& c, const GBuffer& g, const ssao::AlchemySettings& s, AlchemyFormats formats) {
-    const std::size_t pixels = g.depth.pixelCount();
-    if (s.normalsFromDepth) return Buffer(c, 3 * pixels * sizeof(float), MemoryUse::Device);
-    if (!formats.packedNormals) return upload(c, g.normal.pixels.data(), 3 * pixels * sizeof(float));
-    const std::vector<std::uint32_t> words = packNormals(g.normal);
-    return upload(c, words.data(), words.size() * sizeof(std::uint32_t));
+    if (s.normalsFromDepth) return deviceFloats(c, 3 * g.depth.pixelCount());
+    return uploadNormals(c, g.normal, formats.packedNormals);
 }
 
 } // namespace

@@ -212,8 +212,8 @@ CaseSetup gtaoHalfCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s
                         ", depth only + depth-aware upsample" + normalsText(s);
     setup.bytes = double(passes->bytesPerFrame());
     setup.keepAlive = {passes};
-    setup.record = [passes, packed = s.packedNormals](VkCommandBuffer cmd, const ResidentInput& in, int index,
-                                                      const std::function<void(const char*)>& mark) {
+    setup.record = [passes](VkCommandBuffer cmd, const ResidentInput& in, int index,
+                            const std::function<void(const char*)>& mark) {
         passes->record(cmd, in.depth, in.normal, in.camera, index, mark);
     };
     return setup;
@@ -251,9 +251,8 @@ CaseSetup temporalCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s
     setup.keepAlive = {passes};
     // The previous frame's depth: the rotating inputs stay resident, so it is still there (callerKeepsDepth).
     auto previousDepth = std::make_shared<const Buffer*>(nullptr);
-    const bool packedNormals = s.packedNormals;
-    setup.record = [passes, previousDepth, packedNormals](VkCommandBuffer cmd, const ResidentInput& in, int index,
-                                                          const std::function<void(const char*)>& mark) {
+    setup.record = [passes, previousDepth](VkCommandBuffer cmd, const ResidentInput& in, int index,
+                                           const std::function<void(const char*)>& mark) {
         passes->record(cmd, {in.depth, in.normal, in.camera, index, *previousDepth}, mark);
         *previousDepth = &in.depth;
     };
@@ -327,15 +326,8 @@ GpuBenchCase benchGpuCase(Context& context, const std::string& name, const std::
 
     std::vector<ResidentInput> resident;
     for (const GBuffer& g : inputs) {
-        const std::size_t px = g.depth.pixelCount();
-        Buffer normal;
-        if (settings.packedNormals) {
-            const std::vector<std::uint32_t> words = packNormals(g.normal);
-            normal = upload(c, words.data(), words.size() * sizeof(std::uint32_t));
-        } else {
-            normal = upload(c, g.normal.pixels.data(), 3 * px * sizeof(float));
-        }
-        resident.push_back({upload(c, g.depth.pixels.data(), px * sizeof(float)), std::move(normal), g.camera});
+        resident.push_back({upload(c, g.depth.pixels.data(), g.depth.pixelCount() * sizeof(float)),
+                            uploadNormals(c, g.normal, settings.packedNormals), g.camera});
     }
     const CaseSetup setup = name == "alchemy" || name == "alchemy-fused"
                                 ? alchemyCase(c, w, h, settings, inputs[0].camera, name == "alchemy-fused")

@@ -94,9 +94,7 @@ GtaoTemporalPasses::GtaoTemporalPasses(Context::Impl& c, const ssao::GtaoSetting
     const bool bentNormals = variant.bentNormals;
     assert(width >= 1 && height >= 1);
     temporal.validate();  // cheap, and a window size or mode the shaders do not know must not reach them
-    if (variant.packedOutput && !gridHistory_)
-        fail("gtao temporal", "packedOutput needs the grid's history (half resolution, gridHistory): there the "
-                              "upsampling writes the frame's visibility");
+    checkPackedOutput(temporal, variant.packedOutput);
     const std::size_t pixels = std::size_t(width) * std::size_t(height);
     const std::size_t grid = std::size_t(gridWidth_) * std::size_t(gridHeight_);
     const std::size_t lattice = gridHistory_ ? grid : pixels;  // the history's
@@ -111,8 +109,7 @@ GtaoTemporalPasses::GtaoTemporalPasses(Context::Impl& c, const ssao::GtaoSetting
     if (bentNormals) bentView_ = deviceFloats(c, 3 * pixels);
     if (gridHistory_) {
         upsampled_ = variant.packedOutput
-                         ? Buffer(c, std::size_t(upsamplePackedRowWords(width)) * std::size_t(height) * 4,
-                                  MemoryUse::Device)
+                         ? Buffer(c, upsamplePackedWords(width, height) * sizeof(std::uint32_t), MemoryUse::Device)
                          : deviceFloats(c, pixels);
         if (bentNormals) bentGrid_ = deviceFloats(c, 3 * grid);
     }
@@ -227,9 +224,15 @@ void GtaoTemporalPasses::record(VkCommandBuffer cmd, const GtaoTemporalFrameInpu
     ++recorded_;
 }
 
+void checkPackedOutput(const ssao::GtaoTemporalSettings& temporal, bool packedOutput) {
+    if (packedOutput && !(temporal.halfResolution && temporal.gridHistory))
+        fail("gtao temporal", "packedOutput needs the grid's history (half resolution, gridHistory): there the "
+                              "upsampling writes the frame's visibility");
+}
+
 Image unpackVisibilityPairs(const std::vector<std::uint32_t>& words, int width, int height) {
     const std::size_t rowWords = std::size_t(upsamplePackedRowWords(width));
-    assert(words.size() == rowWords * std::size_t(height));
+    assert(words.size() == upsamplePackedWords(width, height));
     Image visibility(width, height, 1);
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) {
@@ -266,9 +269,8 @@ std::size_t GtaoTemporalPasses::bytesPerFrame() const {
         // accumulated visibility (and b bent-normal channels) with its depth and the full depth in; 1 (and b)
         // per pixel out.
         bytes += f * grid * ((1 + b) + (1 + n) + history + written + b);
-        const std::size_t out = variant_.packedOutput
-                                    ? sizeof(std::uint32_t) * std::size_t(upsamplePackedRowWords(width_)) * height_
-                                    : f * pixels;
+        const std::size_t out =
+            variant_.packedOutput ? sizeof(std::uint32_t) * upsamplePackedWords(width_, height_) : f * pixels;
         bytes += f * (grid * (1 + 1) + pixels) + out;
         if (b > 0) bytes += f * (grid * (b + 1) + pixels * (1 + b));
         return bytes;
@@ -330,10 +332,7 @@ GtaoTemporal::GtaoTemporal(Context& context, const ssao::GtaoSettings& settings,
     : context_(&context), settings_(settings), temporal_(temporal), outputs_(outputs), formats_(formats) {
     settings_.validate();
     temporal_.validate();
-    // GtaoTemporalPasses' check, before the first frame makes them.
-    if (formats.packedOutput && !(temporal.halfResolution && temporal.gridHistory))
-        fail("gtao temporal", "packedOutput needs the grid's history (half resolution, gridHistory): there the "
-                              "upsampling writes the frame's visibility");
+    checkPackedOutput(temporal_, formats.packedOutput);  // before the first frame makes the passes
 }
 
 GtaoTemporal::~GtaoTemporal() = default;
@@ -361,10 +360,7 @@ const ssao::GtaoResult& GtaoTemporal::frame(const GBuffer& g) {
             GtaoTemporalVariant{bentNormals, /*callerKeepsDepth=*/true, formats_.packedNormals, formats_.packedOutput});
     const std::size_t pixels = std::size_t(w) * std::size_t(h);
     auto depth = std::make_unique<Buffer>(uploadChannels(c, g.depth, 1));
-    std::vector<std::uint32_t> words;
-    if (formats_.packedNormals) words = packNormals(g.normal);
-    const Buffer normal = formats_.packedNormals ? upload(c, words.data(), words.size() * sizeof(std::uint32_t))
-                                                 : uploadChannels(c, g.normal, 3);
+    const Buffer normal = uploadNormals(c, g.normal, formats_.packedNormals);
     c.submit([&](VkCommandBuffer cmd) { passes_->record(cmd, {*depth, normal, g.camera, frame_, previousDepth_.get()}); },
              true);
     previousDepth_ = std::move(depth);  // the submission has completed: the next frame may read it
@@ -389,9 +385,8 @@ Image GtaoTemporal::historyPlane(bool length) const {
     Image image = length ? Image(passes_->historyWidth(), passes_->historyHeight(), 1)
                          : Image(passes_->width(), passes_->height(), 1);
     if (!length && formats_.packedOutput) {
-        const std::size_t count = std::size_t(upsamplePackedRowWords(passes_->width())) * std::size_t(passes_->height());
-        return unpackVisibilityPairs(downloadWords(c, passes_->visibility(), count), passes_->width(),
-                                     passes_->height());
+        const int w = passes_->width(), h = passes_->height();
+        return unpackVisibilityPairs(downloadWords(c, passes_->visibility(), upsamplePackedWords(w, h)), w, h);
     }
     const bool packed = length ? passes_->packedHistory() : passes_->visibilityPacked();
     if (!packed) {

@@ -50,8 +50,15 @@ struct UpsampleBuffers {
 void recordUpsample(Context::Impl& context, VkCommandBuffer cmd, const UpsampleBuffers& buffers,
                     const UpsampleConstants& k, int channels, bool packedLow = false, bool packedOut = false);
 
-// The visibility of packedOut's words as a width x height image.
+// The words packedOut writes for a width x height visibility, and those words as the image.
+inline std::size_t upsamplePackedWords(int width, int height) {
+    return std::size_t(upsamplePackedRowWords(width)) * std::size_t(height);
+}
 Image unpackVisibilityPairs(const std::vector<std::uint32_t>& words, int width, int height);
+
+// Throws obscura::Error unless a 16-bit output (GtaoTemporalVariant::packedOutput) has the grid's history to
+// write it: GtaoTemporalPasses' check, which gpu::GtaoTemporal makes before its first frame makes them.
+void checkPackedOutput(const ssao::GtaoTemporalSettings& temporal, bool packedOutput);
 
 // One frame's inputs, resident on the device and visible to compute shaders (the caller's barrier).
 struct GtaoTemporalFrameInputs {

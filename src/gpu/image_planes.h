@@ -35,6 +35,13 @@ inline std::vector<std::uint32_t> packNormals(const Image& normal) {
         words[i] = ssao::packOctahedral({normal.pixels[3 * i], normal.pixels[3 * i + 1], normal.pixels[3 * i + 2]});
     return words;
 }
+// The normals uploaded in the layout a pass with packedNormals (or without) reads: words, or 3 floats.
+inline Buffer uploadNormals(Context::Impl& context, const Image& normal, bool packed) {
+    assert(normal.channels == 3);
+    if (!packed) return upload(context, normal.pixels.data(), normal.pixels.size() * sizeof(float));
+    const std::vector<std::uint32_t> words = packNormals(normal);
+    return upload(context, words.data(), words.size() * sizeof(std::uint32_t));
+}
 inline Image unpackNormals(const std::vector<std::uint32_t>& words, int width, int height) {
     assert(words.size() == std::size_t(width) * std::size_t(height));
     Image normal(width, height, 3);

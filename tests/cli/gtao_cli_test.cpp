@@ -197,6 +197,12 @@ TEST_F(GtaoCli, FlagsOfAnotherMethodWarn) {
         << alchemyGtaoOut;
     EXPECT_NE(alchemyGtaoOut.find("warning: --frames: applies to --ao gtao"), std::string::npos) << alchemyGtaoOut;
 
+    // --gpu-packed-normals belongs to both screen-space methods.
+    const auto [raytracedOut, raytraced] = render("--ao raytraced --ao-rays 4 --gpu-packed-normals");
+    EXPECT_NE(raytracedOut.find("warning: --gpu-packed-normals: applies to --ao alchemy or gtao, not --ao raytraced"),
+              std::string::npos)
+        << raytracedOut;
+
     // compare: the GTAO flags with no GTAO method among --methods.
     const std::string compare = "compare corner --size 32x24 --rays 4 -q -o " + path("c.png") + " --methods ";
     Result r = run(compare + "alchemy --gtao-slices 5");

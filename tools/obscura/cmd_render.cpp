@@ -52,6 +52,7 @@ struct RenderOptions {
     bool tiledBlur = false;  // --gpu-tiled-blur
     // The flags of one --ao method each: the others ignore them, and say so when one is given.
     std::vector<const CLI::Option*> raytracedFlags, alchemyFlags, gtaoFlags;
+    std::vector<const CLI::Option*> screenSpaceFlags;  // --gpu-packed-normals: alchemy's and gtao's
 };
 
 const std::map<std::string, trace::Falloff> kFalloffs = {
@@ -68,6 +69,7 @@ void run(const RenderOptions& o) {
     if (o.ao != "raytraced") warnIgnored(o.raytracedFlags, "applies to --ao raytraced" + notThis);
     if (o.ao != "alchemy") warnIgnored(o.alchemyFlags, "applies to --ao alchemy" + notThis);
     if (o.ao != "gtao") warnIgnored(o.gtaoFlags, "applies to --ao gtao" + notThis);
+    if (o.ao != "alchemy" && o.ao != "gtao") warnIgnored(o.screenSpaceFlags, "applies to --ao alchemy or gtao" + notThis);
     trace::ObscuranceSettings aoSettings;
     aoSettings.falloff = kFalloffs.at(o.falloff);
     aoSettings.radius = parseRadius("--ao-radius", o.radius);
@@ -94,10 +96,7 @@ void run(const RenderOptions& o) {
     }
 
     o.gpu.validate();
-    if (o.gtao.gpuPackedNormals && o.ao != "alchemy" && o.ao != "gtao")
-        std::fprintf(stderr, "obscura: warning: --gpu-packed-normals: applies to --ao alchemy or gtao, not --ao %s; "
-                             "ignored\n", o.ao.c_str());
-    else if (o.gtao.gpuPackedNormals) {
+    if (o.gtao.gpuPackedNormals && (o.ao == "alchemy" || o.ao == "gtao")) {
         if (!o.gpu.gpu) fail("--gpu-packed-normals", "needs --gpu: the CPU reads the normals as floats");
         if (o.ao == "alchemy" && alchemy.normalsFromDepth)
             fail("--gpu-packed-normals", "packs the G-buffer's normals, and --ao-normals-from-depth rebuilds them");
@@ -263,10 +262,10 @@ void addRenderCommand(CLI::App& app) {
         o->blur.add(*cmd);
     });
     o->gtaoFlags = optionsAddedBy(*cmd, [&] { o->gtao.add(*cmd); });
-    cmd->add_flag("--gpu-packed-normals", o->gtao.gpuPackedNormals,
+    o->screenSpaceFlags = {cmd->add_flag("--gpu-packed-normals", o->gtao.gpuPackedNormals,
                   "With --gpu and --ao alchemy (its estimator), or gtao in its spatial and temporal modes: upload the "
                   "normals as one octahedral word per pixel (two snorm16, as engines keep them) instead of 3 floats; "
-                  "the AO of those normals decoded");
+                  "the AO of those normals decoded")};
     o->gpu.add(*cmd, "the screen-space AO (alchemy, gtao: every pass) and the composite", "Ray-traced AO stays on the CPU.");
     cmd->add_flag("--gpu-fused-blur", o->fusedBlur,
                   "With --gpu --ao alchemy and the separable blur by depth alone: evaluate the estimator and the "
