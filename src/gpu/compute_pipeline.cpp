@@ -160,7 +160,7 @@ void ComputePipeline::dispatch(VkCommandBuffer cmd, std::initializer_list<Resour
             w.pImageInfo = &images[i];
         } else {
             assert(r.buffer);
-            buffers[i] = {r.buffer->handle(), 0, r.buffer->size()};
+            buffers[i] = {r.buffer->handle(), r.offset, r.bytes};
             w.pBufferInfo = &buffers[i];
         }
         writes.push_back(w);

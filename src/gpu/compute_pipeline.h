@@ -19,10 +19,14 @@ namespace obscura::gpu {
 // What a dispatch binds at one binding: a storage buffer or a sampled texture. Implicit from either, so a
 // pass lists its resources as {&depth, &table, ...}.
 struct Resource {
-    Resource(const Buffer* b) : buffer(b) {}
+    Resource(const Buffer* b) : buffer(b), bytes(b ? b->size() : 0) {}
+    // `count` bytes of the buffer from `from` (a multiple of minStorageBufferOffsetAlignment): the shader's
+    // block starts there, and what the dispatch reads or writes is that range alone.
+    Resource(const Buffer* b, VkDeviceSize from, VkDeviceSize count) : buffer(b), offset(from), bytes(count) {}
     Resource(const Texture* t) : texture(t) {}
     const Buffer* buffer = nullptr;
     const Texture* texture = nullptr;
+    VkDeviceSize offset = 0, bytes = 0;
 };
 
 class ComputePipeline {

@@ -12,6 +12,7 @@
 #include "obscura/gpu_temporal.h"
 #include "obscura/history_packing.h"
 
+#include <algorithm>
 #include <bit>
 #include <cassert>
 #include <cstdint>
@@ -26,6 +27,17 @@ namespace {
 void rows(const Mat4& m, float* out) {
     for (int r = 0; r < 3; ++r)
         for (int col = 0; col < 4; ++col) out[4 * r + col] = m.m[r][col];
+}
+
+// The bytes between elements of GtaoTemporalPasses' ring of temporal constants: 256, the largest
+// minStorageBufferOffsetAlignment Vulkan allows, so valid on every device. With elements 128 bytes apart
+// (lavapipe's alignment is 16) the synchronization check of the validation layers (1.3.239) reports a
+// write-after-read between a frame's update and the previous frame's dispatch in one submission, though their
+// bound ranges do not overlap; 256 apart it reports none.
+VkDeviceSize fusedConstantsStride(const Context::Impl& c) {
+    static_assert(sizeof(GtaoTemporalConstants) <= 256);
+    const VkDeviceSize align = c.properties.limits.minStorageBufferOffsetAlignment;
+    return std::max<VkDeviceSize>(256, (sizeof(GtaoTemporalConstants) + align - 1) / align * align);
 }
 
 } // namespace
@@ -95,10 +107,12 @@ GtaoTemporalPasses::GtaoTemporalPasses(Context::Impl& c, const ssao::GtaoSetting
     assert(width >= 1 && height >= 1);
     temporal.validate();  // cheap, and a window size or mode the shaders do not know must not reach them
     checkPackedOutput(temporal, variant.packedOutput);
+    checkFused(temporal, variant.fused);
     const std::size_t pixels = std::size_t(width) * std::size_t(height);
     const std::size_t grid = std::size_t(gridWidth_) * std::size_t(gridHeight_);
     const std::size_t lattice = gridHistory_ ? grid : pixels;  // the history's
-    for (int set = 0; set < rawSets(); ++set) {
+    // Fused, the raw values stay in shared memory.
+    for (int set = 0; set < (variant.fused ? 0 : rawSets()); ++set) {
         rawVisibility_[set] = deviceFloats(c, grid);
         if (bentNormals) rawBent_[set] = deviceFloats(c, 3 * grid);
     }
@@ -114,6 +128,8 @@ GtaoTemporalPasses::GtaoTemporalPasses(Context::Impl& c, const ssao::GtaoSetting
         if (bentNormals) bentGrid_ = deviceFloats(c, 3 * grid);
     }
     depthMips_ = gtaoDepthMipsBuffer(c, width, height, ssao::gtaoDepthMipLevels(settings));
+    if (variant.fused)
+        temporalConstants_ = Buffer(c, ComputePipeline::kSetsPerSubmit * fusedConstantsStride(c), MemoryUse::Device);
     // Packed: one word per normal, and the length in the visibility's word (obscura/history_packing.h).
     const std::size_t vector = temporal.packedHistory ? 1 : 3;
     for (History& h : history_) {
@@ -152,6 +168,32 @@ void GtaoTemporalPasses::record(VkCommandBuffer cmd, const GtaoTemporalFrameInpu
         stage("mips");
         computeBarrier(cmd);  // the GTAO pass reads the chain
     }
+    const GtaoTemporalConstants tk = gtaoTemporalConstants(temporal_, in.camera, previousCamera_, useHistory);
+    const History& previous = history_[current_];
+    const History& next = history_[1 - current_];
+    // The previous depth is the history's copy, or the caller's buffer of the last frame, which unused_ stands
+    // for on a first frame.
+    const Buffer& previousDepth = !variant_.callerKeepsDepth ? previous.depth
+                                  : useHistory                     ? *in.previousDepth
+                                                                   : unused_;
+    const Buffer& depthOut = variant_.callerKeepsDepth ? unused_ : next.depth;
+    // Packed, the length travels in the visibility's word: unused_ stands for the length planes.
+    const auto length = [&](const Buffer& b) -> const Buffer& { return temporal_.packedHistory ? unused_ : b; };
+    // The reconstruction's window: with temporal.alternatingWindow, one of 4 by the frame index.
+    const int phase = ssao::reconstructWindowPhase(temporal_, in.frameIndex);
+    if (variant_.fused) {
+        recordFused(cmd, k, tk, phase,
+                    {in.depth, in.normal, depthMips_, previousDepth, previous.normalWorld, previous.visibility,
+                     bent(previous.bentWorld), length(previous.length), depthOut, next.normalWorld, next.visibility,
+                     bent(next.bentWorld), length(next.length), bent(bentGrid_)});
+        stage(temporal_.temporal ? "temporal" : "resolve");
+        recordGridUpsample(cmd, in, next);
+        stage("upsample");
+        current_ = 1 - current_;
+        previousCamera_ = in.camera;
+        ++recorded_;
+        return;
+    }
     recordGtao(c, cmd, {in.depth, in.normal, rawVisibility, rawBent, depthMips_}, k, step_, variant_.bentNormals,
                variant_.packedNormals);
     stage("gtao");
@@ -161,8 +203,6 @@ void GtaoTemporalPasses::record(VkCommandBuffer cmd, const GtaoTemporalFrameInpu
     // normals are the G-buffer's at every other pixel. At full resolution the accumulation gathers them for
     // its own pixel instead, and the upsampling (3.) is the accumulation's too.
     const Buffer* grid[2] = {&rawVisibility, &rawBent};
-    // The reconstruction's window: with temporal.alternatingWindow, one of 4 by the frame index.
-    const int phase = ssao::reconstructWindowPhase(temporal_, in.frameIndex);
     if (step_ == 2 && !gridHistory_) {
         const ReconstructConstants rk =
             reconstructConstants(gridWidth_, gridHeight_, width_, step_, temporal_.depthSigma);
@@ -178,9 +218,6 @@ void GtaoTemporalPasses::record(VkCommandBuffer cmd, const GtaoTemporalFrameInpu
 
     // 4. Reprojection and exponential accumulation into the other history set. Without temporal filtering the
     // same pass runs with no history: it writes the view bent normals and the planes a later frame would read.
-    const GtaoTemporalConstants tk = gtaoTemporalConstants(temporal_, in.camera, previousCamera_, useHistory);
-    const History& previous = history_[current_];
-    const History& next = history_[1 - current_];
     ComputePipeline& pipeline =
         c.pipeline("gtao_temporal", shaders::gtao_temporal, storageBuffers(kTemporalBindingCount),
                    kTemporalPushConstantBytes, kTemporalWorkgroupX, kTemporalWorkgroupY,
@@ -189,15 +226,7 @@ void GtaoTemporalPasses::record(VkCommandBuffer cmd, const GtaoTemporalFrameInpu
                     step_ == 2 && !gridHistory_ ? -1 : phase, variant_.packedNormals ? 1 : 0});
     // (kTemporalSpecGridStep, DepthSigma, BentNormal, PackedHistory, DepthCopy, HistoryStep, WindowPhase: the
     // window where this pass reconstructs, else -1, so that the upsampling variant is one pipeline;
-    // PackedNormals.) The
-    // previous depth is the history's copy, or the caller's buffer of the last frame, which unused_ stands for
-    // on a first frame.
-    const Buffer& previousDepth = !variant_.callerKeepsDepth ? previous.depth
-                                  : useHistory                     ? *in.previousDepth
-                                                                   : unused_;
-    const Buffer& depthOut = variant_.callerKeepsDepth ? unused_ : next.depth;
-    // Packed, the length travels in the visibility's word: unused_ stands for the length planes.
-    const auto length = [&](const Buffer& b) -> const Buffer& { return temporal_.packedHistory ? unused_ : b; };
+    // PackedNormals.)
     // In binding order: kTemporalBindingDepth ... kTemporalBindingBentViewOut.
     pipeline.dispatchGrid(cmd,
                           {&in.depth, &in.normal, grid[0], grid[1], &previousDepth, &previous.normalWorld,
@@ -210,18 +239,57 @@ void GtaoTemporalPasses::record(VkCommandBuffer cmd, const GtaoTemporalFrameInpu
     // 3., after the accumulation with the grid's history: the accumulated grid to full resolution, guided by
     // the grid's depth, which is the G-buffer's at every other pixel.
     if (gridHistory_) {
-        computeBarrier(cmd);  // the upsampling reads the accumulated grid
-        const UpsampleConstants uk =
-            upsampleConstants(width_, height_, gridWidth_, gridHeight_, width_, step_, temporal_.depthSigma);
-        recordUpsample(c, cmd, {next.visibility, in.depth, in.depth, upsampled_}, uk, 1, temporal_.packedHistory,
-                       variant_.packedOutput);
-        if (variant_.bentNormals) recordUpsample(c, cmd, {bentGrid_, in.depth, in.depth, bentView_}, uk, 3);
+        recordGridUpsample(cmd, in, next);
         stage("upsample");
     }
 
     current_ = 1 - current_;
     previousCamera_ = in.camera;
     ++recorded_;
+}
+
+void GtaoTemporalPasses::recordGridUpsample(VkCommandBuffer cmd, const GtaoTemporalFrameInputs& in, const History& next) {
+    computeBarrier(cmd);  // the upsampling reads the accumulated grid
+    const UpsampleConstants uk =
+        upsampleConstants(width_, height_, gridWidth_, gridHeight_, width_, step_, temporal_.depthSigma);
+    recordUpsample(context_, cmd, {next.visibility, in.depth, in.depth, upsampled_}, uk, 1, temporal_.packedHistory,
+                   variant_.packedOutput);
+    if (variant_.bentNormals) recordUpsample(context_, cmd, {bentGrid_, in.depth, in.depth, bentView_}, uk, 3);
+}
+
+void GtaoTemporalPasses::recordFused(VkCommandBuffer cmd, const ssao::GtaoConstants& k, const GtaoTemporalConstants& tk,
+                                     int phase, const FusedBuffers& b) {
+    // This frame's element of the constants' ring (temporalConstants_), written in the command stream; the
+    // dispatch binds that element alone, so the frames of one submission each read their own, and no earlier
+    // frame's dispatch read what this writes.
+    const VkDeviceSize stride = fusedConstantsStride(context_);
+    const VkDeviceSize offset = VkDeviceSize(recorded_ % ComputePipeline::kSetsPerSubmit) * stride;
+    vkCmdUpdateBuffer(cmd, temporalConstants_.handle(), offset, sizeof tk, &tk);
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+    ComputePipeline& pipeline =
+        context_.pipeline("gtao_temporal_fused", shaders::gtao_temporal_fused, storageBuffers(kFusedBindingCount),
+                          kFusedPushConstantBytes, kFusedWorkgroupX, kFusedWorkgroupY,
+                          {k.sampling, k.weighting, k.thicknessMode, k.beyondRadius, variant_.packedNormals ? 1 : 0,
+                           variant_.bentNormals ? 1 : 0, std::bit_cast<std::int32_t>(temporal_.depthSigma),
+                           temporal_.packedHistory ? 1 : 0, variant_.callerKeepsDepth ? 0 : 1, phase});
+    // (kFusedSpecSampling ... BeyondRadius: the constants' modes, as recordGtao sets gtao.comp's; PackedNormals,
+    // BentNormal, DepthSigma, PackedHistory, DepthCopy, WindowPhase.)
+    // Workgroups overlap by the window's side less one: each accumulates fusedOutputTile pixels of the grid.
+    const int tileX = fusedOutputTileX(phase), tileY = fusedOutputTileY(phase);
+    // In binding order: kFusedBindingDepth ... kFusedBindingBentViewOut.
+    pipeline.dispatch(cmd, {&b.depth, &b.normal, &b.depthMips, Resource(&temporalConstants_, offset, sizeof tk),
+                            &b.previousDepth, &b.previousNormalWorld, &b.previousVisibility, &b.previousBentWorld,
+                            &b.previousLength, &b.depthOut, &b.normalWorldOut, &b.visibilityOut, &b.bentWorldOut,
+                            &b.lengthOut, &b.bentViewOut},
+                      &k, sizeof k, std::uint32_t((gridWidth_ + tileX - 1) / tileX),
+                      std::uint32_t((gridHeight_ + tileY - 1) / tileY));
+}
+
+void checkFused(const ssao::GtaoTemporalSettings& temporal, bool fused) {
+    if (fused && !(temporal.halfResolution && temporal.gridHistory))
+        fail("gtao temporal", "the fused pass needs the grid's history (half resolution, gridHistory): it fuses "
+                              "the GTAO pass and the accumulation on the grid");
 }
 
 void checkPackedOutput(const ssao::GtaoTemporalSettings& temporal, bool packedOutput) {
@@ -248,8 +316,10 @@ std::size_t GtaoTemporalPasses::bytesPerFrame() const {
     const std::size_t grid = std::size_t(gridWidth_) * std::size_t(gridHeight_);
     const std::size_t b = variant_.bentNormals ? 3 : 0;  // floats of a bent normal
     const std::size_t n = variant_.packedNormals ? 1 : 3;  // words of an input normal
-    // GTAO: the search reads the whole depth plane, the normals of the grid pixels; writes 1 + b per grid pixel.
-    std::size_t bytes = f * (pixels + n * grid + (1 + b) * grid);
+    // GTAO: the search reads the whole depth plane, the normals of the grid pixels; writes 1 + b per grid pixel,
+    // which the fused pass keeps in shared memory.
+    const std::size_t raw = variant_.fused ? 0 : 1 + b;
+    std::size_t bytes = f * (pixels + n * grid + raw * grid);
     // Mip sampling: the chain's pass reads depth and writes the chain, which the GTAO pass reads.
     const std::size_t chain = gtaoDepthMipsFloats(width_, height_, ssao::gtaoDepthMipLevels(settings_));
     if (chain > 0) bytes += f * (pixels + 2 * chain);
@@ -267,8 +337,8 @@ std::size_t GtaoTemporalPasses::bytesPerFrame() const {
         // The accumulation on the grid: the raw values, the grid's depth and normals, the history in; the next
         // history and the grid's view bent normals out. Then the upsampling, one dispatch per plane: the grid's
         // accumulated visibility (and b bent-normal channels) with its depth and the full depth in; 1 (and b)
-        // per pixel out.
-        bytes += f * grid * ((1 + b) + (1 + n) + history + written + b);
+        // per pixel out. Fused, the raw values and the grid's depth and normals are the GTAO evaluation's.
+        bytes += f * grid * ((variant_.fused ? 0 : (1 + b) + (1 + n)) + history + written + b);
         const std::size_t out =
             variant_.packedOutput ? sizeof(std::uint32_t) * upsamplePackedWords(width_, height_) : f * pixels;
         bytes += f * (grid * (1 + 1) + pixels) + out;

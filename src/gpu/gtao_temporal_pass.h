@@ -3,6 +3,7 @@
 #pragma once
 
 #include "gpu/buffer.h"
+#include "gpu/compute_pipeline.h"
 #include "gpu/context.h"
 #include "shaders/temporal_layouts.h"
 
@@ -59,6 +60,8 @@ Image unpackVisibilityPairs(const std::vector<std::uint32_t>& words, int width, 
 // Throws obscura::Error unless a 16-bit output (GtaoTemporalVariant::packedOutput) has the grid's history to
 // write it: GtaoTemporalPasses' check, which gpu::GtaoTemporal makes before its first frame makes them.
 void checkPackedOutput(const ssao::GtaoTemporalSettings& temporal, bool packedOutput);
+// The same for GtaoTemporalVariant::fused, which fuses the grid's passes.
+void checkFused(const ssao::GtaoTemporalSettings& temporal, bool fused);
 
 // One frame's inputs, resident on the device and visible to compute shaders (the caller's barrier).
 struct GtaoTemporalFrameInputs {
@@ -88,6 +91,11 @@ struct GtaoTemporalVariant {
     // unorm16 pairs (kUpsampleSpecPackedOut; unpackVisibilityPairs decodes visibility()), half the bytes of
     // the largest plane the frame writes. The constructor throws obscura::Error without the grid's history.
     bool packedOutput = false;
+    // true, with the grid's history: GTAO, the reconstruction and the accumulation in one dispatch
+    // (gtao_temporal_fused.comp; temporal_layouts.h's kFused*), the same values as the two dispatches. The
+    // frame then marks no "gtao" stage: "temporal" (or "resolve") is both. The constructor throws
+    // obscura::Error without the grid's history.
+    bool fused = false;
 };
 
 // The resident buffers of ssao::GtaoTemporal for one size: the frame's intermediates and two sets of history
@@ -153,6 +161,17 @@ private:
     struct History {
         Buffer depth, normalWorld, visibility, bentWorld, length;
     };
+    // The last stage with the grid's history: the accumulated grid to full resolution, after a barrier.
+    void recordGridUpsample(VkCommandBuffer cmd, const GtaoTemporalFrameInputs& in, const History& next);
+    // The buffers of gtao_temporal_fused.comp but its constants, at kFusedBinding* of the same names.
+    struct FusedBuffers {
+        const Buffer &depth, &normal, &depthMips;
+        const Buffer &previousDepth, &previousNormalWorld, &previousVisibility, &previousBentWorld, &previousLength;
+        const Buffer &depthOut, &normalWorldOut, &visibilityOut, &bentWorldOut, &lengthOut, &bentViewOut;
+    };
+    // GtaoTemporalVariant::fused: this frame's temporal constants into the ring, then the fused dispatch.
+    void recordFused(VkCommandBuffer cmd, const ssao::GtaoConstants& k, const GtaoTemporalConstants& tk, int phase,
+                     const FusedBuffers& b);
 
     Context::Impl& context_;
     ssao::GtaoSettings settings_;
@@ -171,6 +190,11 @@ private:
     Buffer depthMips_;  // GtaoSampling::(Planar)Mip's chain of the frame's depth (a placeholder otherwise)
     History history_[2];
     GtaoTemporalVariant variant_;
+    // GtaoTemporalVariant::fused: one GtaoTemporalConstants per frame of a submission, frame n in element
+    // n % kSetsPerSubmit (push constants hold only the GTAO pass's). Context::Impl::submit waits for each
+    // submission, and a submission holds at most kSetsPerSubmit frames, so an element is rewritten only after
+    // the frame that read it has run.
+    Buffer temporalConstants_;
     // Bound at the bindings a variant leaves untouched (bent normals, length planes, depth copy); never read
     // or written.
     Buffer unused_;

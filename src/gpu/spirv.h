@@ -27,6 +27,7 @@ extern const Spirv specular_occlusion;   // specular_occlusion.comp
 extern const Spirv reconstruct_interleaved;  // reconstruct_interleaved.comp
 extern const Spirv upsample_depth_aware;     // upsample_depth_aware.comp
 extern const Spirv gtao_temporal;            // gtao_temporal.comp
+extern const Spirv gtao_temporal_fused;      // gtao_temporal_fused.comp
 extern const Spirv gtao_mips;                // gtao_mips.comp
 extern const Spirv alchemy_blur_row;         // alchemy_blur_row.comp
 extern const Spirv bilateral_tiled;          // bilateral_tiled.comp

@@ -24,8 +24,9 @@
     X(vkDestroyFence) X(vkWaitForFences) X(vkResetFences) X(vkCreateQueryPool) X(vkDestroyQueryPool)          \
     X(vkGetQueryPoolResults) X(vkCmdResetQueryPool) X(vkCmdWriteTimestamp) X(vkAllocateMemory) X(vkFreeMemory) \
     X(vkMapMemory) X(vkUnmapMemory) X(vkCreateBuffer) X(vkDestroyBuffer) X(vkGetBufferMemoryRequirements)     \
-    X(vkBindBufferMemory) X(vkCmdCopyBuffer) X(vkCmdPipelineBarrier) X(vkCreateShaderModule)                  \
-    X(vkDestroyShaderModule) X(vkCreateDescriptorSetLayout) X(vkDestroyDescriptorSetLayout)                   \
+    X(vkBindBufferMemory) X(vkCmdCopyBuffer) X(vkCmdUpdateBuffer) X(vkCmdPipelineBarrier)                     \
+    X(vkCreateShaderModule) X(vkDestroyShaderModule) X(vkCreateDescriptorSetLayout)                           \
+    X(vkDestroyDescriptorSetLayout)                                                                           \
     X(vkCreatePipelineLayout) X(vkDestroyPipelineLayout) X(vkCreateComputePipelines) X(vkDestroyPipeline)      \
     X(vkCreateDescriptorPool) X(vkDestroyDescriptorPool) X(vkAllocateDescriptorSets) X(vkUpdateDescriptorSets) \
     X(vkCmdBindPipeline) X(vkCmdBindDescriptorSets) X(vkCmdPushConstants) X(vkCmdDispatch)                    \

@@ -492,6 +492,115 @@ TEST(GpuGtaoTemporal, PackedOutputIsTheVisibilityInSixteenBits) {
     EXPECT_EQ(testing::validationReport(context), "");
 }
 
+// The fused pass (GtaoTemporalVariant::fused: GTAO, reconstruction and accumulation on the grid in one
+// dispatch) against the three dispatches, 4 frames of the path at an odd size (97x61: a 49x31 grid, more than
+// one workgroup each way with every window) through every window (5x5, the alternating 4x4 and 2x2 ones),
+// with and without bent normals, float and packed history, the history's depth copy and the caller's, float
+// and packed normals, and both the medium preset's planar samples and planar-nearest ones. Each fused value is
+// the same arithmetic on the same inputs, so on lavapipe every word of the output, the history and the bent
+// normals is the same; a device whose compiler contracts a multiply-add in one shader and not in the other
+// may round differently, within the CPU comparison's bounds. Then the same frames recorded in one
+// submission, which reads each frame's temporal constants from its own element of the ring.
+TEST(GpuGtaoTemporal, FusedPassGivesTheFrameOfTheThreeDispatches) {
+    OBSCURA_GPU_CONTEXT(context);
+    Context::Impl& c = context.impl();
+    const bool lavapipe = context.device().name.rfind("llvmpipe", 0) == 0;
+    DemoPath in;
+    const int w = DemoPath::w, h = DemoPath::h;
+    const std::size_t pixels = in.pixels, grid = std::size_t((w + 1) / 2) * std::size_t((h + 1) / 2);
+    struct Case {
+        int window;  // 5, 4 or 2 (alternating)
+        bool bent, packedHistory, callerKeepsDepth, packedNormals;
+        ssao::GtaoSampling sampling;
+    };
+    const ssao::GtaoSampling planar = ssao::GtaoSampling::Planar, nearest = ssao::GtaoSampling::PlanarNearest;
+    for (const Case& k : {Case{5, true, false, false, false, planar}, Case{4, true, true, true, false, planar},
+                          Case{2, true, false, true, true, nearest}, Case{2, false, true, true, true, nearest},
+                          Case{4, false, false, false, true, nearest}, Case{5, false, true, true, false, nearest}}) {
+        ssao::GtaoTemporalSettings t = mode(true, true, true);
+        t.packedHistory = k.packedHistory;
+        t.alternatingWindow = k.window != 5;
+        t.alternatingWindowSize = k.window == 2 ? 2 : 4;
+        ssao::GtaoSettings settings = in.settings;
+        settings.sampling = k.sampling;
+        const GtaoTemporalVariant variant{k.bent, k.callerKeepsDepth, k.packedNormals};
+        GtaoTemporalVariant fusedVariant = variant;
+        fusedVariant.fused = true;
+        const std::string name = std::to_string(k.window) + "x" + std::to_string(k.window) +
+                                 (k.bent ? " bent" : " ao") + (k.packedHistory ? " packed" : " float") +
+                                 (k.callerKeepsDepth ? " caller-depth" : " copy") +
+                                 (k.packedNormals ? " words" : " normals") + " " + ssao::gtaoSamplingName(k.sampling);
+        GtaoTemporalPasses passes(c, settings, t, w, h, variant), fused(c, settings, t, w, h, fusedVariant);
+        EXPECT_LT(fused.bytesPerFrame(), passes.bytesPerFrame()) << name;
+        // The outputs as words: the visibility, the history's visibility plane and the view bent normals.
+        const auto outputs = [&](const GtaoTemporalPasses& p) {
+            std::vector<std::uint32_t> words = downloadWords(c, p.visibility(), pixels);
+            const std::vector<std::uint32_t> history = downloadWords(c, p.historyVisibility(), grid);
+            words.insert(words.end(), history.begin(), history.end());
+            if (k.bent) {
+                const std::vector<std::uint32_t> b = downloadWords(c, p.bentNormal(), 3 * pixels);
+                words.insert(words.end(), b.begin(), b.end());
+            }
+            return words;
+        };
+        const auto compare = [&](const std::vector<std::uint32_t>& a, const std::vector<std::uint32_t>& b,
+                                 const std::string& when) {
+            ASSERT_EQ(a.size(), b.size());
+            int differing = 0;
+            double worst = 0;
+            for (std::size_t i = 0; i < a.size(); ++i) {
+                differing += a[i] != b[i];
+                // Packed history words are not floats; their visibility is what the upsampled plane shows.
+                if (i < pixels || i >= pixels + grid || !k.packedHistory)
+                    worst = std::max(worst, std::fabs(double(std::bit_cast<float>(a[i])) -
+                                                      double(std::bit_cast<float>(b[i]))));
+            }
+            if (lavapipe) {
+                EXPECT_EQ(differing, 0) << name << when;
+            }
+            EXPECT_LE(worst, kVisibilityBound) << name << when;
+        };
+        int occluded = 0;
+        const auto packNormalsIf = [&](const GBuffer& g) {
+            return k.packedNormals ? uploadNormals(c, g.normal, true) : uploadChannels(c, g.normal, 3);
+        };
+        std::vector<Buffer> depth, normal;
+        for (std::size_t f = 0; f < in.gbuffers.size(); ++f) {
+            depth.push_back(uploadChannels(c, in.gbuffers[f].depth, 1));
+            normal.push_back(packNormalsIf(in.gbuffers[f]));
+        }
+        const auto inputs = [&](std::size_t f) {
+            return GtaoTemporalFrameInputs{depth[f], normal[f], in.gbuffers[f].camera, int(f),
+                                           f > 0 ? &depth[f - 1] : nullptr};
+        };
+        for (std::size_t f = 0; f < in.gbuffers.size(); ++f) {
+            c.submit([&](VkCommandBuffer cmd) {
+                passes.record(cmd, inputs(f));
+                fused.record(cmd, inputs(f));
+            });
+            const std::vector<std::uint32_t> a = outputs(passes), b = outputs(fused);
+            compare(a, b, " frame " + std::to_string(f));
+            for (std::size_t i = 0; i < pixels; ++i) occluded += std::bit_cast<float>(a[i]) < 0.99f;
+        }
+        EXPECT_GT(occluded, int(pixels) / 50) << name;
+        // Every frame in one submission, through fresh pass objects.
+        GtaoTemporalPasses passes1(c, settings, t, w, h, variant), fused1(c, settings, t, w, h, fusedVariant);
+        c.submit([&](VkCommandBuffer cmd) {
+            for (std::size_t f = 0; f < in.gbuffers.size(); ++f) {
+                passes1.record(cmd, inputs(f));
+                fused1.record(cmd, inputs(f));
+            }
+        });
+        compare(outputs(passes1), outputs(fused1), " in one submission");
+        // And the same frame as the one-per-submission objects gave.
+        compare(outputs(passes), outputs(fused1), " one submission against one per frame");
+    }
+    // Without the grid's history there is nothing to fuse.
+    EXPECT_THROW(GtaoTemporalPasses(c, in.settings, mode(true, true, false), w, h, {.fused = true}), Error);
+    EXPECT_THROW(GtaoTemporalPasses(c, in.settings, mode(true, false, true), w, h, {.fused = true}), Error);
+    EXPECT_EQ(testing::validationReport(context), "");
+}
+
 // The public gpu::GtaoTemporal with its formats (GtaoTemporalFormats): with packedNormals it uploads the
 // words and gives, bit for bit, the frame of the same object fed the words' decoded normals; with packedOutput
 // each visibility is the float frame's rounded to 1/65535 (ssao::packUnorm16); both together, the frame of

@@ -10,9 +10,10 @@
 // registers, which removes the planes' round trip through memory and a pass with its barrier, and gives the
 // same values (each pixel's filter reads only the grid, which no invocation here writes).
 //
-// temporalPixel below is the body of step 4 of ssao::GtaoTemporal::frame (src/ssao/gtao_temporal.cpp) line
-// for line, with `return` for its `continue`; main adds the last loop (back to view space) and the copies
-// the CPU makes of depth and world normals for the next frame. Read them side by side. The differences are
+// temporalPixel (temporal_pixel.glsl) is the body of step 4 of ssao::GtaoTemporal::frame
+// (src/ssao/gtao_temporal.cpp) line for line, with `return` for its `continue`; accumulateLatticePixel there
+// adds the last loop (back to view space) and the copies the CPU makes of depth and world normals for the
+// next frame. Read them side by side. The differences are
 // GLSL's: dot and normalize are written out as the C++ ones compute them; the cameras are the push
 // constants (temporal_layouts.h says which expression each field is), so viewPosition and pixelFromView are
 // Camera::viewFromPixel and Camera::pixelFromView with the same operations in the same order;
@@ -93,121 +94,7 @@ vec3 gridNormal(int x, int y) { return kReconstructs ? gridTileNormal(x, y) : gr
 float gridValue(int x, int y, int c) { return kReconstructs ? gridTileValue(x, y, c) : gridValueAt(x, y, c); }
 
 #include "temporal_filters.glsl"
-#include "obscura/history_packing.h"
-
-// ---- obscura/math.h ----
-// transformVector(m, v) for a matrix given as 3 rows of 4 floats.
-vec3 transformVector(float m[12], vec3 v) {
-    return vec3(m[0] * v.x + m[1] * v.y + m[2] * v.z, m[4] * v.x + m[5] * v.y + m[6] * v.z,
-                m[8] * v.x + m[9] * v.y + m[10] * v.z);
-}
-vec3 transformPoint(float m[12], vec3 p) {
-    return vec3(m[0] * p.x + m[1] * p.y + m[2] * p.z + m[3], m[4] * p.x + m[5] * p.y + m[6] * p.z + m[7],
-                m[8] * p.x + m[9] * p.y + m[10] * p.z + m[11]);
-}
-// transformVector(viewFromWorld, v): viewFromWorld's rotation is worldFromView's transposed.
-vec3 viewFromWorldVector(vec3 v) {
-    return vec3(k.worldFromView[0] * v.x + k.worldFromView[4] * v.y + k.worldFromView[8] * v.z,
-                k.worldFromView[1] * v.x + k.worldFromView[5] * v.y + k.worldFromView[9] * v.z,
-                k.worldFromView[2] * v.x + k.worldFromView[6] * v.y + k.worldFromView[10] * v.z);
-}
-
-// ---- obscura/camera.h ----
-// g.viewPosition(x, y): Camera::viewFromPixel at the pixel's centre.
-vec3 viewPosition(int x, int y, float depth) {
-    const float px = float(x) + 0.5, py = float(y) + 0.5;
-    const float t = k.tanHalfFovY;
-    const float ndcX = 2.0 * px / float(k.width) - 1.0;
-    const float ndcY = 1.0 - 2.0 * py / float(k.height);
-    return vec3(ndcX * t * k.aspect * depth, ndcY * t * depth, -depth);
-}
-// previousCamera_.pixelFromView(p, &depth).
-vec2 previousPixelFromView(vec3 p, out float depth) {
-    const float d = -p.z;
-    depth = d;
-    const float t = k.previousTanHalfFovY;
-    const float ndcX = p.x / (d * t * k.aspect);
-    const float ndcY = p.y / (d * t);
-    return vec2((ndcX + 1.0) * 0.5 * float(k.width), (1.0 - ndcY) * 0.5 * float(k.height));
-}
-
-// ---- src/ssao/gtao_temporal.cpp: the history images, read from their planes ----
-// previousDepth_, previousNormalWorld_, accumulated_, bentWorld_ and historyLength_ at lattice pixel i. With
-// kPackedHistory the CPU stores the values the packed words decode to, so both read the same floats.
-// previousDepth_ is the history's copy (kDepthCopy), of the lattice's size, or the caller's depth buffer of
-// the last frame, of the full size, read where lattice pixel (x, y) stands.
-float previousDepthAt(uint i, int x, int y) {
-    return uintBitsToFloat(previousDepth[kDepthCopy != 0 ? i : pixelIndex(x, y)]);
-}
-vec3 previousNormalWorldAt(uint i) {
-    if (kPackedHistory != 0) return unpackOctahedral(previousNormalWorld[i]);
-    return uintBitsToFloat(uvec3(previousNormalWorld[3 * i], previousNormalWorld[3 * i + 1], previousNormalWorld[3 * i + 2]));
-}
-vec3 previousBentWorldAt(uint i) {
-    if (kPackedHistory != 0) return unpackOctahedral(previousBentWorld[i]);
-    return uintBitsToFloat(uvec3(previousBentWorld[3 * i], previousBentWorld[3 * i + 1], previousBentWorld[3 * i + 2]));
-}
-float previousVisibilityAt(uint i) {
-    return kPackedHistory != 0 ? unpackVisibility(previousVisibility[i]) : uintBitsToFloat(previousVisibility[i]);
-}
-float previousLengthAt(uint i) {
-    return kPackedHistory != 0 ? unpackLength(previousVisibility[i]) : uintBitsToFloat(previousLength[i]);
-}
-
-// Pixel (x, y) of the loop: `visibility` comes in as the spatial result and leaves accumulated, `bent` is
-// the spatial result's view bent normal; the other three come in as the CPU's initial values (0, 1, 0).
-// Without bent normals (kBentNormal 0) their lines are skipped; nothing else reads them.
-// (x, y) is a lattice pixel, standing at pixel (px, py) = (kHistoryStep x, kHistoryStep y).
-void temporalPixel(int x, int y, vec3 bent, inout float visibility, inout vec3 newBentWorld, inout float newLength,
-                   inout vec3 normalWorld) {
-    const int w = latticeWidth(), h = latticeHeight();
-    const uint pi = pixelIndex(x, y);
-    const float depth = depthPlane[pi];
-    if (!finiteDepth(depth)) return;  // g.isSky(px, py)
-    const vec3 viewNormal = loadNormal(pi);
-    const vec3 nWorld = normalize3(transformVector(k.worldFromView, viewNormal));
-    normalWorld = nWorld;
-    vec3 currentBent = normalize3(transformVector(k.worldFromView, bent));
-    newBentWorld = currentBent;
-    if (k.maxHistory == 0.0) return;  // !useHistory
-    const vec3 world = transformPoint(k.worldFromView, viewPosition(kHistoryStep * x, kHistoryStep * y, depth));
-    float expectedDepth = 0.0;
-    const vec2 prev = previousPixelFromView(transformPoint(k.previousViewFromWorld, world), expectedDepth);
-    if (!(expectedDepth > 0.0)) return;
-    // Scaled by 1 or 1/2, exact either way, as the CPU scales (a division need not be correctly rounded).
-    const float toLattice = kHistoryStep == 1 ? 1.0 : 0.5;
-    const float gx = (prev.x - 0.5) * toLattice, gy = (prev.y - 0.5) * toLattice;
-    const int x0 = int(floor(gx)), y0 = int(floor(gy));
-    const float fx = gx - float(x0), fy = gy - float(y0);
-    float weightSum = 0.0, historyVisibility = 0.0, historyLength = 0.0;
-    vec3 historyBent = vec3(0.0);
-    for (int t = 0; t < 4; ++t) {
-        const int tx = x0 + (t & 1), ty = y0 + (t >> 1);
-        const float bw = ((t & 1) != 0 ? fx : 1.0 - fx) * ((t >> 1) != 0 ? fy : 1.0 - fy);
-        if (bw <= 0.0 || tx < 0 || ty < 0 || tx >= w || ty >= h) continue;
-        const uint ti = uint(ty) * uint(w) + uint(tx);
-        const float pd = previousDepthAt(ti, tx, ty);
-        // Disocclusion: the previous frame saw another surface there, or one facing elsewhere.
-        if (!finiteDepth(pd) || abs(pd - expectedDepth) > k.rejectDepth * expectedDepth) continue;
-        if (dot3(previousNormalWorldAt(ti), nWorld) < k.rejectNormalCos) continue;
-        weightSum += bw;
-        historyVisibility += bw * previousVisibilityAt(ti);
-        if (kBentNormal != 0) historyBent += previousBentWorldAt(ti) * bw;
-        historyLength += bw * previousLengthAt(ti);
-    }
-    // Less than a quarter of the footprint confirmed: too little to trust.
-    if (weightSum < 0.25) return;
-    historyVisibility /= weightSum;
-    historyLength /= weightSum;
-    historyBent = historyBent / weightSum;
-    const float alpha = 1.0 / min(historyLength + 1.0, k.maxHistory);
-    visibility = historyVisibility + (visibility - historyVisibility) * alpha;
-    if (kBentNormal != 0) {
-        vec3 blended = normalize3(historyBent + (currentBent - historyBent) * alpha);
-        if (dot3(blended, blended) > 0.0) newBentWorld = blended;
-    }
-    newLength = min(historyLength + 1.0, k.maxHistory);
-}
+#include "temporal_pixel.glsl"
 
 void main() {
     const ivec2 p = ivec2(gl_GlobalInvocationID.xy);
@@ -223,25 +110,5 @@ void main() {
         reconstructInterleaved(p.x, p.y, w, h, kDepthSigma, kWindowPhase, spatial);
     else
         upsampleDepthAware(p.x, p.y, depth, gridWidth(), gridHeight(), kDepthSigma, spatial);
-    float visibility = spatial[0];
-    vec3 newBentWorld = vec3(0.0), normalWorld = vec3(0.0);
-    float newLength = 1.0;
-    temporalPixel(p.x, p.y, vec3(spatial[1], spatial[2], spatial[3]), visibility, newBentWorld, newLength,
-                  normalWorld);
-    // result_.bentNormal: sky pixels 0, the others back in view space.
-    const vec3 bentView = finiteDepth(depth) ? normalize3(viewFromWorldVector(newBentWorld)) : vec3(0.0);
-    if (kDepthCopy != 0) depthOut[i] = floatBitsToUint(depth);  // previousDepth_ = g.depth, or the grid's depth
-    if (kBentNormal != 0)
-        for (uint c = 0; c < 3; ++c) bentViewOut[3 * i + c] = bentView[c];
-    if (kPackedHistory != 0) {
-        visibilityOut[i] = packVisibilityLength(visibility, newLength);
-        normalWorldOut[i] = packOctahedral(normalWorld);
-        if (kBentNormal != 0) bentWorldOut[i] = packOctahedral(newBentWorld);
-        return;
-    }
-    visibilityOut[i] = floatBitsToUint(visibility);
-    lengthOut[i] = floatBitsToUint(newLength);
-    for (uint c = 0; c < 3; ++c) normalWorldOut[3 * i + c] = floatBitsToUint(normalWorld[c]);
-    if (kBentNormal != 0)
-        for (uint c = 0; c < 3; ++c) bentWorldOut[3 * i + c] = floatBitsToUint(newBentWorld[c]);
+    accumulateLatticePixel(p, i, depth, spatial);
 }
