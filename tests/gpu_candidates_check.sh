@@ -113,7 +113,7 @@ fi
 grep -q "^gtao-half " "$work/waiting/tiled-ab.txt" || fail "tiled-ab.txt: $(cat "$work/waiting/tiled-ab.txt")"
 grep -q "^alchemy " "$work/waiting/normals-ab.txt" || fail "normals-ab.txt: $(cat "$work/waiting/normals-ab.txt")"
 grep -q "^gtao-temporal-grid .* upsample " "$work/waiting/grid-ab.txt" || fail "grid-ab.txt: $(cat "$work/waiting/grid-ab.txt")"
-grep -q "planar-nearest-window2 ms.*planar-nearest-window2-packed-normals ms.*planar-nearest-window2-packed-all ms" \
+grep -q "planar-nearest-window2 ms.*planar-nearest-window2-packed-normals ms.*planar-nearest-window2-packed-all ms.*-packed-all-fused ms" \
   "$work/waiting/grid-ab.txt" || fail "grid-ab.txt, 2x2 windows: $(cat "$work/waiting/grid-ab.txt")"
 grep -q "gpu-verify: ok\|max" "$work/waiting/verify.txt" || fail "verify.txt: $(cat "$work/waiting/verify.txt")"
 # A part that fails is named and the others still run: a bad --frames fails both timings, not the statistics

@@ -57,6 +57,8 @@ struct GpuBenchSettings {
                                  // and its likes)
     bool packedOutput = false;  // the gtao-temporal-grid case writes its visibility as unorm16 pairs (an R16
                                 // image) instead of floats (GtaoTemporalVariant::packedOutput)
+    bool fusedTemporal = false;  // the gtao-temporal-grid case runs GTAO and the accumulation in one dispatch
+                                 // (GtaoTemporalVariant::fused; its "temporal" pass is both, and no "gtao")
     bool bentNormals = true;  // the GTAO cases compute, filter and accumulate bent normals; false: visibility
                               // only (kGtaoSpecBentNormal 0), as an engine without bent-normal lighting runs them
     ssao::GtaoSampling sampling = ssao::GtaoSampling::Planar;  // the GTAO cases' horizon samples (GtaoSettings)

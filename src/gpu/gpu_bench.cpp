@@ -233,7 +233,8 @@ CaseSetup temporalCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s
     t.alternatingWindowSize = s.alternatingWindowSize;
     auto passes = std::make_shared<GtaoTemporalPasses>(
         c, settings, t, w, h,
-        GtaoTemporalVariant{s.bentNormals, s.callerKeepsDepth, s.packedNormals, gridHistory && s.packedOutput});
+        GtaoTemporalVariant{s.bentNormals, s.callerKeepsDepth, s.packedNormals, gridHistory && s.packedOutput,
+                            gridHistory && s.fusedTemporal});
     CaseSetup setup;
     setup.description = std::string(temporal ? "spatio-temporal" : "spatial") + " GTAO" +
                         (half ? " at half resolution" : "") + " (" + slicesText(settings) +
@@ -246,7 +247,8 @@ CaseSetup temporalCase(Context::Impl& c, int w, int h, const GpuBenchSettings& s
                         (gridHistory ? " on the grid + depth-aware upsample" : "") +
                         (s.bentNormals ? "" : ", visibility only") +
                         (temporal && s.callerKeepsDepth ? ", previous depth kept by the caller" : "") +
-                        normalsText(s) + (gridHistory && s.packedOutput ? ", unorm16 output" : "");
+                        normalsText(s) + (gridHistory && s.packedOutput ? ", unorm16 output" : "") +
+                        (gridHistory && s.fusedTemporal ? ", GTAO and accumulation in one dispatch" : "");
     setup.bytes = double(passes->bytesPerFrame());
     setup.keepAlive = {passes};
     // The previous frame's depth: the rotating inputs stay resident, so it is still there (callerKeepsDepth).

@@ -572,6 +572,33 @@ TEST_F(GpuCommands, BenchGpuPackedOutput) {
     }
 }
 
+// --fused-temporal reaches the gtao-temporal-grid case alone: one dispatch for GTAO and the accumulation
+// (its "temporal" pass, no "gtao" pass), without the raw visibility's write and read or the accumulation's
+// second read of the grid's depth and normals (1 + 1 + 1 + 3 floats per grid pixel; 20x12 at 40x24). That
+// the values are the three dispatches' is GpuGtaoTemporal.FusedPassGivesTheFrameOfTheThreeDispatches's to check.
+TEST_F(GpuCommands, BenchGpuFusedTemporal) {
+    const auto [a, b] = benchWithout("bench --gpu --sizes 40x24 --frames 3 --warmup 0 --inputs 2 --json "
+                                     "--visibility-only --cases gtao-half,gtao-temporal-half,gtao-temporal-grid",
+                                     "--fused-temporal", "fused_temporal", 3);
+    if (HasFailure()) return;
+    for (int i = 0; i < 3; ++i) {
+        const std::string name = b["cases"][i]["case"];
+        const bool applies = name == "gtao-temporal-grid";
+        EXPECT_EQ(b["cases"][i]["description"].get<std::string>().find("in one dispatch") != std::string::npos,
+                  applies)
+            << name;
+        EXPECT_DOUBLE_EQ(bytesSaved(a, b, i), applies ? 4.0 * 6 * 20 * 12 : 0.0) << name;
+        std::set<std::string> before, after;
+        for (const auto& p : a["cases"][i]["passes"]) before.insert(p["name"].get<std::string>());
+        for (const auto& p : b["cases"][i]["passes"]) after.insert(p["name"].get<std::string>());
+        EXPECT_EQ(before.count("gtao"), 1u) << name;
+        EXPECT_EQ(after.count("gtao"), applies ? 0u : 1u) << name;
+        if (applies) {
+            EXPECT_EQ(after, (std::set<std::string>{"temporal", "upsample"}));
+        }
+    }
+}
+
 // --pipeline-stats and --pipeline-internals: what the driver says of each pipeline the cases compiled, or,
 // where it lacks VK_KHR_pipeline_executable_properties (lavapipe in Mesa 22.3), a note naming the device while
 // the timings still come; a folder that cannot be made fails in one line before any work.

@@ -60,6 +60,7 @@ struct GpuBenchOptions {
     int alternatingWindowSize = 4;
     bool packedNormals = false;
     bool packedOutput = false;
+    bool fusedTemporal = false;
     std::string sampling = "planar";
     float mipRatio = 7.0f;
     float radius = 1.0f;
@@ -118,6 +119,9 @@ void GpuBenchOptions::add(CLI::App& bench) {
     bench.add_flag("--packed-output", packedOutput,
                    "--gpu: the gtao-temporal-grid case writes its visibility as unorm16, two pixels to a word (what an "
                    "R16_UNORM image holds) instead of a float per pixel; the other cases write floats");
+    bench.add_flag("--fused-temporal", fusedTemporal,
+                   "--gpu: the gtao-temporal-grid case evaluates GTAO, reconstructs and accumulates the grid in one "
+                   "dispatch (its 'temporal' pass, with no 'gtao' pass) instead of two; the same values");
     bench.add_flag("--alternating-window", alternatingWindow,
                    "--gpu: the temporal cases reconstruct with a 4x4 window (16 taps instead of 25) whose place "
                    "alternates over 4 frames, which the history averages to the 5x5 window's weights");
@@ -249,6 +253,7 @@ void runGpuBench(const GpuBenchOptions& o) {
     settings.callerKeepsDepth = o.keepPreviousDepth;
     settings.packedNormals = o.packedNormals;
     settings.packedOutput = o.packedOutput;
+    settings.fusedTemporal = o.fusedTemporal;
     settings.alternatingWindow = o.alternatingWindow;
     settings.alternatingWindowSize = o.alternatingWindowSize;
     settings.sampling = gtaoSampling(o.sampling);
@@ -319,6 +324,7 @@ void runGpuBench(const GpuBenchOptions& o) {
     report["keep_previous_depth"] = settings.callerKeepsDepth;
     report["packed_normals"] = settings.packedNormals;
     report["packed_output"] = settings.packedOutput;
+    report["fused_temporal"] = settings.fusedTemporal;
     report["alternating_window"] = settings.alternatingWindow;
     report["alternating_window_size"] = settings.alternatingWindow ? settings.alternatingWindowSize : 0;
     report["gtao_sampling"] = o.sampling;
@@ -340,6 +346,7 @@ void runGpuBench(const GpuBenchOptions& o) {
         if (o.keepPreviousDepth) variants += ", previous depth kept";
         if (o.packedNormals) variants += ", octahedral normals";
         if (o.packedOutput) variants += ", unorm16 output (gtao-temporal-grid)";
+        if (o.fusedTemporal) variants += ", GTAO and accumulation fused (gtao-temporal-grid)";
         if (o.alternatingWindow)
             variants += o.alternatingWindowSize == 2 ? ", alternating 2x2 windows" : ", alternating 4x4 windows";
         ssao::GtaoSettings sampling;
