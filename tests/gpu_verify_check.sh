@@ -9,8 +9,10 @@ command -v python3 >/dev/null || { echo "gpu_verify_check: no python3"; exit 77;
 skip_without_vulkan
 
 "$src/scripts/gpu-verify" "$tool" --small >"$work/out" 2>&1 || fail "gpu-verify failed: $(cat "$work/out")"
-[ "$(grep -c 'values > 2e-3: 0 of' "$work/out")" -eq 26 ] || fail "expected 26 planes within 2e-3: $(cat "$work/out")"
+[ "$(grep -c 'values > 2e-3: 0 of' "$work/out")" -eq 28 ] || fail "expected 28 planes within 2e-3: $(cat "$work/out")"
 grep -q "(GPU: --gpu-packed-normals --gpu-packed-output)" "$work/out" || fail "no case with the packed formats: $(cat "$work/out")"
+grep -q "(GPU: --gpu-packed-normals --gpu-packed-output --gpu-fused-temporal)" "$work/out" ||
+  fail "no case with the fused spatio-temporal pass: $(cat "$work/out")"
 grep -q "ao alchemy (GPU: --gpu-packed-normals --gpu-tiled-blur)" "$work/out" || fail "no Alchemy case with packed normals: $(cat "$work/out")"
 
 # exrdiff: a known difference between two AO planes of different scenes, then two refusals.

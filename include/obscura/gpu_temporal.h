@@ -57,6 +57,13 @@ struct GtaoTemporalFormats {
     bool packedOutput = false;
 };
 
+// How GtaoTemporal records the half-resolution frame with the grid's history: GTAO over the grid, then the
+// reconstruction and accumulation of each grid pixel, as two dispatches (Separate), or as one
+// (Fused: gtao_temporal_fused.comp, each workgroup evaluating GTAO for a block of the grid and accumulating its
+// inner pixels; the same values). Fused needs the grid's history: the constructor throws obscura::Error
+// without it.
+enum class GtaoTemporalDispatch { Separate, Fused };
+
 // ssao::GtaoTemporal on the GPU. The context must outlive it. Results differ from the CPU's by the GPU's
 // trigonometry in the GTAO pass and its exp in the filters, and by what they feed through the rejection
 // tests over frames. It keeps the previous frame's uploaded depth for the reprojection, as an engine with TAA
@@ -67,7 +74,8 @@ public:
     // the passes compute, filter and accumulate visibility alone: the same visibility and history length bit
     // for bit, and frame()'s bentNormal is empty.
     GtaoTemporal(Context& context, const ssao::GtaoSettings& settings, const ssao::GtaoTemporalSettings& temporal,
-                 GtaoOutputs outputs = GtaoOutputs::VisibilityAndBentNormal, GtaoTemporalFormats formats = {});
+                 GtaoOutputs outputs = GtaoOutputs::VisibilityAndBentNormal, GtaoTemporalFormats formats = {},
+                 GtaoTemporalDispatch dispatch = GtaoTemporalDispatch::Separate);
     ~GtaoTemporal();
     GtaoTemporal(GtaoTemporal&&) noexcept;
     GtaoTemporal& operator=(GtaoTemporal&&) noexcept;
@@ -89,6 +97,7 @@ private:
     ssao::GtaoTemporalSettings temporal_;
     GtaoOutputs outputs_;
     GtaoTemporalFormats formats_;
+    GtaoTemporalDispatch dispatch_;
     int frame_ = 0;
     ssao::GtaoResult result_;
     std::unique_ptr<GtaoTemporalPasses> passes_;  // made for the first frame's size

@@ -398,11 +398,14 @@ Image upsampleDepthAware(Context& context, const Image& low, const Image& lowDep
 
 GtaoTemporal::GtaoTemporal(Context& context, const ssao::GtaoSettings& settings,
                            const ssao::GtaoTemporalSettings& temporal, GtaoOutputs outputs,
-                           GtaoTemporalFormats formats)
-    : context_(&context), settings_(settings), temporal_(temporal), outputs_(outputs), formats_(formats) {
+                           GtaoTemporalFormats formats, GtaoTemporalDispatch dispatch)
+    : context_(&context), settings_(settings), temporal_(temporal), outputs_(outputs), formats_(formats),
+      dispatch_(dispatch) {
     settings_.validate();
     temporal_.validate();
-    checkPackedOutput(temporal_, formats.packedOutput);  // before the first frame makes the passes
+    // Before the first frame makes the passes.
+    checkPackedOutput(temporal_, formats.packedOutput);
+    checkFused(temporal_, dispatch == GtaoTemporalDispatch::Fused);
 }
 
 GtaoTemporal::~GtaoTemporal() = default;
@@ -427,7 +430,8 @@ const ssao::GtaoResult& GtaoTemporal::frame(const GBuffer& g) {
     if (!passes_)
         passes_ = std::make_unique<GtaoTemporalPasses>(
             c, settings_, temporal_, w, h,
-            GtaoTemporalVariant{bentNormals, /*callerKeepsDepth=*/true, formats_.packedNormals, formats_.packedOutput});
+            GtaoTemporalVariant{bentNormals, /*callerKeepsDepth=*/true, formats_.packedNormals, formats_.packedOutput,
+                                dispatch_ == GtaoTemporalDispatch::Fused});
     const std::size_t pixels = std::size_t(w) * std::size_t(h);
     auto depth = std::make_unique<Buffer>(uploadChannels(c, g.depth, 1));
     const Buffer normal = uploadNormals(c, g.normal, formats_.packedNormals);

@@ -202,6 +202,35 @@ TEST_F(GpuCommands, RenderPackedFormatsMatchTheCpu) {
                   {"--gpu-packed-output", "--gtao-grid-history"});
 }
 
+// --gpu-fused-temporal (gpu::GtaoTemporalDispatch::Fused): the spatio-temporal target's configuration with
+// GTAO and the accumulation in one dispatch gives the frame of the two dispatches (bit for bit on lavapipe,
+// GpuGtaoTemporal.FusedPassGivesTheFrameOfTheThreeDispatches; here within the bound any GPU frame keeps to the
+// CPU's) and says so in its summary; it refuses, in one line, a run without --gpu or the grid's history.
+TEST_F(GpuCommands, RenderFusedTemporalGivesTheFrameOfTheTwoDispatches) {
+    const std::string args = "render stairs --size 91x53 --ao gtao --frames 5 --gtao-half-res --gtao-grid-history "
+                             "--gtao-packed-history --gtao-alternating-window --gtao-alternating-window-size 2 "
+                             "--gtao-sampling planar-nearest --ao-output all -q --gpu";
+    const CliResult separate = runGpu(args + " -o " + path("two.exr") + " --aov-dir " + path("two"));
+    ASSERT_EQ(separate.code, 0) << separate.out;
+    const CliResult fused = runGpu(args + " --gpu-fused-temporal -o " + path("one.exr") + " --aov-dir " + path("one"));
+    ASSERT_EQ(fused.code, 0) << fused.out;
+    EXPECT_NE(fused.out.find(", GTAO and accumulation in one dispatch)"), std::string::npos) << fused.out;
+    EXPECT_EQ(separate.out.find("one dispatch"), std::string::npos) << separate.out;
+    const Difference ao = difference(obscura::readExr(path("two/ao.exr")), obscura::readExr(path("one/ao.exr")));
+    const Difference bent =
+        difference(obscura::readExr(path("two/bent_normal.exr")), obscura::readExr(path("one/bent_normal.exr")));
+    EXPECT_LE(ao.max, 2e-3);
+    EXPECT_LE(bent.max, 1e-2);
+    std::printf("[ measured ] fused against two dispatches: AO max |diff| %.2e, bent normal max %.2e\n", ao.max,
+                bent.max);
+    const std::string base = "render demo --size 48x32 --ao gtao -q -o " + path("x.png");
+    expectFailure(base + " --frames 3 --gtao-half-res --gtao-grid-history --gpu-fused-temporal",
+                  {"--gpu-fused-temporal", "needs --gpu"});
+    expectFailure(base + " --gpu --frames 3 --gtao-half-res --gpu-fused-temporal",
+                  {"--gpu-fused-temporal", "--gtao-grid-history"});
+    EXPECT_FALSE(std::filesystem::exists(path("x.png")));
+}
+
 // The GPU computes the bent normal only where something reads it (GtaoOutputs; RenderGtaoMatchesTheCpu runs
 // the AO-only frames). Asked for with --ao-output, the last frame's bent_normal.exr matches the CPU's to the
 // passes' bound (1e-2 per component, tests/gpu), with one frame and with the history.

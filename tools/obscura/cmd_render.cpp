@@ -103,6 +103,8 @@ void run(const RenderOptions& o) {
     }
     if (o.ao == "gtao" && o.gtao.gpuPackedOutput && !o.gpu.gpu)
         fail("--gpu-packed-output", "needs --gpu: the CPU writes the visibility as floats");
+    if (o.ao == "gtao" && o.gtao.gpuFusedTemporal && !o.gpu.gpu)
+        fail("--gpu-fused-temporal", "needs --gpu: it fuses two of the GPU's dispatches");
     if (o.fusedBlur && !(o.gpu.gpu && o.ao == "alchemy" && blur.mode == ssao::BlurMode::Separable && !blur.usesNormals()))
         fail("--gpu-fused-blur", "needs --gpu, --ao alchemy and the separable blur by depth alone (--blur separable, "
                                  "no normal weight)");
@@ -209,6 +211,7 @@ void run(const RenderOptions& o) {
             variants += o.gtao.alternatingWindowSize == 2 ? ", alternating 2x2 windows" : ", alternating 4x4 windows";
         if (o.gtao.gpuPackedNormals) variants += ", octahedral normals";
         if (o.gtao.gpuPackedOutput) variants += ", 16-bit visibility";
+        if (o.gtao.gpuFusedTemporal) variants += ", GTAO and accumulation in one dispatch";
         std::printf(" (%s: %d slice(s) x %d steps%s, r = %s m, %d frame(s)%s)", o.gtao.quality.c_str(), g.sliceCount,
                     g.stepsPerSide, g.interleave ? ", 4x4 interleave" : g.jitter ? ", jittered" : "", o.radius.c_str(),
                     o.gtao.frames, variants.c_str());

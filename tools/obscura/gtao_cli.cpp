@@ -165,6 +165,9 @@ void GtaoOptions::add(CLI::App& app) {
     app.add_flag("--gpu-packed-output", gpuPackedOutput,
                  "GTAO with --gpu, --gtao-half-res and --gtao-grid-history: the passes write the visibility as "
                  "unorm16 (an R16 image), each value rounded to 1/65535");
+    app.add_flag("--gpu-fused-temporal", gpuFusedTemporal,
+                 "GTAO with --gpu, --gtao-half-res and --gtao-grid-history: one dispatch evaluates GTAO over the grid "
+                 "and reconstructs and accumulates it, instead of two; the same values");
     app.add_option("--gtao-thickness", thickness, "GTAO thin occluders: none, heuristic (eq. 9), bitmask")
         ->check(CLI::IsMember({"none", "heuristic", "bitmask"}))
         ->capture_default_str();
@@ -230,6 +233,8 @@ void GtaoOptions::validate(const std::string& aovDir) const {
                                      "--frames > 1)");
     if (gpuPackedOutput && !gridHistory)
         fail("--gpu-packed-output", "needs --gtao-grid-history: there the upsampling writes the frame's visibility");
+    if (gpuFusedTemporal && !gridHistory)
+        fail("--gpu-fused-temporal", "needs --gtao-grid-history: it fuses GTAO with the accumulation on the grid");
     if (sliceFlags.value.jitter && (mode == "spatial" || temporal))
         fail("--gtao-jitter", "needs --gtao-mode full (or auto with one frame): the interleave rotates the slices of the "
                               "spatial and temporal modes");
@@ -260,7 +265,8 @@ GtaoFrame renderGtaoFrames(const GtaoOptions& o, float radius, const trace::Trac
     std::optional<gpu::GtaoTemporal> gpuTemporal;
     if (mode != "full" && context)
         gpuTemporal.emplace(*context, settings, temporalSettings, outputs,
-                            gpu::GtaoTemporalFormats{o.gpuPackedNormals, o.gpuPackedOutput});
+                            gpu::GtaoTemporalFormats{o.gpuPackedNormals, o.gpuPackedOutput},
+                            o.gpuFusedTemporal ? gpu::GtaoTemporalDispatch::Fused : gpu::GtaoTemporalDispatch::Separate);
     else if (mode != "full")
         temporal.emplace(settings, temporalSettings);
 

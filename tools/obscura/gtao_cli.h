@@ -47,6 +47,7 @@ struct GtaoOptions {
     bool gpuPackedNormals = false;   // --gpu: gpu::GtaoTemporalFormats::packedNormals (render registers the flag,
                                      // which --ao alchemy takes too)
     bool gpuPackedOutput = false;    // --gpu: gpu::GtaoTemporalFormats::packedOutput
+    bool gpuFusedTemporal = false;   // --gpu: gpu::GtaoTemporalDispatch::Fused
     std::string thickness = "none";
     float falloffStart = 1.0f;
     std::string beyondRadius = "column";
