@@ -157,9 +157,6 @@ void GtaoTemporalPasses::record(VkCommandBuffer cmd, const GtaoTemporalFrameInpu
     // 1. One interleaved evaluation per grid pixel, into the raw set the previous frame did not read.
     // Without bent normals, unused_ stands for every bent-normal buffer (the shaders leave those bindings alone).
     const auto bent = [&](const Buffer& b) -> const Buffer& { return variant_.bentNormals ? b : unused_; };
-    const int rawSet = rawSets() == 2 ? 1 - current_ : 0;
-    const Buffer& rawVisibility = rawVisibility_[rawSet];
-    const Buffer& rawBent = bent(rawBent_[rawSet]);
     const ssao::GtaoConstants k = ssao::gtaoConstants(settings_, in.camera, in.frameIndex, true);
     // With mip sampling the chain is made first, from this frame's depth. The previous frame's GTAO pass,
     // its only reader, is ordered before this by that frame's later barriers.
@@ -182,79 +179,73 @@ void GtaoTemporalPasses::record(VkCommandBuffer cmd, const GtaoTemporalFrameInpu
     // The reconstruction's window: with temporal.alternatingWindow, one of 4 by the frame index.
     const int phase = ssao::reconstructWindowPhase(temporal_, in.frameIndex);
     if (variant_.fused) {
+        // 1., 2. and 4. in one dispatch, on the grid (gtao_temporal_fused.comp).
         recordFused(cmd, k, tk, phase,
                     {in.depth, in.normal, depthMips_, previousDepth, previous.normalWorld, previous.visibility,
                      bent(previous.bentWorld), length(previous.length), depthOut, next.normalWorld, next.visibility,
                      bent(next.bentWorld), length(next.length), bent(bentGrid_)});
-        stage(temporal_.temporal ? "temporal" : "resolve");
-        recordGridUpsample(cmd, in, next);
-        stage("upsample");
-        current_ = 1 - current_;
-        previousCamera_ = in.camera;
-        ++recorded_;
-        return;
-    }
-    recordGtao(c, cmd, {in.depth, in.normal, rawVisibility, rawBent, depthMips_}, k, step_, variant_.bentNormals,
-               variant_.packedNormals);
-    stage("gtao");
-    computeBarrier(cmd);  // the next stage reads the raw values
+    } else {
+        const int rawSet = rawSets() == 2 ? 1 - current_ : 0;
+        const Buffer& rawVisibility = rawVisibility_[rawSet];
+        const Buffer& rawBent = bent(rawBent_[rawSet]);
+        recordGtao(c, cmd, {in.depth, in.normal, rawVisibility, rawBent, depthMips_}, k, step_, variant_.bentNormals,
+                   variant_.packedNormals);
+        stage("gtao");
+        computeBarrier(cmd);  // the next stage reads the raw values
 
-    // 2. At half resolution, the spatial gather of the 16 pattern directions on the grid, whose depth and
-    // normals are the G-buffer's at every other pixel. At full resolution the accumulation gathers them for
-    // its own pixel instead, and the upsampling (3.) is the accumulation's too.
-    const Buffer* grid[2] = {&rawVisibility, &rawBent};
-    if (step_ == 2 && !gridHistory_) {
-        const ReconstructConstants rk =
-            reconstructConstants(gridWidth_, gridHeight_, width_, step_, temporal_.depthSigma);
-        const bool packed = variant_.packedNormals;
-        recordReconstruct(c, cmd, {rawVisibility, in.depth, in.normal, visibility_}, rk, 1, phase, packed);
-        if (variant_.bentNormals)
-            recordReconstruct(c, cmd, {rawBent, in.depth, in.normal, bent_}, rk, 3, phase, packed);
-        stage("denoise");
-        computeBarrier(cmd);  // the accumulation reads the reconstructed values
-        grid[0] = &visibility_;
-        grid[1] = &bent(bent_);
-    }
+        // 2. At half resolution, the spatial gather of the 16 pattern directions on the grid, whose depth and
+        // normals are the G-buffer's at every other pixel. At full resolution the accumulation gathers them for
+        // its own pixel instead, and the upsampling (3.) is the accumulation's too.
+        const Buffer* grid[2] = {&rawVisibility, &rawBent};
+        if (step_ == 2 && !gridHistory_) {
+            const ReconstructConstants rk =
+                reconstructConstants(gridWidth_, gridHeight_, width_, step_, temporal_.depthSigma);
+            const bool packed = variant_.packedNormals;
+            recordReconstruct(c, cmd, {rawVisibility, in.depth, in.normal, visibility_}, rk, 1, phase, packed);
+            if (variant_.bentNormals)
+                recordReconstruct(c, cmd, {rawBent, in.depth, in.normal, bent_}, rk, 3, phase, packed);
+            stage("denoise");
+            computeBarrier(cmd);  // the accumulation reads the reconstructed values
+            grid[0] = &visibility_;
+            grid[1] = &bent(bent_);
+        }
 
-    // 4. Reprojection and exponential accumulation into the other history set. Without temporal filtering the
-    // same pass runs with no history: it writes the view bent normals and the planes a later frame would read.
-    ComputePipeline& pipeline =
-        c.pipeline("gtao_temporal", shaders::gtao_temporal, storageBuffers(kTemporalBindingCount),
-                   kTemporalPushConstantBytes, kTemporalWorkgroupX, kTemporalWorkgroupY,
-                   {step_, std::bit_cast<std::int32_t>(temporal_.depthSigma), variant_.bentNormals ? 1 : 0,
-                    temporal_.packedHistory ? 1 : 0, variant_.callerKeepsDepth ? 0 : 1, gridHistory_ ? 2 : 1,
-                    step_ == 2 && !gridHistory_ ? -1 : phase, variant_.packedNormals ? 1 : 0});
-    // (kTemporalSpecGridStep, DepthSigma, BentNormal, PackedHistory, DepthCopy, HistoryStep, WindowPhase: the
-    // window where this pass reconstructs, else -1, so that the upsampling variant is one pipeline;
-    // PackedNormals.)
-    // In binding order: kTemporalBindingDepth ... kTemporalBindingBentViewOut.
-    pipeline.dispatchGrid(cmd,
-                          {&in.depth, &in.normal, grid[0], grid[1], &previousDepth, &previous.normalWorld,
-                           &previous.visibility, &bent(previous.bentWorld), &length(previous.length), &depthOut,
-                           &next.normalWorld, &next.visibility, &bent(next.bentWorld), &length(next.length),
-                           &bent(gridHistory_ ? bentGrid_ : bentView_)},
-                          &tk, sizeof tk, historyWidth(), historyHeight());
+        // 4. Reprojection and exponential accumulation into the other history set. Without temporal filtering the
+        // same pass runs with no history: it writes the view bent normals and the planes a later frame would read.
+        ComputePipeline& pipeline =
+            c.pipeline("gtao_temporal", shaders::gtao_temporal, storageBuffers(kTemporalBindingCount),
+                       kTemporalPushConstantBytes, kTemporalWorkgroupX, kTemporalWorkgroupY,
+                       {step_, std::bit_cast<std::int32_t>(temporal_.depthSigma), variant_.bentNormals ? 1 : 0,
+                        temporal_.packedHistory ? 1 : 0, variant_.callerKeepsDepth ? 0 : 1, gridHistory_ ? 2 : 1,
+                        step_ == 2 && !gridHistory_ ? -1 : phase, variant_.packedNormals ? 1 : 0});
+        // (kTemporalSpecGridStep, DepthSigma, BentNormal, PackedHistory, DepthCopy, HistoryStep, WindowPhase: the
+        // window where this pass reconstructs, else -1, so that the upsampling variant is one pipeline;
+        // PackedNormals.)
+        // In binding order: kTemporalBindingDepth ... kTemporalBindingBentViewOut.
+        pipeline.dispatchGrid(cmd,
+                              {&in.depth, &in.normal, grid[0], grid[1], &previousDepth, &previous.normalWorld,
+                               &previous.visibility, &bent(previous.bentWorld), &length(previous.length), &depthOut,
+                               &next.normalWorld, &next.visibility, &bent(next.bentWorld), &length(next.length),
+                               &bent(gridHistory_ ? bentGrid_ : bentView_)},
+                              &tk, sizeof tk, historyWidth(), historyHeight());
+    }
     stage(temporal_.temporal ? "temporal" : "resolve");
 
     // 3., after the accumulation with the grid's history: the accumulated grid to full resolution, guided by
     // the grid's depth, which is the G-buffer's at every other pixel.
     if (gridHistory_) {
-        recordGridUpsample(cmd, in, next);
+        computeBarrier(cmd);  // the upsampling reads the accumulated grid
+        const UpsampleConstants uk =
+            upsampleConstants(width_, height_, gridWidth_, gridHeight_, width_, step_, temporal_.depthSigma);
+        recordUpsample(c, cmd, {next.visibility, in.depth, in.depth, upsampled_}, uk, 1, temporal_.packedHistory,
+                       variant_.packedOutput);
+        if (variant_.bentNormals) recordUpsample(c, cmd, {bentGrid_, in.depth, in.depth, bentView_}, uk, 3);
         stage("upsample");
     }
 
     current_ = 1 - current_;
     previousCamera_ = in.camera;
     ++recorded_;
-}
-
-void GtaoTemporalPasses::recordGridUpsample(VkCommandBuffer cmd, const GtaoTemporalFrameInputs& in, const History& next) {
-    computeBarrier(cmd);  // the upsampling reads the accumulated grid
-    const UpsampleConstants uk =
-        upsampleConstants(width_, height_, gridWidth_, gridHeight_, width_, step_, temporal_.depthSigma);
-    recordUpsample(context_, cmd, {next.visibility, in.depth, in.depth, upsampled_}, uk, 1, temporal_.packedHistory,
-                   variant_.packedOutput);
-    if (variant_.bentNormals) recordUpsample(context_, cmd, {bentGrid_, in.depth, in.depth, bentView_}, uk, 3);
 }
 
 void GtaoTemporalPasses::recordFused(VkCommandBuffer cmd, const ssao::GtaoConstants& k, const GtaoTemporalConstants& tk,

@@ -161,8 +161,6 @@ private:
     struct History {
         Buffer depth, normalWorld, visibility, bentWorld, length;
     };
-    // The last stage with the grid's history: the accumulated grid to full resolution, after a barrier.
-    void recordGridUpsample(VkCommandBuffer cmd, const GtaoTemporalFrameInputs& in, const History& next);
     // The buffers of gtao_temporal_fused.comp but its constants, at kFusedBinding* of the same names.
     struct FusedBuffers {
         const Buffer &depth, &normal, &depthMips;

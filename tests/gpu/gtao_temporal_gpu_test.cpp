@@ -496,7 +496,8 @@ TEST(GpuGtaoTemporal, PackedOutputIsTheVisibilityInSixteenBits) {
 // dispatch) against the three dispatches, 4 frames of the path at an odd size (97x61: a 49x31 grid, more than
 // one workgroup each way with every window) through every window (5x5, the alternating 4x4 and 2x2 ones),
 // with and without bent normals, float and packed history, the history's depth copy and the caller's, float
-// and packed normals, and both the medium preset's planar samples and planar-nearest ones. Each fused value is
+// and packed normals, and the medium preset's planar samples, planar-nearest ones and the depth MIP chain's
+// (whose pass runs before the fused one). Each fused value is
 // the same arithmetic on the same inputs, so on lavapipe every word of the output, the history and the bent
 // normals is the same; a device whose compiler contracts a multiply-add in one shader and not in the other
 // may round differently, within the CPU comparison's bounds. Then the same frames recorded in one
@@ -516,7 +517,8 @@ TEST(GpuGtaoTemporal, FusedPassGivesTheFrameOfTheThreeDispatches) {
     const ssao::GtaoSampling planar = ssao::GtaoSampling::Planar, nearest = ssao::GtaoSampling::PlanarNearest;
     for (const Case& k : {Case{5, true, false, false, false, planar}, Case{4, true, true, true, false, planar},
                           Case{2, true, false, true, true, nearest}, Case{2, false, true, true, true, nearest},
-                          Case{4, false, false, false, true, nearest}, Case{5, false, true, true, false, nearest}}) {
+                          Case{4, false, false, false, true, nearest}, Case{5, false, true, true, false, nearest},
+                          Case{2, false, true, true, true, ssao::GtaoSampling::Mip}}) {
         ssao::GtaoTemporalSettings t = mode(true, true, true);
         t.packedHistory = k.packedHistory;
         t.alternatingWindow = k.window != 5;
