@@ -68,10 +68,24 @@ grep -q "^note:" "$work/out" && fail "an H100's figures got the other-device not
 grep -q "0.3300 .*gtao-temporal-half (grid-ab: planar-nearest" "$work/all" || fail "--all: $(cat "$work/all")"
 grep -q "0.0985 .*alchemy-fused (alchemy-combined-ab: embedded)" "$work/all" || fail "--all: $(cat "$work/all")"
 
+# fused-ab.json counts for the spatio-temporal target beside grid-ab.json: its faster fused frame wins.
+python3 - "$work" <<'PY'
+import json, os, sys
+flags = ["--gtao-sampling", "planar-nearest", "--alternating-window", "--packed-normals", "--packed-output"]
+rows = lambda ms: [{"case": "gtao-temporal-grid", "size": "3840x2160", "pass": "frame", "ms": ms}]
+json.dump({"device": "NVIDIA H100 80GB HBM3", "bench_flags": ["--cases", "gtao-temporal-grid"], "rounds": 3,
+           "variants": [{"name": "three", "flags": flags, "shaders": "", "median_ms": rows(0.151)},
+                        {"name": "fused", "flags": flags + ["--fused-temporal"], "shaders": "", "median_ms": rows(0.145)}]},
+          open(os.path.join(sys.argv[1], "fused-ab.json"), "w"))
+PY
+"$targets" "$work" >"$work/out" 2>&1 || fail "gpu-targets failed with fused-ab.json: $(cat "$work/out")"
+expect "spatio-temporal GTAO" 3840x2160 0.1450 "met       " "gtao-temporal-grid (fused-ab: fused; flags: "
+line "spatio-temporal GTAO" 3840x2160 | grep -q -- "--fused-temporal" || fail "fused flags: $(cat "$work/out")"
+
 # A missing file leaves its target unanswered; a corrupt one fails, naming it.
-rm "$work/grid-ab.json"
+rm "$work/grid-ab.json" "$work/fused-ab.json"
 "$targets" "$work" >"$work/out" 2>&1 || fail "gpu-targets failed without grid-ab.json: $(cat "$work/out")"
-line "spatio-temporal GTAO" 3840x2160 | grep -q "unanswered grid-ab.json" || fail "not unanswered: $(cat "$work/out")"
+line "spatio-temporal GTAO" 3840x2160 | grep -q "unanswered grid-ab.json or fused-ab.json" || fail "not unanswered: $(cat "$work/out")"
 echo '{"variants": [{"name": "x"}]}' >"$work/grid-ab.json"
 if "$targets" "$work" >"$work/out" 2>&1; then fail "a corrupt file was read: $(cat "$work/out")"; fi
 grep -q "grid-ab.json: not a gpu-ab JSON file" "$work/out" || fail "corrupt file: $(cat "$work/out")"
