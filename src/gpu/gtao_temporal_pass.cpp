@@ -260,14 +260,16 @@ void GtaoTemporalPasses::recordFused(VkCommandBuffer cmd, const ssao::GtaoConsta
                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
     ComputePipeline& pipeline =
         context_.pipeline("gtao_temporal_fused", shaders::gtao_temporal_fused, storageBuffers(kFusedBindingCount),
-                          kFusedPushConstantBytes, kFusedWorkgroupX, kFusedWorkgroupY,
+                          kFusedPushConstantBytes, 0, 0,
                           {k.sampling, k.weighting, k.thicknessMode, k.beyondRadius, variant_.packedNormals ? 1 : 0,
                            variant_.bentNormals ? 1 : 0, std::bit_cast<std::int32_t>(temporal_.depthSigma),
                            temporal_.packedHistory ? 1 : 0, variant_.callerKeepsDepth ? 0 : 1, phase});
     // (kFusedSpecSampling ... BeyondRadius: the constants' modes, as recordGtao sets gtao.comp's; PackedNormals,
-    // BentNormal, DepthSigma, PackedHistory, DepthCopy, WindowPhase.)
-    // Workgroups overlap by the window's side less one: each accumulates fusedOutputTile pixels of the grid.
-    const int tileX = fusedOutputTileX(phase), tileY = fusedOutputTileY(phase);
+    // BentNormal, DepthSigma, PackedHistory, DepthCopy, WindowPhase.) Workgroups of the compiled shader's size
+    // (kFusedWorkgroupX x kFusedWorkgroupY as embedded), which overlap by the window's side less one: each
+    // accumulates fusedOutputTile pixels of the grid along each axis.
+    const int tileX = fusedOutputTile(phase, int(pipeline.layout().localSize[0]));
+    const int tileY = fusedOutputTile(phase, int(pipeline.layout().localSize[1]));
     // In binding order: kFusedBindingDepth ... kFusedBindingBentViewOut.
     pipeline.dispatch(cmd, {&b.depth, &b.normal, &b.depthMips, Resource(&temporalConstants_, offset, sizeof tk),
                             &b.previousDepth, &b.previousNormalWorld, &b.previousVisibility, &b.previousBentWorld,

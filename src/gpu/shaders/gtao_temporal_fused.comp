@@ -24,7 +24,10 @@
 #include "layouts.h"
 #include "temporal_layouts.h"
 
-layout(local_size_x = kFusedWorkgroupX, local_size_y = kFusedWorkgroupY, local_size_z = 1) in;
+// The workgroup: the block of grid pixels it evaluates. The host reads the size back from the compiled shader.
+const int kBlockX = kFusedWorkgroupX;
+const int kBlockY = kFusedWorkgroupY;
+layout(local_size_x = kBlockX, local_size_y = kBlockY, local_size_z = 1) in;
 
 layout(constant_id = kFusedSpecSampling) const int kSampling = GTAO_SAMPLING_PLANAR;
 layout(constant_id = kFusedSpecWeighting) const int kWeighting = GTAO_WEIGHTING_COSINE;
@@ -74,19 +77,19 @@ uint pixelIndex(int x, int y) { return uint(2 * y) * uint(k.width) + uint(2 * x)
 const int kSide = kWindowPhase < 0 ? 5 : (kWindowPhase < 4 ? 4 : 2);
 const int kFirstX = kWindowPhase < 0 ? -2 : -(kSide / 2) + ((kWindowPhase & 3) & 1);
 const int kFirstY = kWindowPhase < 0 ? -2 : -(kSide / 2) + (((kWindowPhase & 3) >> 1) & 1);
-// Grid pixels a workgroup accumulates along each axis (fusedOutputTileX/Y).
-const int kOutX = kFusedWorkgroupX - kSide + 1;
-const int kOutY = kFusedWorkgroupY - kSide + 1;
+// Grid pixels a workgroup accumulates along each axis (fusedOutputTile).
+const int kOutX = kBlockX - kSide + 1;
+const int kOutY = kBlockY - kSide + 1;
 
-// The evaluated pixels: grid pixel tileOrigin + (x, y) in slot y kFusedWorkgroupX + x. Slots of pixels outside
-// the grid are never written nor read (the reconstruction skips taps outside the grid).
-const int kTileSlots = kFusedWorkgroupX * kFusedWorkgroupY;
+// The evaluated pixels: grid pixel tileOrigin + (x, y) in slot y kBlockX + x. Slots of pixels outside the
+// grid are never written nor read (the reconstruction skips taps outside the grid).
+const int kTileSlots = kBlockX * kBlockY;
 const int kGridChannels = kBentNormal != 0 ? 4 : 1;
 shared float tileDepth[kTileSlots];
 shared float tileNormal[3][kTileSlots];
 shared float tileValue[4][kTileSlots];
 ivec2 tileOrigin;
-int tileIndex(int x, int y) { return (y - tileOrigin.y) * kFusedWorkgroupX + (x - tileOrigin.x); }
+int tileIndex(int x, int y) { return (y - tileOrigin.y) * kBlockX + (x - tileOrigin.x); }
 float gridDepth(int x, int y) { return tileDepth[tileIndex(x, y)]; }
 vec3 gridNormal(int x, int y) {
     const int s = tileIndex(x, y);
@@ -113,7 +116,7 @@ void main() {
         }
         // gtao.comp's main with kGridStep 2 at grid pixel g, and the guide the reconstruction reads there.
         const GtaoPixel px = gtaoPixel(2 * g.x, 2 * g.y, interleaveIndex(g.x, g.y));
-        const int s = l.y * kFusedWorkgroupX + l.x;
+        const int s = l.y * kBlockX + l.x;
         const uint c = pixelIndex(g.x, g.y);
         tileDepth[s] = depthPlane[c];
         const vec3 n = loadNormal(c);

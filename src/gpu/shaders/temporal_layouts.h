@@ -186,7 +186,8 @@ OBSCURA_CONST int kTemporalPushConstantBytes = 128;
 // accumulates it. Fused, a workgroup evaluates GTAO for kFusedWorkgroupX x kFusedWorkgroupY grid pixels into
 // shared memory, then reconstructs and accumulates those whose whole window lies among them: the inner
 // (kFusedWorkgroupX - side + 1) x (kFusedWorkgroupY - side + 1) for a window of `side` taps a side
-// (fusedOutputTile). The raw values never reach memory, the grid's depth and normals are read once, and a
+// (fusedOutputTile). The host dispatches the workgroup size the compiled shader declares, so a shader
+// swapped in through OBSCURA_SHADER_DIR may try another (bench/gpu-candidates). The raw values never reach memory, the grid's depth and normals are read once, and a
 // dispatch and its barrier are gone; the pixels of the border are evaluated again by the neighbouring
 // workgroups (with the 2x2 windows, 31 of every 256: 1.14x the GTAO work). Each value is the same arithmetic
 // as the two passes'.
@@ -226,13 +227,10 @@ OBSCURA_CONST int kFusedBindingLengthOut = 13;
 OBSCURA_CONST int kFusedBindingBentViewOut = 14;
 OBSCURA_CONST int kFusedBindingCount = 15;
 #ifdef __cplusplus
-// Grid pixels a workgroup accumulates along each axis with the window of windowPhase
-// (obscura/reconstruct_window.h): those whose window lies among its kFusedWorkgroup{X,Y} evaluated pixels.
-inline constexpr int fusedOutputTileX(int windowPhase) {
-    return kFusedWorkgroupX - ssao::reconstructWindowSide(windowPhase) + 1;
-}
-inline constexpr int fusedOutputTileY(int windowPhase) {
-    return kFusedWorkgroupY - ssao::reconstructWindowSide(windowPhase) + 1;
+// Grid pixels a workgroup of `workgroupSide` invocations along an axis accumulates along it with the window
+// of windowPhase (obscura/reconstruct_window.h): those whose window lies among its evaluated pixels.
+inline constexpr int fusedOutputTile(int windowPhase, int workgroupSide) {
+    return workgroupSide - ssao::reconstructWindowSide(windowPhase) + 1;
 }
 #endif
 
@@ -248,7 +246,8 @@ static_assert(sizeof(GtaoTemporalConstants) == kTemporalPushConstantBytes &&
                   offsetof(GtaoTemporalConstants, previousViewFromWorld) == 80,
               "GtaoTemporalConstants is std430");
 static_assert(sizeof(ssao::GtaoConstants) == kFusedPushConstantBytes, "the fused pass pushes GtaoConstants");
-static_assert(fusedOutputTileX(4) == 15 && fusedOutputTileY(-1) == 12, "the 2x2 and 5x5 windows' tiles");
+static_assert(fusedOutputTile(4, kFusedWorkgroupX) == 15 && fusedOutputTile(-1, kFusedWorkgroupY) == 12,
+              "the 2x2 and 5x5 windows' tiles");
 } // namespace obscura::gpu
 #endif
 #undef OBSCURA_CONST
