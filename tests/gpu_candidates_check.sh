@@ -50,7 +50,8 @@ for patch in "${patches[@]}"; do
               "stairs --size 120x70 --ao alchemy --ao-guard-band 8 --gpu-fused-blur" \
               "stairs --size 97x63 --ao gtao --frames 3" \
               "demo --size 133x77 --ao gtao --frames 4 --gtao-half-res --gtao-grid-history --gtao-alternating-window" \
-              "stairs --size 97x63 --ao gtao --frames 5 --gtao-half-res --gtao-grid-history --gtao-packed-history --gtao-alternating-window --gtao-alternating-window-size 2"; do
+              "stairs --size 97x63 --ao gtao --frames 5 --gtao-half-res --gtao-grid-history --gtao-packed-history --gtao-alternating-window --gtao-alternating-window-size 2" \
+              "demo --size 133x77 --ao gtao --frames 5 --gtao-half-res --gtao-grid-history --gtao-packed-history --gtao-alternating-window --gtao-alternating-window-size 2 --gpu-fused-temporal"; do
     # shellcheck disable=SC2086  # the list's words are separate arguments
     "$tool" render $args -q --gpu -o "$work/e.png" --aov-dir "$work/e" >/dev/null
     # shellcheck disable=SC2086
@@ -115,7 +116,7 @@ grep -q "^alchemy " "$work/waiting/normals-ab.txt" || fail "normals-ab.txt: $(ca
 grep -q "^gtao-temporal-grid .* upsample " "$work/waiting/grid-ab.txt" || fail "grid-ab.txt: $(cat "$work/waiting/grid-ab.txt")"
 grep -q "planar-nearest-window2 ms.*planar-nearest-window2-packed-normals ms.*planar-nearest-window2-packed-all ms" \
   "$work/waiting/grid-ab.txt" || fail "grid-ab.txt, 2x2 windows: $(cat "$work/waiting/grid-ab.txt")"
-grep -q "planar-nearest-window2-packed-all ms  *planar-nearest-window2-packed-all-fused ms" "$work/waiting/fused-ab.txt" ||
+grep -q "planar-nearest-window2-packed-all ms  *planar-nearest-window2-packed-all-fused ms  *planar-nearest-window2-packed-all-fused-32x16 ms" "$work/waiting/fused-ab.txt" ||
   fail "fused-ab.txt: $(cat "$work/waiting/fused-ab.txt")"
 # The fused variant has no gtao pass of its own: its column there is "-".
 grep -q "^gtao-temporal-grid  *[0-9x]*  *gtao  *[0-9.]*  *- " "$work/waiting/fused-ab.txt" ||
