@@ -82,7 +82,8 @@ const int kOutX = kBlockX - kSide + 1;
 const int kOutY = kBlockY - kSide + 1;
 
 // The evaluated pixels: grid pixel tileOrigin + (x, y) in slot y kBlockX + x. Slots of pixels outside the
-// grid are never written nor read (the reconstruction skips taps outside the grid).
+// grid hold an infinite depth and nothing else: the reconstruction skips taps outside the grid by its bounds
+// tests, and would skip them as sky without (as bench/gpu-candidates/reconstruct-sky-apron's does).
 const int kTileSlots = kBlockX * kBlockY;
 const int kGridChannels = kBentNormal != 0 ? 4 : 1;
 shared float tileDepth[kTileSlots];
@@ -108,6 +109,7 @@ void main() {
     const ivec2 outOrigin = ivec2(gl_WorkGroupID.xy) * ivec2(kOutX, kOutY);
     tileOrigin = outOrigin + ivec2(kFirstX, kFirstY);
     const ivec2 g = tileOrigin + l;
+    const int s = l.y * kBlockX + l.x;
     if (g.x >= 0 && g.y >= 0 && g.x < w && g.y < h) {
         if (gtaoSamplingReadsMips(kSampling)) {
             mipBase2 = uint(gtaoMipOffset(k.width, k.height, 2));
@@ -116,7 +118,6 @@ void main() {
         }
         // gtao.comp's main with kGridStep 2 at grid pixel g, and the guide the reconstruction reads there.
         const GtaoPixel px = gtaoPixel(2 * g.x, 2 * g.y, interleaveIndex(g.x, g.y));
-        const int s = l.y * kBlockX + l.x;
         const uint c = pixelIndex(g.x, g.y);
         tileDepth[s] = depthPlane[c];
         const vec3 n = loadNormal(c);
@@ -129,6 +130,8 @@ void main() {
             tileValue[2][s] = px.bentNormal.y;
             tileValue[3][s] = px.bentNormal.z;
         }
+    } else {
+        tileDepth[s] = uintBitsToFloat(0x7f800000u);
     }
     barrier();
     // gtao_temporal.comp's main with kHistoryStep 2 at the inner pixels.
