@@ -99,7 +99,7 @@ grep -q "gone: $work/missing is not a folder" "$work/ab.err" || fail "$(cat "$wo
 # gpu-waiting: every part, each into its file, at a tiny size, with one round.
 "$src/scripts/gpu-waiting" --obscura "$tool" --candidates "$work/spv" --rounds 1 --small "$work/waiting" \
   -- --sizes 48x32 --frames 2 --warmup 0 --inputs 1 2>"$work/waiting.err" || fail "gpu-waiting: $(cat "$work/waiting.err")"
-for f in verify.txt grid-ab.txt grid-ab.json fused-ab.txt fused-ab.json tiled-ab.txt tiled-ab.json normals-ab.txt normals-ab.json pipelines.json \
+for f in verify.txt grid-ab.txt grid-ab.json fused-ab.txt fused-ab.json pipelines-fused.json tiled-ab.txt tiled-ab.json normals-ab.txt normals-ab.json pipelines.json \
   internals; do
   [ -e "$work/waiting/$f" ] || fail "gpu-waiting wrote no $f: $(ls "$work/waiting")"
 done
