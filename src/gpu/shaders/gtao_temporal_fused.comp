@@ -88,7 +88,11 @@ const int kTileSlots = kBlockX * kBlockY;
 const int kGridChannels = kBentNormal != 0 ? 4 : 1;
 shared float tileDepth[kTileSlots];
 shared float tileNormal[3][kTileSlots];
-shared float tileValue[4][kTileSlots];
+// Visibility, then the bent normal's 3 channels, whose slots shrink to 1 without bent normals: shared memory
+// that is declared costs resident workgroups whether or not it is used (grid_tile.glsl).
+const int kBentSlots = kBentNormal != 0 ? kTileSlots : 1;
+shared float tileVisibility[kTileSlots];
+shared float tileBent[3][kBentSlots];
 ivec2 tileOrigin;
 int tileIndex(int x, int y) { return (y - tileOrigin.y) * kBlockX + (x - tileOrigin.x); }
 float gridDepth(int x, int y) { return tileDepth[tileIndex(x, y)]; }
@@ -96,7 +100,10 @@ vec3 gridNormal(int x, int y) {
     const int s = tileIndex(x, y);
     return vec3(tileNormal[0][s], tileNormal[1][s], tileNormal[2][s]);
 }
-float gridValue(int x, int y, int c) { return tileValue[c][tileIndex(x, y)]; }
+float gridValue(int x, int y, int c) {
+    const int s = tileIndex(x, y);
+    return c == 0 ? tileVisibility[s] : tileBent[c - 1][s];
+}
 
 #include "temporal_filters.glsl"
 #define k frameConstants
@@ -124,11 +131,11 @@ void main() {
         tileNormal[0][s] = n.x;
         tileNormal[1][s] = n.y;
         tileNormal[2][s] = n.z;
-        tileValue[0][s] = px.visibility;
+        tileVisibility[s] = px.visibility;
         if (kBentNormal != 0) {
-            tileValue[1][s] = px.bentNormal.x;
-            tileValue[2][s] = px.bentNormal.y;
-            tileValue[3][s] = px.bentNormal.z;
+            tileBent[0][s] = px.bentNormal.x;
+            tileBent[1][s] = px.bentNormal.y;
+            tileBent[2][s] = px.bentNormal.z;
         }
     } else {
         tileDepth[s] = uintBitsToFloat(0x7f800000u);
