@@ -7,6 +7,7 @@
 #include "gpu/gtao_pass.h"
 #include "gpu/image_planes.h"
 #include "gpu/spirv.h"
+#include "shaders/layouts.h"
 
 #include "obscura/error.h"
 #include "obscura/gpu_temporal.h"
@@ -106,8 +107,7 @@ GtaoTemporalPasses::GtaoTemporalPasses(Context::Impl& c, const ssao::GtaoSetting
     const bool bentNormals = variant.bentNormals;
     assert(width >= 1 && height >= 1);
     temporal.validate();  // cheap, and a window size or mode the shaders do not know must not reach them
-    checkPackedOutput(temporal, variant.packedOutput);
-    checkFused(temporal, variant.fused);
+    checkGridVariants(temporal, variant);
     const std::size_t pixels = std::size_t(width) * std::size_t(height);
     const std::size_t grid = std::size_t(gridWidth_) * std::size_t(gridHeight_);
     const std::size_t lattice = gridHistory_ ? grid : pixels;  // the history's
@@ -260,7 +260,7 @@ void GtaoTemporalPasses::recordFused(VkCommandBuffer cmd, const ssao::GtaoConsta
                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
     ComputePipeline& pipeline =
         context_.pipeline("gtao_temporal_fused", shaders::gtao_temporal_fused, storageBuffers(kFusedBindingCount),
-                          kFusedPushConstantBytes, 0, 0,
+                          kGtaoPushConstantBytes, 0, 0,
                           {k.sampling, k.weighting, k.thicknessMode, k.beyondRadius, variant_.packedNormals ? 1 : 0,
                            variant_.bentNormals ? 1 : 0, std::bit_cast<std::int32_t>(temporal_.depthSigma),
                            temporal_.packedHistory ? 1 : 0, variant_.callerKeepsDepth ? 0 : 1, phase});
@@ -270,7 +270,8 @@ void GtaoTemporalPasses::recordFused(VkCommandBuffer cmd, const ssao::GtaoConsta
     // accumulates fusedOutputTile pixels of the grid along each axis.
     const int tileX = fusedOutputTile(phase, int(pipeline.layout().localSize[0]));
     const int tileY = fusedOutputTile(phase, int(pipeline.layout().localSize[1]));
-    // In binding order: kFusedBindingDepth ... kFusedBindingBentViewOut.
+    // In binding order: kTemporalBindingDepth, Normal, kFusedBindingDepthMips, TemporalConstants, then
+    // kTemporalBindingPreviousDepth ... kTemporalBindingBentViewOut.
     pipeline.dispatch(cmd, {&b.depth, &b.normal, &b.depthMips, Resource(&temporalConstants_, offset, sizeof tk),
                             &b.previousDepth, &b.previousNormalWorld, &b.previousVisibility, &b.previousBentWorld,
                             &b.previousLength, &b.depthOut, &b.normalWorldOut, &b.visibilityOut, &b.bentWorldOut,
@@ -279,16 +280,14 @@ void GtaoTemporalPasses::recordFused(VkCommandBuffer cmd, const ssao::GtaoConsta
                       std::uint32_t((gridHeight_ + tileY - 1) / tileY));
 }
 
-void checkFused(const ssao::GtaoTemporalSettings& temporal, bool fused) {
-    if (fused && !(temporal.halfResolution && temporal.gridHistory))
-        fail("gtao temporal", "the fused pass needs the grid's history (half resolution, gridHistory): it fuses "
-                              "the GTAO pass and the accumulation on the grid");
-}
-
-void checkPackedOutput(const ssao::GtaoTemporalSettings& temporal, bool packedOutput) {
-    if (packedOutput && !(temporal.halfResolution && temporal.gridHistory))
+void checkGridVariants(const ssao::GtaoTemporalSettings& temporal, const GtaoTemporalVariant& variant) {
+    if (temporal.halfResolution && temporal.gridHistory) return;
+    if (variant.packedOutput)
         fail("gtao temporal", "packedOutput needs the grid's history (half resolution, gridHistory): there the "
                               "upsampling writes the frame's visibility");
+    if (variant.fused)
+        fail("gtao temporal", "the fused pass needs the grid's history (half resolution, gridHistory): it fuses "
+                              "the GTAO pass and the accumulation on the grid");
 }
 
 Image unpackVisibilityPairs(const std::vector<std::uint32_t>& words, int width, int height) {
@@ -389,6 +388,17 @@ Image upsampleDepthAware(Context& context, const Image& low, const Image& lowDep
     return result;
 }
 
+namespace {
+
+// What gpu::GtaoTemporal asks of its passes. It keeps the previous frame's upload, so the history holds no
+// copy of depth.
+GtaoTemporalVariant variantOf(GtaoOutputs outputs, GtaoTemporalFormats formats, GtaoTemporalDispatch dispatch) {
+    return {outputs == GtaoOutputs::VisibilityAndBentNormal, /*callerKeepsDepth=*/true, formats.packedNormals,
+            formats.packedOutput, dispatch == GtaoTemporalDispatch::Fused};
+}
+
+} // namespace
+
 GtaoTemporal::GtaoTemporal(Context& context, const ssao::GtaoSettings& settings,
                            const ssao::GtaoTemporalSettings& temporal, GtaoOutputs outputs,
                            GtaoTemporalFormats formats, GtaoTemporalDispatch dispatch)
@@ -396,9 +406,7 @@ GtaoTemporal::GtaoTemporal(Context& context, const ssao::GtaoSettings& settings,
       dispatch_(dispatch) {
     settings_.validate();
     temporal_.validate();
-    // Before the first frame makes the passes.
-    checkPackedOutput(temporal_, formats.packedOutput);
-    checkFused(temporal_, dispatch == GtaoTemporalDispatch::Fused);
+    checkGridVariants(temporal_, variantOf(outputs, formats, dispatch));  // before the first frame makes the passes
 }
 
 GtaoTemporal::~GtaoTemporal() = default;
@@ -421,10 +429,8 @@ const ssao::GtaoResult& GtaoTemporal::frame(const GBuffer& g) {
     Context::Impl& c = context_->impl();
     const bool bentNormals = outputs_ == GtaoOutputs::VisibilityAndBentNormal;
     if (!passes_)
-        passes_ = std::make_unique<GtaoTemporalPasses>(
-            c, settings_, temporal_, w, h,
-            GtaoTemporalVariant{bentNormals, /*callerKeepsDepth=*/true, formats_.packedNormals, formats_.packedOutput,
-                                dispatch_ == GtaoTemporalDispatch::Fused});
+        passes_ = std::make_unique<GtaoTemporalPasses>(c, settings_, temporal_, w, h,
+                                                       variantOf(outputs_, formats_, dispatch_));
     const std::size_t pixels = std::size_t(w) * std::size_t(h);
     auto depth = std::make_unique<Buffer>(uploadChannels(c, g.depth, 1));
     const Buffer normal = uploadNormals(c, g.normal, formats_.packedNormals);

@@ -57,12 +57,6 @@ inline std::size_t upsamplePackedWords(int width, int height) {
 }
 Image unpackVisibilityPairs(const std::vector<std::uint32_t>& words, int width, int height);
 
-// Throws obscura::Error unless a 16-bit output (GtaoTemporalVariant::packedOutput) has the grid's history to
-// write it: GtaoTemporalPasses' check, which gpu::GtaoTemporal makes before its first frame makes them.
-void checkPackedOutput(const ssao::GtaoTemporalSettings& temporal, bool packedOutput);
-// The same for GtaoTemporalVariant::fused, which fuses the grid's passes.
-void checkFused(const ssao::GtaoTemporalSettings& temporal, bool fused);
-
 // One frame's inputs, resident on the device and visible to compute shaders (the caller's barrier).
 struct GtaoTemporalFrameInputs {
     const Buffer& depth;   // width * height linear depths, +inf for sky
@@ -84,8 +78,9 @@ struct GtaoTemporalVariant {
     // the previous frame's depth buffer from GtaoTemporalFrameInputs::previousDepth.
     bool callerKeepsDepth = false;
     // true: GtaoTemporalFrameInputs::normal holds one octahedral word per pixel (ssao::packOctahedral, as
-    // gpu::packNormals of gpu/image_planes.h makes them) instead of 3 floats (kGtaoSpecPackedNormals, kReconstructSpecPackedNormals and
-    // kTemporalSpecPackedNormals 1): the frame of those normals decoded (ssao::unpackOctahedral).
+    // gpu::packNormals of gpu/image_planes.h makes them) instead of 3 floats (kGtaoSpecPackedNormals,
+    // kReconstructSpecPackedNormals and kTemporalSpecPackedNormals 1): the frame of those normals decoded
+    // (ssao::unpackOctahedral).
     bool packedNormals = false;
     // true, with the grid's history (temporal.gridHistory): the upsampling writes the frame's visibility as
     // unorm16 pairs (kUpsampleSpecPackedOut; unpackVisibilityPairs decodes visibility()), half the bytes of
@@ -97,6 +92,10 @@ struct GtaoTemporalVariant {
     // obscura::Error without the grid's history.
     bool fused = false;
 };
+
+// Throws obscura::Error if the variant asks for what only the grid's history has (packedOutput, fused) without
+// it: GtaoTemporalPasses' check, which gpu::GtaoTemporal makes before its first frame makes them.
+void checkGridVariants(const ssao::GtaoTemporalSettings& temporal, const GtaoTemporalVariant& variant);
 
 // The resident buffers of ssao::GtaoTemporal for one size: the frame's intermediates and two sets of history
 // (depth, world normals, visibility, world bent normals, history length), written in turn: a frame reads the
@@ -161,7 +160,8 @@ private:
     struct History {
         Buffer depth, normalWorld, visibility, bentWorld, length;
     };
-    // The buffers of gtao_temporal_fused.comp but its constants, at kFusedBinding* of the same names.
+    // The buffers of gtao_temporal_fused.comp but its constants: gtao_temporal.comp's of the same names
+    // (kTemporalBinding*), and the MIP chain at kFusedBindingDepthMips.
     struct FusedBuffers {
         const Buffer &depth, &normal, &depthMips;
         const Buffer &previousDepth, &previousNormalWorld, &previousVisibility, &previousBentWorld, &previousLength;

@@ -219,6 +219,12 @@ TEST_F(GpuCommands, RenderFusedTemporalGivesTheFrameOfTheTwoDispatches) {
     const Difference ao = difference(obscura::readExr(path("two/ao.exr")), obscura::readExr(path("one/ao.exr")));
     const Difference bent =
         difference(obscura::readExr(path("two/bent_normal.exr")), obscura::readExr(path("one/bent_normal.exr")));
+    // The same values: on lavapipe, where the test suite runs, the same bits; elsewhere within the bounds of
+    // any GPU frame against the CPU's, as a compiler may contract a multiply-add in one shader and not the other.
+    if (fused.out.find("llvmpipe") != std::string::npos) {
+        EXPECT_EQ(ao.max, 0.0);
+        EXPECT_EQ(bent.max, 0.0);
+    }
     EXPECT_LE(ao.max, 2e-3);
     EXPECT_LE(bent.max, 1e-2);
     std::printf("[ measured ] fused against two dispatches: AO max |diff| %.2e, bent normal max %.2e\n", ao.max,

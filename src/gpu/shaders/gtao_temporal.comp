@@ -41,25 +41,6 @@ layout(std430, binding = kTemporalBindingDepth) readonly buffer DepthPlane { flo
 layout(std430, binding = kTemporalBindingNormal) readonly buffer NormalPlane { uint normalWords[]; };
 layout(std430, binding = kTemporalBindingGridVisibility) readonly buffer GridVisibility { float gridVisibility[]; };
 layout(std430, binding = kTemporalBindingGridBent) readonly buffer GridBent { float gridBent[]; };
-// The history planes hold 32-bit words: floats' bits, or with kPackedHistory the packed words of
-// obscura/history_packing.h (visibility + length in the visibility plane, one word per normal).
-layout(std430, binding = kTemporalBindingPreviousDepth) readonly buffer PreviousDepth { uint previousDepth[]; };
-layout(std430, binding = kTemporalBindingPreviousNormalWorld) readonly buffer PreviousNormalWorld {
-    uint previousNormalWorld[];
-};
-layout(std430, binding = kTemporalBindingPreviousVisibility) readonly buffer PreviousVisibility {
-    uint previousVisibility[];
-};
-layout(std430, binding = kTemporalBindingPreviousBentWorld) readonly buffer PreviousBentWorld {
-    uint previousBentWorld[];
-};
-layout(std430, binding = kTemporalBindingPreviousLength) readonly buffer PreviousLength { uint previousLength[]; };
-layout(std430, binding = kTemporalBindingDepthOut) writeonly buffer DepthOut { uint depthOut[]; };
-layout(std430, binding = kTemporalBindingNormalWorldOut) writeonly buffer NormalWorldOut { uint normalWorldOut[]; };
-layout(std430, binding = kTemporalBindingVisibilityOut) writeonly buffer VisibilityOut { uint visibilityOut[]; };
-layout(std430, binding = kTemporalBindingBentWorldOut) writeonly buffer BentWorldOut { uint bentWorldOut[]; };
-layout(std430, binding = kTemporalBindingLengthOut) writeonly buffer LengthOut { uint lengthOut[]; };
-layout(std430, binding = kTemporalBindingBentViewOut) writeonly buffer BentViewOut { float bentViewOut[]; };
 
 // ---- the grid the filter reads (temporal_filters.glsl): visibility, then the bent normal if any ----
 const int kGridChannels = kBentNormal != 0 ? 4 : 1;

@@ -42,29 +42,13 @@ layout(constant_id = kFusedSpecWindowPhase) const int kWindowPhase = 4;
 const int kHistoryStep = 2;  // the grid's history: one element per grid pixel
 
 layout(push_constant, std430) uniform Constants { GtaoConstants k; };
-layout(std430, binding = kFusedBindingDepth) readonly buffer DepthPlane { float depthPlane[]; };
-layout(std430, binding = kFusedBindingNormal) readonly buffer NormalPlane { uint normalWords[]; };
+layout(std430, binding = kTemporalBindingDepth) readonly buffer DepthPlane { float depthPlane[]; };
+layout(std430, binding = kTemporalBindingNormal) readonly buffer NormalPlane { uint normalWords[]; };
 layout(std430, binding = kFusedBindingDepthMips) readonly buffer DepthMips { float depthMips[]; };
 layout(std430, binding = kFusedBindingTemporalConstants) readonly buffer TemporalConstants {
     GtaoTemporalConstants frameConstants;
 };
-layout(std430, binding = kFusedBindingPreviousDepth) readonly buffer PreviousDepth { uint previousDepth[]; };
-layout(std430, binding = kFusedBindingPreviousNormalWorld) readonly buffer PreviousNormalWorld {
-    uint previousNormalWorld[];
-};
-layout(std430, binding = kFusedBindingPreviousVisibility) readonly buffer PreviousVisibility {
-    uint previousVisibility[];
-};
-layout(std430, binding = kFusedBindingPreviousBentWorld) readonly buffer PreviousBentWorld {
-    uint previousBentWorld[];
-};
-layout(std430, binding = kFusedBindingPreviousLength) readonly buffer PreviousLength { uint previousLength[]; };
-layout(std430, binding = kFusedBindingDepthOut) writeonly buffer DepthOut { uint depthOut[]; };
-layout(std430, binding = kFusedBindingNormalWorldOut) writeonly buffer NormalWorldOut { uint normalWorldOut[]; };
-layout(std430, binding = kFusedBindingVisibilityOut) writeonly buffer VisibilityOut { uint visibilityOut[]; };
-layout(std430, binding = kFusedBindingBentWorldOut) writeonly buffer BentWorldOut { uint bentWorldOut[]; };
-layout(std430, binding = kFusedBindingLengthOut) writeonly buffer LengthOut { uint lengthOut[]; };
-layout(std430, binding = kFusedBindingBentViewOut) writeonly buffer BentViewOut { float bentViewOut[]; };
+// The history's buffers: temporal_pixel.glsl's, at gtao_temporal.comp's bindings.
 
 #include "gtao_pixel.glsl"
 
@@ -72,14 +56,6 @@ layout(std430, binding = kFusedBindingBentViewOut) writeonly buffer BentViewOut 
 int latticeWidth() { return (k.width + 1) / 2; }
 int latticeHeight() { return (k.height + 1) / 2; }
 uint pixelIndex(int x, int y) { return uint(2 * y) * uint(k.width) + uint(2 * x); }
-
-// The window's extent (obscura/reconstruct_window.h, as specialization-constant expressions).
-const int kSide = kWindowPhase < 0 ? 5 : (kWindowPhase < 4 ? 4 : 2);
-const int kFirstX = kWindowPhase < 0 ? -2 : -(kSide / 2) + ((kWindowPhase & 3) & 1);
-const int kFirstY = kWindowPhase < 0 ? -2 : -(kSide / 2) + (((kWindowPhase & 3) >> 1) & 1);
-// Grid pixels a workgroup accumulates along each axis (fusedOutputTile).
-const int kOutX = kBlockX - kSide + 1;
-const int kOutY = kBlockY - kSide + 1;
 
 // The evaluated pixels: grid pixel tileOrigin + (x, y) in slot y kBlockX + x. Slots of pixels outside the
 // grid hold an infinite depth and nothing else: the reconstruction skips taps outside the grid by its bounds
@@ -113,8 +89,11 @@ float gridValue(int x, int y, int c) {
 void main() {
     const int w = latticeWidth(), h = latticeHeight();
     const ivec2 l = ivec2(gl_LocalInvocationID.xy);
-    const ivec2 outOrigin = ivec2(gl_WorkGroupID.xy) * ivec2(kOutX, kOutY);
-    tileOrigin = outOrigin + ivec2(kFirstX, kFirstY);
+    // The grid pixels this workgroup accumulates (fusedOutputTile along each axis), and the block it evaluates:
+    // theirs and their windows' (obscura/reconstruct_window.h).
+    const ivec2 inner = ivec2(kBlockX, kBlockY) - reconstructWindowSide(kWindowPhase) + 1;
+    const ivec2 outOrigin = ivec2(gl_WorkGroupID.xy) * inner;
+    tileOrigin = outOrigin + ivec2(reconstructWindowFirst(kWindowPhase, 0), reconstructWindowFirst(kWindowPhase, 1));
     const ivec2 g = tileOrigin + l;
     const int s = l.y * kBlockX + l.x;
     if (g.x >= 0 && g.y >= 0 && g.x < w && g.y < h) {
@@ -143,7 +122,7 @@ void main() {
     barrier();
     // gtao_temporal.comp's main with kHistoryStep 2 at the inner pixels.
     const ivec2 p = outOrigin + l;
-    if (l.x >= kOutX || l.y >= kOutY || p.x >= w || p.y >= h) return;
+    if (l.x >= inner.x || l.y >= inner.y || p.x >= w || p.y >= h) return;
     const uint i = uint(p.y) * uint(w) + uint(p.x);
     const float depth = gridDepth(p.x, p.y);
     float spatial[4];

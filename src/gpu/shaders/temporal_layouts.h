@@ -11,7 +11,6 @@
 #ifndef OBSCURA_GPU_TEMPORAL_LAYOUTS_H
 #define OBSCURA_GPU_TEMPORAL_LAYOUTS_H
 
-#include "obscura/gtao_constants.h"
 #include "obscura/reconstruct_window.h"
 
 #ifdef __cplusplus
@@ -186,11 +185,11 @@ OBSCURA_CONST int kTemporalPushConstantBytes = 128;
 // accumulates it. Fused, a workgroup evaluates GTAO for kFusedWorkgroupX x kFusedWorkgroupY grid pixels into
 // shared memory, then reconstructs and accumulates those whose whole window lies among them: the inner
 // (kFusedWorkgroupX - side + 1) x (kFusedWorkgroupY - side + 1) for a window of `side` taps a side
-// (fusedOutputTile). The host dispatches the workgroup size the compiled shader declares, so a shader
-// swapped in through OBSCURA_SHADER_DIR may try another (bench/gpu-candidates). The raw values never reach memory, the grid's depth and normals are read once, and a
+// (fusedOutputTile). The raw values never reach memory, the grid's depth and normals are read once, and a
 // dispatch and its barrier are gone; the pixels of the border are evaluated again by the neighbouring
 // workgroups (with the 2x2 windows, 31 of every 256: 1.14x the GTAO work). Each value is the same arithmetic
-// as the two passes'.
+// as the two passes'. The host dispatches the workgroup size the compiled shader declares, so a shader swapped
+// in through OBSCURA_SHADER_DIR may try another (bench/gpu-candidates).
 OBSCURA_CONST int kFusedWorkgroupX = 16;
 OBSCURA_CONST int kFusedWorkgroupY = 16;
 // Specialization constants: gtao.comp's modes and gtao_temporal.comp's variants, under their own ids.
@@ -204,28 +203,15 @@ OBSCURA_CONST int kFusedSpecDepthSigma = 6;      // as kTemporalSpecDepthSigma, 
 OBSCURA_CONST int kFusedSpecPackedHistory = 7;   // as kTemporalSpecPackedHistory
 OBSCURA_CONST int kFusedSpecDepthCopy = 8;       // as kTemporalSpecDepthCopy
 OBSCURA_CONST int kFusedSpecWindowPhase = 9;     // as kTemporalSpecWindowPhase: -1 5x5, 0..3 4x4, 4..7 2x2
-// The push constants are the GTAO pass's GtaoConstants (kGtaoPushConstantBytes); the accumulation's
-// GtaoTemporalConstants are a storage buffer's (kFusedBindingTemporalConstants): both together exceed the 128
-// bytes of push constants every device offers.
-OBSCURA_CONST int kFusedPushConstantBytes = 104;
-// Storage buffers. The frame's inputs:
-OBSCURA_CONST int kFusedBindingDepth = 0;      // width * height linear depths, +inf for sky
-OBSCURA_CONST int kFusedBindingNormal = 1;     // width * height * 3 view normals (or words, kFusedSpecPackedNormals)
-OBSCURA_CONST int kFusedBindingDepthMips = 2;  // as kGtaoBindingDepthMips
-OBSCURA_CONST int kFusedBindingTemporalConstants = 3;  // this frame's GtaoTemporalConstants
-// The history, as kTemporalBindingPreviousDepth ... kTemporalBindingBentViewOut with the grid's lattice:
-OBSCURA_CONST int kFusedBindingPreviousDepth = 4;
-OBSCURA_CONST int kFusedBindingPreviousNormalWorld = 5;
-OBSCURA_CONST int kFusedBindingPreviousVisibility = 6;
-OBSCURA_CONST int kFusedBindingPreviousBentWorld = 7;
-OBSCURA_CONST int kFusedBindingPreviousLength = 8;
-OBSCURA_CONST int kFusedBindingDepthOut = 9;
-OBSCURA_CONST int kFusedBindingNormalWorldOut = 10;
-OBSCURA_CONST int kFusedBindingVisibilityOut = 11;
-OBSCURA_CONST int kFusedBindingBentWorldOut = 12;
-OBSCURA_CONST int kFusedBindingLengthOut = 13;
-OBSCURA_CONST int kFusedBindingBentViewOut = 14;
-OBSCURA_CONST int kFusedBindingCount = 15;
+// The push constants are the GTAO pass's GtaoConstants (layouts.h's kGtaoPushConstantBytes); the
+// accumulation's GtaoTemporalConstants are a storage buffer's (kFusedBindingTemporalConstants): both together
+// exceed the 128 bytes of push constants every device offers.
+// Storage buffers: gtao_temporal.comp's (kTemporalBinding*, with the grid's lattice: the depth and normal
+// inputs, the history and the outputs), but for the two that held the raw grid, which the fused pass keeps in
+// shared memory:
+OBSCURA_CONST int kFusedBindingDepthMips = kTemporalBindingGridVisibility;        // as kGtaoBindingDepthMips
+OBSCURA_CONST int kFusedBindingTemporalConstants = kTemporalBindingGridBent;      // this frame's GtaoTemporalConstants
+OBSCURA_CONST int kFusedBindingCount = kTemporalBindingCount;
 #ifdef __cplusplus
 // Grid pixels a workgroup of `workgroupSide` invocations along an axis accumulates along it with the window
 // of windowPhase (obscura/reconstruct_window.h): those whose window lies among its evaluated pixels.
@@ -245,7 +231,6 @@ static_assert(sizeof(GtaoTemporalConstants) == kTemporalPushConstantBytes &&
                   offsetof(GtaoTemporalConstants, worldFromView) == 32 &&
                   offsetof(GtaoTemporalConstants, previousViewFromWorld) == 80,
               "GtaoTemporalConstants is std430");
-static_assert(sizeof(ssao::GtaoConstants) == kFusedPushConstantBytes, "the fused pass pushes GtaoConstants");
 static_assert(fusedOutputTile(4, kFusedWorkgroupX) == 15 && fusedOutputTile(-1, kFusedWorkgroupY) == 12,
               "the 2x2 and 5x5 windows' tiles");
 } // namespace obscura::gpu

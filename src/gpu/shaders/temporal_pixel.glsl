@@ -5,15 +5,36 @@
 // source for gtao_temporal.comp and gtao_temporal_fused.comp, which runs GTAO, the reconstruction and this in
 // one dispatch.
 //
-// The including shader declares, before the #include: GtaoTemporalConstants k (temporal_layouts.h); the
-// specialization constants kBentNormal, kPackedHistory, kDepthCopy and kPackedNormals and the constant
-// kHistoryStep (temporal_layouts.h's kTemporalSpec*); the buffers of the kTemporalBinding* names (depthPlane,
-// normalWords, previousDepth ... bentViewOut); latticeWidth(), latticeHeight() and pixelIndex(x, y); and
-// includes temporal_filters.glsl (finiteDepth) and normal_plane.glsl (loadNormal).
+// It declares the history's buffers, at kTemporalBindingPreviousDepth ... kTemporalBindingBentViewOut, which
+// both shaders bind there. The including shader declares, before the #include: GtaoTemporalConstants k
+// (temporal_layouts.h); the specialization constants kBentNormal, kPackedHistory, kDepthCopy and
+// kPackedNormals and the constant kHistoryStep (temporal_layouts.h's kTemporalSpec*); the buffers depthPlane
+// and normalWords; latticeWidth(), latticeHeight() and pixelIndex(x, y); and includes temporal_filters.glsl
+// (finiteDepth) and normal_plane.glsl (loadNormal).
 #ifndef OBSCURA_GPU_TEMPORAL_PIXEL_GLSL
 #define OBSCURA_GPU_TEMPORAL_PIXEL_GLSL
 
 #include "obscura/history_packing.h"
+
+// The history planes hold 32-bit words: floats' bits, or with kPackedHistory the packed words of
+// obscura/history_packing.h (visibility + length in the visibility plane, one word per normal).
+layout(std430, binding = kTemporalBindingPreviousDepth) readonly buffer PreviousDepth { uint previousDepth[]; };
+layout(std430, binding = kTemporalBindingPreviousNormalWorld) readonly buffer PreviousNormalWorld {
+    uint previousNormalWorld[];
+};
+layout(std430, binding = kTemporalBindingPreviousVisibility) readonly buffer PreviousVisibility {
+    uint previousVisibility[];
+};
+layout(std430, binding = kTemporalBindingPreviousBentWorld) readonly buffer PreviousBentWorld {
+    uint previousBentWorld[];
+};
+layout(std430, binding = kTemporalBindingPreviousLength) readonly buffer PreviousLength { uint previousLength[]; };
+layout(std430, binding = kTemporalBindingDepthOut) writeonly buffer DepthOut { uint depthOut[]; };
+layout(std430, binding = kTemporalBindingNormalWorldOut) writeonly buffer NormalWorldOut { uint normalWorldOut[]; };
+layout(std430, binding = kTemporalBindingVisibilityOut) writeonly buffer VisibilityOut { uint visibilityOut[]; };
+layout(std430, binding = kTemporalBindingBentWorldOut) writeonly buffer BentWorldOut { uint bentWorldOut[]; };
+layout(std430, binding = kTemporalBindingLengthOut) writeonly buffer LengthOut { uint lengthOut[]; };
+layout(std430, binding = kTemporalBindingBentViewOut) writeonly buffer BentViewOut { float bentViewOut[]; };
 
 // ---- obscura/math.h ----
 // transformVector(m, v) for a matrix given as 3 rows of 4 floats.
