@@ -27,14 +27,18 @@ enum : std::uint32_t {
     OpTypeStruct = 30,
     OpTypePointer = 32,
     OpConstant = 43,
+    OpConstantComposite = 44,
+    OpSpecConstantComposite = 51,
     OpVariable = 59,
     OpDecorate = 71,
     OpMemberDecorate = 72,
     ExecutionModeLocalSize = 17,
     DecorationSpecId = 1,
+    DecorationBuiltIn = 11,
     DecorationArrayStride = 6,
     DecorationBinding = 33,
     DecorationOffset = 35,
+    BuiltInWorkgroupSize = 25,
     StorageClassPushConstant = 9,
 };
 
@@ -52,6 +56,11 @@ SpirvLayout reflect(const Spirv& code) {
     std::map<std::uint32_t, std::uint32_t> variableTypes;  // variable id -> its pointer type
     std::set<std::uint32_t> specIds;
     std::uint32_t pushType = 0;
+    // The constant decorated BuiltIn WorkgroupSize, which glslang emits beside the LocalSize execution mode and
+    // which wins over it where the two differ (SPIR-V 1.5, section 3.21 "BuiltIn": WorkgroupSize).
+    std::uint32_t workgroupSizeId = 0;
+    std::map<std::uint32_t, std::vector<std::uint32_t>> composites;  // id -> constituent ids
+    bool specWorkgroupSize = false;
     for (std::size_t i = 5; i < code.count;) {
         const std::uint32_t words = code.words[i] >> 16, op = code.words[i] & 0xffffu;
         if (words == 0 || i + words > code.count) malformed("truncated instruction");
@@ -75,6 +84,11 @@ SpirvLayout reflect(const Spirv& code) {
         case OpConstant:
             if (words >= 4) constants[a[1]] = a[2];
             break;
+        case OpConstantComposite:
+        case OpSpecConstantComposite:
+            if (words >= 3) composites[a[1]].assign(a + 2, a + words - 1);
+            if (words >= 3 && op == OpSpecConstantComposite && a[1] == workgroupSizeId) specWorkgroupSize = true;
+            break;
         case OpVariable:
             if (words >= 4 && a[2] == StorageClassPushConstant) pushType = a[0];
             if (words >= 4) variableTypes[a[1]] = a[0];
@@ -83,6 +97,7 @@ SpirvLayout reflect(const Spirv& code) {
             if (words >= 4 && a[1] == DecorationBinding) bound[a[0]] = a[2];
             if (words >= 4 && a[1] == DecorationSpecId) specIds.insert(a[2]);
             if (words >= 4 && a[1] == DecorationArrayStride) strides[a[0]] = a[2];
+            if (words >= 4 && a[1] == DecorationBuiltIn && a[2] == BuiltInWorkgroupSize) workgroupSizeId = a[0];
             break;
         case OpMemberDecorate:
             if (words >= 5 && a[2] == DecorationOffset) memberOffsets[{a[0], a[1]}] = a[3];
@@ -90,6 +105,19 @@ SpirvLayout reflect(const Spirv& code) {
         default: break;
         }
         i += words;
+    }
+    if (workgroupSizeId != 0) {
+        // A size the host could only know after specialization: the host dispatches by the declared size, so
+        // such a module is refused rather than run with the wrong grid.
+        if (specWorkgroupSize) malformed("workgroup size given by specialization constants");
+        const auto size = composites.find(workgroupSizeId);
+        if (size == composites.end() || size->second.size() != 3)
+            malformed("WorkgroupSize is not a constant 3-component vector");
+        for (int c = 0; c < 3; ++c) {
+            const auto value = constants.find(size->second[std::size_t(c)]);
+            if (value == constants.end()) malformed("WorkgroupSize has a component that is not a constant");
+            layout.localSize[c] = value->second;
+        }
     }
     layout.bindings = int(bound.size());
     layout.specConstants = int(specIds.size());

@@ -48,6 +48,7 @@ struct SpirvLayout {
     std::vector<BindingKind> kinds;      // kinds[b]: the type of binding b (b < bindings when they are 0..n-1)
     int specConstants = 0;               // specialization constants (constant_id decorations)
     std::uint32_t pushConstantBytes = 0; // size of the push-constant block, 0 if none
+    // The BuiltIn WorkgroupSize constant where the module declares one (it wins), else the LocalSize mode.
     std::uint32_t localSize[3] = {0, 0, 0};
 };
 // Reads the layout from the module's decorations and types. Throws obscura::Error for a malformed module or

@@ -1,6 +1,7 @@
 // The Vulkan context and its resources: device choice and its errors, the block suballocator's free list,
 // the SPIR-V reflection the passes check their layouts with, staged upload and download.
 #include "gpu_test_util.h"
+#include "spirv_edit.h"
 
 #include "gpu/allocator.h"
 #include "gpu/buffer.h"
@@ -53,6 +54,40 @@ TEST(GpuShaders, ReflectionReadsTheLayouts) {
     EXPECT_EQ(b.pushConstantBytes, std::uint32_t(kBilateralPushConstantBytes));
     const std::uint32_t junk[6] = {1, 2, 3, 4, 5, 6};
     EXPECT_THROW(reflect(Spirv{junk, 6}), Error);
+}
+
+// The workgroup size a module declares: glslang writes it twice, as the LocalSize execution mode and as a
+// constant decorated BuiltIn WorkgroupSize, and where the two differ the built-in is what a device runs
+// (SPIR-V 1.5, "BuiltIn"), so the reflection reads it; a module rewritten in both places reads as rewritten.
+// A size left to specialization constants is refused: the host dispatches by the size it reads.
+TEST(GpuShaders, ReflectionReadsTheWorkgroupSizeADeviceRuns) {
+    const std::vector<std::uint32_t> embedded(shaders::alchemy.words, shaders::alchemy.words + shaders::alchemy.count);
+    const auto size = [](const std::vector<std::uint32_t>& words) {
+        const SpirvLayout l = reflect({words.data(), words.size()});
+        return std::vector<std::uint32_t>(l.localSize, l.localSize + 3);
+    };
+    const std::vector<std::uint32_t> declared = {std::uint32_t(ssao::kAlchemyWorkgroupX),
+                                                 std::uint32_t(ssao::kAlchemyWorkgroupY), 1u};
+    EXPECT_EQ(size(embedded), declared);
+    // Only the built-in rewritten: it wins over the execution mode, which still says 64 x 1.
+    const std::vector<std::uint32_t> builtinOnly = testing::withWorkgroupSize(embedded, 24, 3, false);
+    ASSERT_NE(builtinOnly, embedded) << "the module has no WorkgroupSize built-in to rewrite";
+    EXPECT_EQ(size(builtinOnly), (std::vector<std::uint32_t>{24, 3, 1}));
+    EXPECT_EQ(size(testing::withWorkgroupSize(embedded, 32, 2)), (std::vector<std::uint32_t>{32, 2, 1}));
+    // The built-in's composite made a specialization constant (OpSpecConstantComposite, 51).
+    std::vector<std::uint32_t> spec = builtinOnly;
+    std::uint32_t builtin = 0;
+    int changed = 0;
+    for (std::size_t i = 5; i < spec.size(); i += spec[i] >> 16) {
+        if ((spec[i] & 0xffffu) == 71 && spec[i + 2] == 11 && spec[i + 3] == 25) builtin = spec[i + 1];
+        if ((spec[i] & 0xffffu) == 44 && spec[i + 2] == builtin && builtin != 0) {
+            spec[i] = (spec[i] & 0xffff0000u) | 51u;
+            ++changed;
+        }
+    }
+    ASSERT_EQ(changed, 1);
+    EXPECT_NE(testing::errorMessage([&] { reflect({spec.data(), spec.size()}); }).find("specialization"),
+              std::string::npos);
 }
 
 TEST(GpuContext, DeviceInfo) {
