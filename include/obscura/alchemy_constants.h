@@ -27,7 +27,8 @@ OBSCURA_CONST int kAlchemyMaxSamples = 1024;
 // The compute pass's workgroup: one row of 64, so that a warp is one row of 32 pixels, 8 of each of the 4
 // classes of a class-tile row, whose samples then fall 4 pixels apart. On an H100 (2026-11-25) the pass took
 // 0.051 ms instead of 0.085 with 8x8 at 1920x1080, and 0.197 instead of 0.366 at 3840x2160 (16x4: 0.062 and
-// 0.250; 32x2: 0.052 and 0.205).
+// 0.250; 32x2: 0.052 and 0.205). The host dispatches the size the compiled shader declares, so a shader
+// swapped in through OBSCURA_SHADER_DIR may try another (bench/gpu-candidates).
 OBSCURA_CONST int kAlchemyWorkgroupX = 64;
 OBSCURA_CONST int kAlchemyWorkgroupY = 1;
 

@@ -31,9 +31,12 @@ std::vector<float> alchemySpiralOffsets(const ssao::AlchemyConstants& k) {
 }
 
 void recordAlchemy(Context::Impl& c, VkCommandBuffer cmd, const AlchemyBuffers& b, const ssao::AlchemyConstants& k) {
+    // Workgroups of the compiled shader's size (ssao::kAlchemyWorkgroupX x Y as embedded): each invocation
+    // evaluates its own pixel, so any size gives the same image, and a candidate shader may try another.
     ComputePipeline& pipeline =
         c.pipeline("alchemy", shaders::alchemy, storageBuffers(kAlchemyBindingCount), kAlchemyPushConstantBytes,
-                   ssao::kAlchemyWorkgroupX, ssao::kAlchemyWorkgroupY, {b.packedNormals ? 1 : 0});  // kAlchemySpecPackedNormals
+                   ComputePipeline::kShadersOwnSize, ComputePipeline::kShadersOwnSize,
+                   {b.packedNormals ? 1 : 0});  // kAlchemySpecPackedNormals
     // In binding order: kAlchemyBindingDepth, Normal, Spiral, Output.
     pipeline.dispatchGrid(cmd, {&b.depth, &b.normal, &b.spiral, &b.output}, &k, sizeof k, k.width - 2 * k.guardBand,
                           k.height - 2 * k.guardBand);

@@ -32,8 +32,8 @@ ComputePipeline::ComputePipeline(Context::Impl& context, const Spirv& code, cons
     : context_(context), name_(name), layout_(reflect(code)), kinds_(kinds) {
     const int bindings = int(kinds.size());
     const std::string what = "shader " + name;
-    // dispatchGrid divides the image by the size the shared header gives the shader; 0 x 0 takes the shader's.
-    const bool shadersOwn = workgroupX == 0 && workgroupY == 0;
+    // dispatchGrid divides the image by the size the shader declares; a size the host names must be that one.
+    const bool shadersOwn = workgroupX == kShadersOwnSize && workgroupY == kShadersOwnSize;
     if ((!shadersOwn && (layout_.localSize[0] != std::uint32_t(workgroupX) ||
                          layout_.localSize[1] != std::uint32_t(workgroupY))) ||
         layout_.localSize[2] != 1)

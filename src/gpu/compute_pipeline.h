@@ -31,11 +31,14 @@ struct Resource {
 
 class ComputePipeline {
 public:
+    // As workgroupX and workgroupY: whatever 2-D size the shader declares, for a pass whose dispatch reads it
+    // back from layout().localSize (dispatchGrid does), so that a shader swapped in through OBSCURA_SHADER_DIR
+    // may try another size without a rebuilt host (bench/gpu-candidates).
+    static constexpr int kShadersOwnSize = 0;
+
     // `bindings` storage buffers, `pushConstantBytes` of push constants and workgroups of workgroupX x
-    // workgroupY, as the pass's shared header states them; throws obscura::Error if the shader declares
-    // something else or the device's limits are too small. Workgroups of 0 x 0: whatever 2-D size the shader
-    // declares, for a pass that reads it back from layout().localSize (a shader swapped in through
-    // OBSCURA_SHADER_DIR may then try another size).
+    // workgroupY, as the pass's shared header states them (or kShadersOwnSize for both); throws obscura::Error
+    // if the shader declares something else or the device's limits are too small.
     ComputePipeline(Context::Impl& context, const Spirv& code, const std::string& name, int bindings,
                     std::uint32_t pushConstantBytes, int workgroupX, int workgroupY);
     // The same with binding b of kind bindings[b], and constant_id i specialized to specialization[i] (32-bit

@@ -75,8 +75,9 @@ void recordReconstruct(Context::Impl& c, VkCommandBuffer cmd, const ReconstructB
     assert(windowPhase >= -1 && windowPhase <= 7);
     ComputePipeline& pipeline =
         c.pipeline("reconstruct_interleaved", shaders::reconstruct_interleaved,
-                   storageBuffers(kReconstructBindingCount), kReconstructPushConstantBytes, kTemporalWorkgroupX,
-                   kTemporalWorkgroupY, {channels, windowPhase, packedNormals ? 1 : 0});
+                   storageBuffers(kReconstructBindingCount), kReconstructPushConstantBytes,
+                   ComputePipeline::kShadersOwnSize, ComputePipeline::kShadersOwnSize,
+                   {channels, windowPhase, packedNormals ? 1 : 0});
     // (kReconstructSpecChannels, WindowPhase, PackedNormals)
     // In binding order: kReconstructBindingValues, Depth, Normal, Output.
     pipeline.dispatchGrid(cmd, {&b.values, &b.depth, &b.normal, &b.output}, &k, sizeof k, k.width, k.height);
@@ -89,7 +90,7 @@ void recordUpsample(Context::Impl& c, VkCommandBuffer cmd, const UpsampleBuffers
     assert(!packedOut || channels == 1);
     ComputePipeline& pipeline =
         c.pipeline("upsample_depth_aware", shaders::upsample_depth_aware, storageBuffers(kUpsampleBindingCount),
-                   kUpsamplePushConstantBytes, kTemporalWorkgroupX, kTemporalWorkgroupY,
+                   kUpsamplePushConstantBytes, ComputePipeline::kShadersOwnSize, ComputePipeline::kShadersOwnSize,
                    {channels, packedLow ? 1 : 0, packedOut ? 1 : 0});  // kUpsampleSpecChannels, PackedLow, PackedOut
     // In binding order: kUpsampleBindingLow, LowDepth, Depth, Output.
     // One invocation per 2x2 block of full-resolution pixels (the shader's main).
@@ -214,7 +215,8 @@ void GtaoTemporalPasses::record(VkCommandBuffer cmd, const GtaoTemporalFrameInpu
         // same pass runs with no history: it writes the view bent normals and the planes a later frame would read.
         ComputePipeline& pipeline =
             c.pipeline("gtao_temporal", shaders::gtao_temporal, storageBuffers(kTemporalBindingCount),
-                       kTemporalPushConstantBytes, kTemporalWorkgroupX, kTemporalWorkgroupY,
+                       kTemporalPushConstantBytes, ComputePipeline::kShadersOwnSize,
+                       ComputePipeline::kShadersOwnSize,
                        {step_, std::bit_cast<std::int32_t>(temporal_.depthSigma), variant_.bentNormals ? 1 : 0,
                         temporal_.packedHistory ? 1 : 0, variant_.callerKeepsDepth ? 0 : 1, gridHistory_ ? 2 : 1,
                         step_ == 2 && !gridHistory_ ? -1 : phase, variant_.packedNormals ? 1 : 0});
@@ -260,7 +262,7 @@ void GtaoTemporalPasses::recordFused(VkCommandBuffer cmd, const ssao::GtaoConsta
                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
     ComputePipeline& pipeline =
         context_.pipeline("gtao_temporal_fused", shaders::gtao_temporal_fused, storageBuffers(kFusedBindingCount),
-                          kGtaoPushConstantBytes, 0, 0,
+                          kGtaoPushConstantBytes, ComputePipeline::kShadersOwnSize, ComputePipeline::kShadersOwnSize,
                           {k.sampling, k.weighting, k.thicknessMode, k.beyondRadius, variant_.packedNormals ? 1 : 0,
                            variant_.bentNormals ? 1 : 0, std::bit_cast<std::int32_t>(temporal_.depthSigma),
                            temporal_.packedHistory ? 1 : 0, variant_.callerKeepsDepth ? 0 : 1, phase});

@@ -1,8 +1,10 @@
 // The Alchemy compute pass (src/gpu/shaders/alchemy.comp) against the CPU reference ssao::alchemyPixel, on
 // lavapipe in CI, with validation on and no message allowed.
 #include "gpu_test_util.h"
+#include "spirv_edit.h"
 
 #include "gpu/image_planes.h"
+#include "gpu/spirv.h"
 
 #include "obscura/alchemy.h"
 #include "obscura/error.h"
@@ -13,6 +15,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <vector>
+
+#include <unistd.h>
 
 namespace obscura::gpu {
 namespace {
@@ -258,6 +267,51 @@ TEST(GpuAlchemy, PackedNormalsGiveTheObscuranceOfTheirDecodedNormals) {
     EXPECT_NE(testing::errorMessage([&] { alchemyAO(context, g, rebuilt, {.packedNormals = true}); })
                   .find("normalsFromDepth"),
               std::string::npos);
+    EXPECT_EQ(testing::validationReport(context), "");
+}
+
+
+// The estimator dispatches by the workgroup size its module declares (ComputePipeline::kShadersOwnSize), so that
+// a candidate shader may try another size without a rebuilt host (bench/gpu-candidates). The embedded module
+// with its workgroup size rewritten to 24 x 3 (which divides neither side of 333 x 197, nor is a multiple of a
+// warp), loaded through OBSCURA_SHADER_DIR into a context of its own, must give the same image: each invocation
+// evaluates its own pixel whatever its workgroup. Bit for bit, as the instructions are the same.
+TEST(GpuAlchemy, AnotherWorkgroupSizeGivesTheSameImage) {
+    OBSCURA_GPU_CONTEXT(context);
+    const std::vector<std::uint32_t> words = testing::withWorkgroupSize(
+        {shaders::alchemy.words, shaders::alchemy.words + shaders::alchemy.count}, 24, 3);
+    const SpirvLayout layout = reflect({words.data(), words.size()});
+    ASSERT_EQ(layout.localSize[0], 24u);
+    ASSERT_EQ(layout.localSize[1], 3u);
+    const std::filesystem::path dir =
+        std::filesystem::path(::testing::TempDir()) / ("obscura-alchemy-workgroup-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    {
+        std::ofstream out(dir / "alchemy.spv", std::ios::binary);
+        out.write(reinterpret_cast<const char*>(words.data()), std::streamsize(words.size() * sizeof(std::uint32_t)));
+        ASSERT_TRUE(out.good());
+    }
+    ::setenv("OBSCURA_SHADER_DIR", dir.c_str(), 1);
+    std::unique_ptr<Context> other;
+    const std::string error = testing::errorMessage([&] {
+        ContextSettings settings;
+        settings.validation = true;
+        other = std::make_unique<Context>(settings);
+    });
+    ::unsetenv("OBSCURA_SHADER_DIR");
+    ASSERT_EQ(error, "no error");
+    ssao::AlchemySettings band;
+    band.guardBand = 5;
+    for (const ssao::AlchemySettings& s : {ssao::AlchemySettings{}, band}) {
+        const GBuffer g = testing::render("demo", 333, 197);
+        const Image embedded = alchemyAO(context, g, s), resized = alchemyAO(*other, g, s);
+        EXPECT_EQ(resized.width, embedded.width);
+        EXPECT_EQ(resized.height, embedded.height);
+        EXPECT_EQ(resized.pixels, embedded.pixels) << "guard band " << s.guardBand;
+    }
+    EXPECT_EQ(testing::validationReport(*other), "");
+    other.reset();
+    std::filesystem::remove_all(dir);
     EXPECT_EQ(testing::validationReport(context), "");
 }
 

@@ -24,7 +24,8 @@ namespace obscura::gpu {
 // The workgroup of the spatio-temporal passes (reconstruction, upsampling, accumulation). On an H100
 // (2026-11-25, visibility only, 1920x1080) 16x4 took the accumulation 0.104 ms instead of 0.115 with 8x8,
 // its variant without history 0.081 instead of 0.087, and the half-resolution accumulation 0.061 instead of
-// 0.069; 32x2 was slower at full resolution.
+// 0.069; 32x2 was slower at full resolution. The host dispatches the size the compiled shaders declare, so
+// shaders swapped in through OBSCURA_SHADER_DIR may try another (bench/gpu-candidates).
 OBSCURA_CONST int kTemporalWorkgroupX = 16;
 OBSCURA_CONST int kTemporalWorkgroupY = 4;
 
