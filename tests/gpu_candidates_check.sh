@@ -116,6 +116,10 @@ grep -q "^alchemy " "$work/waiting/normals-ab.txt" || fail "normals-ab.txt: $(ca
 grep -q "^gtao-temporal-grid .* upsample " "$work/waiting/grid-ab.txt" || fail "grid-ab.txt: $(cat "$work/waiting/grid-ab.txt")"
 grep -q "planar-nearest-window2 ms.*planar-nearest-window2-packed-normals ms.*planar-nearest-window2-packed-all ms" \
   "$work/waiting/grid-ab.txt" || fail "grid-ab.txt, 2x2 windows: $(cat "$work/waiting/grid-ab.txt")"
+if [ -d "$work/spv/temporal-workgroup-16x8" ]; then
+  grep -q "planar-nearest-window2-packed-all-16x8 ms" "$work/waiting/grid-ab.txt" ||
+    fail "grid-ab.txt, 16x8 workgroups: $(cat "$work/waiting/grid-ab.txt")"
+fi
 grep -q "planar-nearest-window2-packed-all ms  *planar-nearest-window2-packed-all-fused ms  *planar-nearest-window2-packed-all-fused-32x16 ms" "$work/waiting/fused-ab.txt" ||
   fail "fused-ab.txt: $(cat "$work/waiting/fused-ab.txt")"
 # The fused variant has no gtao pass of its own: its column there is "-".
