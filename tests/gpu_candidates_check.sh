@@ -7,7 +7,8 @@
 #   pass), and with the embedded shaders, the fused pass included: to the bit where its header says "the
 #   same bits", else within 1e-5;
 # - with no patch waiting, gpu-candidates refuses to run and says so;
-# - gpu-ab times two variants against each other and writes its JSON; it refuses a missing folder.
+# - gpu-ab times two variants against each other and writes its JSON; it refuses a missing folder;
+# - the probes of bench/gpu-probes (wrong by design, timed only) apply, compile and run in gpu-waiting.
 # Exit 77 (skipped) without a Vulkan device, python3 or glslc. Arguments: source dir, build dir, scratch dir.
 source "$(dirname "$0")/check_common.sh"
 check_setup gpu_candidates_check "$@"
@@ -96,8 +97,23 @@ if "$src/scripts/gpu-ab" --obscura "$tool" embedded "gone=$work/missing" >"$work
   fail "gpu-ab ran with a missing folder"
 fi
 grep -q "gone: $work/missing is not a folder" "$work/ab.err" || fail "$(cat "$work/ab.err")"
+# The probes: each built into its folder, with the shaders its patch edits.
+probes=("$src"/bench/gpu-probes/*.patch)
+if [ ${#probes[@]} -gt 0 ]; then
+  "$src/scripts/gpu-candidates" --probes "$work/probes" >"$work/built-probes" 2>&1 ||
+    fail "gpu-candidates --probes failed: $(cat "$work/built-probes")"
+  for patch in "${probes[@]}"; do
+    name=$(basename "$patch" .patch)
+    for shader in $(grep '^+++ b/src/gpu/shaders/.*\.comp' "$patch" | sed 's|.*/||; s|\.comp.*||'); do
+      [ -f "$work/probes/$name/$shader.spv" ] || fail "probe $name: no $shader.spv built: $(cat "$work/built-probes")"
+    done
+  done
+  probeFlags=(--probes "$work/probes")
+else
+  probeFlags=()
+fi
 # gpu-waiting: every part, each into its file, at a tiny size, with one round.
-"$src/scripts/gpu-waiting" --obscura "$tool" --candidates "$work/spv" --rounds 1 --small "$work/waiting" \
+"$src/scripts/gpu-waiting" --obscura "$tool" --candidates "$work/spv" "${probeFlags[@]}" --rounds 1 --small "$work/waiting" \
   -- --sizes 48x32 --frames 2 --warmup 0 --inputs 1 2>"$work/waiting.err" || fail "gpu-waiting: $(cat "$work/waiting.err")"
 for f in verify.txt grid-ab.txt grid-ab.json fused-ab.txt fused-ab.json pipelines-fused.json tiled-ab.txt tiled-ab.json normals-ab.txt normals-ab.json pipelines.json \
   internals; do
@@ -110,6 +126,13 @@ if [ ${#patches[@]} -gt 0 ]; then
     done
   done
   grep -q "^alchemy " "$work/waiting/candidates-ab.txt" || fail "candidates-ab.txt: $(cat "$work/waiting/candidates-ab.txt")"
+fi
+if [ ${#probes[@]} -gt 0 ]; then
+  grep -q "^alchemy .* alchemy " "$work/waiting/probes-ab.txt" || fail "probes-ab.txt: $(cat "$work/waiting/probes-ab.txt")"
+  for patch in "${probes[@]}"; do
+    grep -q " $(basename "$patch" .patch) ms" "$work/waiting/probes-ab.txt" ||
+      fail "probes-ab.txt has no column for $(basename "$patch" .patch): $(cat "$work/waiting/probes-ab.txt")"
+  done
 fi
 grep -q "^gtao-half " "$work/waiting/tiled-ab.txt" || fail "tiled-ab.txt: $(cat "$work/waiting/tiled-ab.txt")"
 grep -q "^alchemy " "$work/waiting/normals-ab.txt" || fail "normals-ab.txt: $(cat "$work/waiting/normals-ab.txt")"
@@ -140,4 +163,8 @@ if "$src/scripts/gpu-waiting" --obscura "$tool" --candidates "$work/missing" "$w
   fail "gpu-waiting ran with a missing candidates folder"
 fi
 grep -q "is not a folder" "$work/waiting.err" || fail "$(cat "$work/waiting.err")"
+if "$src/scripts/gpu-waiting" --obscura "$tool" --probes "$work/missing" "$work/w4" 2>"$work/waiting.err"; then
+  fail "gpu-waiting ran with a missing probes folder"
+fi
+grep -q "probes .* is not a folder" "$work/waiting.err" || fail "$(cat "$work/waiting.err")"
 echo "gpu_candidates_check: ok ($count candidates)"
