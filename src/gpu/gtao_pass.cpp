@@ -30,7 +30,7 @@ void recordGtao(Context::Impl& c, VkCommandBuffer cmd, const GtaoBuffers& b, con
     assert(gridStep == 1 || gridStep == 2);
     ComputePipeline& pipeline =
         c.pipeline("gtao", shaders::gtao, std::vector<BindingKind>(kGtaoBindingCount, BindingKind::StorageBuffer),
-                   kGtaoPushConstantBytes, kGtaoWorkgroupX, kGtaoWorkgroupY,
+                   kGtaoPushConstantBytes, ComputePipeline::kShadersOwnSize, ComputePipeline::kShadersOwnSize,
                    // kGtaoSpecGridStep, BentNormal, the constants' modes (Sampling ... BeyondRadius), PackedNormals.
                    {gridStep, bentNormal ? 1 : 0, k.sampling, k.weighting, k.thicknessMode, k.beyondRadius,
                     packedNormals ? 1 : 0});

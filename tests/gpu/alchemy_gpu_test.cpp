@@ -15,13 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
-#include <memory>
 #include <vector>
-
-#include <unistd.h>
 
 namespace obscura::gpu {
 namespace {
@@ -283,35 +277,17 @@ TEST(GpuAlchemy, AnotherWorkgroupSizeGivesTheSameImage) {
     const SpirvLayout layout = reflect({words.data(), words.size()});
     ASSERT_EQ(layout.localSize[0], 24u);
     ASSERT_EQ(layout.localSize[1], 3u);
-    const std::filesystem::path dir =
-        std::filesystem::path(::testing::TempDir()) / ("obscura-alchemy-workgroup-" + std::to_string(::getpid()));
-    std::filesystem::create_directories(dir);
-    {
-        std::ofstream out(dir / "alchemy.spv", std::ios::binary);
-        out.write(reinterpret_cast<const char*>(words.data()), std::streamsize(words.size() * sizeof(std::uint32_t)));
-        ASSERT_TRUE(out.good());
-    }
-    ::setenv("OBSCURA_SHADER_DIR", dir.c_str(), 1);
-    std::unique_ptr<Context> other;
-    const std::string error = testing::errorMessage([&] {
-        ContextSettings settings;
-        settings.validation = true;
-        other = std::make_unique<Context>(settings);
-    });
-    ::unsetenv("OBSCURA_SHADER_DIR");
-    ASSERT_EQ(error, "no error");
+    testing::ContextWithModule other("alchemy", words);
     ssao::AlchemySettings band;
     band.guardBand = 5;
     for (const ssao::AlchemySettings& s : {ssao::AlchemySettings{}, band}) {
         const GBuffer g = testing::render("demo", 333, 197);
-        const Image embedded = alchemyAO(context, g, s), resized = alchemyAO(*other, g, s);
+        const Image embedded = alchemyAO(context, g, s), resized = alchemyAO(other.context(), g, s);
         EXPECT_EQ(resized.width, embedded.width);
         EXPECT_EQ(resized.height, embedded.height);
         EXPECT_EQ(resized.pixels, embedded.pixels) << "guard band " << s.guardBand;
     }
-    EXPECT_EQ(testing::validationReport(*other), "");
-    other.reset();
-    std::filesystem::remove_all(dir);
+    EXPECT_EQ(testing::validationReport(other.context()), "");
     EXPECT_EQ(testing::validationReport(context), "");
 }
 

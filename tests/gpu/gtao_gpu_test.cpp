@@ -2,10 +2,12 @@
 // lavapipe in CI, with validation on and no message allowed.
 #include "gpu_test_util.h"
 #include "gtao_difference.h"
+#include "spirv_edit.h"
 
 #include "gpu/buffer.h"
 #include "gpu/context.h"
 #include "gpu/gtao_pass.h"
+#include "gpu/spirv.h"
 
 #include "obscura/error.h"
 #include "obscura/gpu.h"
@@ -239,6 +241,29 @@ TEST(GpuGtao, PublicVisibilityOnlyGivesTheSameVisibility) {
     EXPECT_GT(std::count_if(aoOnly.visibility.pixels.begin(), aoOnly.visibility.pixels.end(),
                             [](float v) { return v < 0.99f; }),
               std::ptrdiff_t(g.depth.pixelCount() / 50));
+    EXPECT_EQ(testing::validationReport(context), "");
+}
+
+// The pass dispatches by the workgroup size its module declares (ComputePipeline::kShadersOwnSize), so that a
+// candidate shader may try another size without a rebuilt host (bench/gpu-candidates). The embedded module
+// rewritten to 24 x 3 workgroups (which divide neither side of 333 x 197), loaded through OBSCURA_SHADER_DIR
+// into a context of its own, gives the same visibility and bent normals bit for bit, plain and with the 4x4
+// interleave: each invocation evaluates its own pixel.
+TEST(GpuGtao, AnotherWorkgroupSizeGivesTheSameResult) {
+    OBSCURA_GPU_CONTEXT(context);
+    const std::vector<std::uint32_t> words =
+        testing::withWorkgroupSize({shaders::gtao.words, shaders::gtao.words + shaders::gtao.count}, 24, 3);
+    ASSERT_EQ(reflect({words.data(), words.size()}).localSize[0], 24u);
+    testing::ContextWithModule other("gtao", words);
+    const GBuffer g = testing::render("cabinet", 333, 197);
+    ssao::GtaoSettings interleaved = preset(ssao::GtaoQuality::High);
+    interleaved.interleave = true;
+    for (const ssao::GtaoSettings& s : {preset(ssao::GtaoQuality::High), interleaved}) {
+        const ssao::GtaoResult embedded = computeGtao(context, g, s), resized = computeGtao(other.context(), g, s);
+        EXPECT_EQ(resized.visibility.pixels, embedded.visibility.pixels) << "interleave " << s.interleave;
+        EXPECT_EQ(resized.bentNormal.pixels, embedded.bentNormal.pixels) << "interleave " << s.interleave;
+    }
+    EXPECT_EQ(testing::validationReport(other.context()), "");
     EXPECT_EQ(testing::validationReport(context), "");
 }
 

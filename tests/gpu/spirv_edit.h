@@ -3,8 +3,19 @@
 // section 2.3 "Physical Layout" and 3 "Binary Form").
 #pragma once
 
+#include "obscura/gpu.h"
+
+#include <gtest/gtest.h>
+
 #include <cstdint>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <string>
 #include <vector>
+
+#include <unistd.h>
 
 namespace obscura::gpu::testing {
 
@@ -42,5 +53,45 @@ inline std::vector<std::uint32_t> withWorkgroupSize(std::vector<std::uint32_t> w
     }
     return words;
 }
+
+// A validated context of its own whose shader `name` is `words` instead of the embedded module, loaded as a
+// user would, through OBSCURA_SHADER_DIR (a folder under the test's temporary directory, removed when the
+// context is). Fails the calling test on a write error.
+class ContextWithModule {
+public:
+    ContextWithModule(const std::string& name, const std::vector<std::uint32_t>& words)
+        : dir_(std::filesystem::path(::testing::TempDir()) /
+               ("obscura-module-" + name + "-" + std::to_string(::getpid()))) {
+        std::filesystem::create_directories(dir_);
+        {
+            std::ofstream out(dir_ / (name + ".spv"), std::ios::binary);
+            out.write(reinterpret_cast<const char*>(words.data()),
+                      std::streamsize(words.size() * sizeof(std::uint32_t)));
+            EXPECT_TRUE(out.good()) << dir_ / (name + ".spv");
+        }
+        ::setenv("OBSCURA_SHADER_DIR", dir_.c_str(), 1);
+        ContextSettings settings;
+        settings.validation = true;
+        try {
+            context_ = std::make_unique<Context>(settings);
+        } catch (...) {
+            ::unsetenv("OBSCURA_SHADER_DIR");
+            throw;
+        }
+        ::unsetenv("OBSCURA_SHADER_DIR");
+    }
+    ~ContextWithModule() {
+        context_.reset();
+        std::error_code ignored;
+        std::filesystem::remove_all(dir_, ignored);
+    }
+    ContextWithModule(const ContextWithModule&) = delete;
+    ContextWithModule& operator=(const ContextWithModule&) = delete;
+    Context& context() { return *context_; }
+
+private:
+    std::filesystem::path dir_;
+    std::unique_ptr<Context> context_;
+};
 
 } // namespace obscura::gpu::testing

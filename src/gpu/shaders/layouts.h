@@ -131,7 +131,8 @@ OBSCURA_CONST int kGtaoPushConstantBytes = 104;
 // direction of the pattern 2 times instead of once, so that more of a warp's samples share cache lines; on an
 // H100 (2026-11-25, visibility only) the interleaved pass took 0.244 ms instead of 0.274 at 1920x1080 (0.903
 // instead of 1.183 at 3840x2160), and the plain pass the same as with 8x8. 32x2 gained 1-3% more with the
-// interleave and lost 2% without it.
+// interleave and lost 2% without it. The host dispatches the size the compiled shader declares, so a shader
+// swapped in through OBSCURA_SHADER_DIR may try another (bench/gpu-candidates).
 OBSCURA_CONST int kGtaoWorkgroupX = 16;
 OBSCURA_CONST int kGtaoWorkgroupY = 4;
 OBSCURA_CONST int kGtaoRotations = 6;  // ssao::kGtaoRotations, which GLSL cannot include
