@@ -54,6 +54,21 @@ ComputePipeline::ComputePipeline(Context::Impl& context, const Spirv& code, cons
     if (pushConstantBytes > context.properties.limits.maxPushConstantsSize)
         fail("Vulkan device '" + context.info.name + "'", what + " needs " + std::to_string(pushConstantBytes) +
                                                               " bytes of push constants");
+    // The size a pass takes from its shader (kShadersOwnSize) is not one the headers vouch for: a candidate may
+    // ask for more than a device has, which Vulkan leaves undefined rather than refused.
+    const VkPhysicalDeviceLimits& limits = context.properties.limits;
+    const std::uint64_t invocations =
+        std::uint64_t(layout_.localSize[0]) * layout_.localSize[1] * layout_.localSize[2];
+    if (invocations == 0)
+        fail(what, "declares no workgroup size");
+    if (layout_.localSize[0] > limits.maxComputeWorkGroupSize[0] ||
+        layout_.localSize[1] > limits.maxComputeWorkGroupSize[1] || invocations > limits.maxComputeWorkGroupInvocations)
+        fail("Vulkan device '" + context.info.name + "'",
+             what + " has workgroups of " + std::to_string(layout_.localSize[0]) + "x" +
+                 std::to_string(layout_.localSize[1]) + ", beyond the device's limits (" +
+                 std::to_string(limits.maxComputeWorkGroupSize[0]) + "x" +
+                 std::to_string(limits.maxComputeWorkGroupSize[1]) + ", " +
+                 std::to_string(limits.maxComputeWorkGroupInvocations) + " invocations)");
     VkDevice device = context.device;
 
     std::vector<VkDescriptorSetLayoutBinding> slots(static_cast<std::size_t>(bindings));

@@ -264,12 +264,12 @@ TEST(GpuAlchemy, PackedNormalsGiveTheObscuranceOfTheirDecodedNormals) {
     EXPECT_EQ(testing::validationReport(context), "");
 }
 
-
 // The estimator dispatches by the workgroup size its module declares (ComputePipeline::kShadersOwnSize), so that
 // a candidate shader may try another size without a rebuilt host (bench/gpu-candidates). The embedded module
 // with its workgroup size rewritten to 24 x 3 (which divides neither side of 333 x 197, nor is a multiple of a
 // warp), loaded through OBSCURA_SHADER_DIR into a context of its own, must give the same image: each invocation
-// evaluates its own pixel whatever its workgroup. Bit for bit, as the instructions are the same.
+// evaluates its own pixel whatever its workgroup. Bit for bit, as the instructions are the same. A size beyond
+// the device's limits is refused by the host, not left to the driver.
 TEST(GpuAlchemy, AnotherWorkgroupSizeGivesTheSameImage) {
     OBSCURA_GPU_CONTEXT(context);
     const std::vector<std::uint32_t> words = testing::withWorkgroupSize(
@@ -288,6 +288,16 @@ TEST(GpuAlchemy, AnotherWorkgroupSizeGivesTheSameImage) {
         EXPECT_EQ(resized.pixels, embedded.pixels) << "guard band " << s.guardBand;
     }
     EXPECT_EQ(testing::validationReport(other.context()), "");
+
+    // A size beyond every device's limits (65536 invocations in a row) is refused in one line naming the
+    // shader and the limits, before Vulkan sees the pipeline.
+    const std::vector<std::uint32_t> embedded(shaders::alchemy.words, shaders::alchemy.words + shaders::alchemy.count);
+    testing::ContextWithModule huge("alchemy", testing::withWorkgroupSize(embedded, 65536, 1));
+    const std::string refused =
+        testing::errorMessage([&] { alchemyAO(huge.context(), testing::render("plane", 16, 8), {}); });
+    EXPECT_NE(refused.find("shader alchemy"), std::string::npos) << refused;
+    EXPECT_NE(refused.find("65536x1, beyond the device's limits"), std::string::npos) << refused;
+    EXPECT_EQ(testing::validationReport(huge.context()), "");
     EXPECT_EQ(testing::validationReport(context), "");
 }
 
