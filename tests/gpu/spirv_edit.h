@@ -55,13 +55,14 @@ inline std::vector<std::uint32_t> withWorkgroupSize(std::vector<std::uint32_t> w
 }
 
 // A validated context of its own whose shader `name` is `words` instead of the embedded module, loaded as a
-// user would, through OBSCURA_SHADER_DIR (a folder under the test's temporary directory, removed when the
-// context is). Fails the calling test on a write error.
+// user would, through OBSCURA_SHADER_DIR: a folder of this object's own under the test's temporary directory,
+// removed with it (the context reads the module when it first makes the pipeline, so the folder lives as long
+// as the context). Fails the calling test on a write error.
 class ContextWithModule {
 public:
     ContextWithModule(const std::string& name, const std::vector<std::uint32_t>& words)
         : dir_(std::filesystem::path(::testing::TempDir()) /
-               ("obscura-module-" + name + "-" + std::to_string(::getpid()))) {
+               ("obscura-module-" + name + "-" + std::to_string(::getpid()) + "-" + std::to_string(next()++))) {
         std::filesystem::create_directories(dir_);
         {
             std::ofstream out(dir_ / (name + ".spv"), std::ios::binary);
@@ -90,6 +91,10 @@ public:
     Context& context() { return *context_; }
 
 private:
+    static int& next() {
+        static int n = 0;
+        return n;
+    }
     std::filesystem::path dir_;
     std::unique_ptr<Context> context_;
 };
