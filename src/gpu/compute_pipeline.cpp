@@ -33,13 +33,15 @@ ComputePipeline::ComputePipeline(Context::Impl& context, const Spirv& code, cons
     const int bindings = int(kinds.size());
     const std::string what = "shader " + name;
     // dispatchGrid divides the image by the size the shader declares; a size the host names must be that one.
+    const std::uint32_t* size = layout_.localSize;
+    const std::string workgroups = "has workgroups of " + std::to_string(size[0]) + "x" + std::to_string(size[1]) +
+                                   "x" + std::to_string(size[2]);
+    if (size[0] == 0 || size[1] == 0 || size[2] == 0) fail(what, "declares no workgroup size");
+    if (size[2] != 1) fail(what, workgroups + ", the host dispatches 2-D ones");
     const bool shadersOwn = workgroupX == kShadersOwnSize && workgroupY == kShadersOwnSize;
-    if ((!shadersOwn && (layout_.localSize[0] != std::uint32_t(workgroupX) ||
-                         layout_.localSize[1] != std::uint32_t(workgroupY))) ||
-        layout_.localSize[2] != 1)
-        fail(what, "has workgroups of " + std::to_string(layout_.localSize[0]) + "x" +
-                       std::to_string(layout_.localSize[1]) + "x" + std::to_string(layout_.localSize[2]) +
-                       ", the host dispatches " + std::to_string(workgroupX) + "x" + std::to_string(workgroupY));
+    if (!shadersOwn && (size[0] != std::uint32_t(workgroupX) || size[1] != std::uint32_t(workgroupY)))
+        fail(what, workgroups + ", the host dispatches " + std::to_string(workgroupX) + "x" +
+                       std::to_string(workgroupY));
     if (layout_.bindings != bindings || layout_.pushConstantBytes != pushConstantBytes)
         fail(what, "declares " + std::to_string(layout_.bindings) + " bindings and " +
                        std::to_string(layout_.pushConstantBytes) + " bytes of push constants, the host binds " +
@@ -51,21 +53,16 @@ ComputePipeline::ComputePipeline(Context::Impl& context, const Spirv& code, cons
     if (layout_.specConstants != int(specialization.size()))
         fail(what, "declares " + std::to_string(layout_.specConstants) + " specialization constants, the host sets " +
                        std::to_string(specialization.size()));
-    if (pushConstantBytes > context.properties.limits.maxPushConstantsSize)
+    const VkPhysicalDeviceLimits& limits = context.properties.limits;
+    if (pushConstantBytes > limits.maxPushConstantsSize)
         fail("Vulkan device '" + context.info.name + "'", what + " needs " + std::to_string(pushConstantBytes) +
                                                               " bytes of push constants");
     // The size a pass takes from its shader (kShadersOwnSize) is not one the headers vouch for: a candidate may
     // ask for more than a device has, which Vulkan leaves undefined rather than refused.
-    const VkPhysicalDeviceLimits& limits = context.properties.limits;
-    const std::uint64_t invocations =
-        std::uint64_t(layout_.localSize[0]) * layout_.localSize[1] * layout_.localSize[2];
-    if (invocations == 0)
-        fail(what, "declares no workgroup size");
-    if (layout_.localSize[0] > limits.maxComputeWorkGroupSize[0] ||
-        layout_.localSize[1] > limits.maxComputeWorkGroupSize[1] || invocations > limits.maxComputeWorkGroupInvocations)
+    if (size[0] > limits.maxComputeWorkGroupSize[0] || size[1] > limits.maxComputeWorkGroupSize[1] ||
+        std::uint64_t(size[0]) * size[1] > limits.maxComputeWorkGroupInvocations)
         fail("Vulkan device '" + context.info.name + "'",
-             what + " has workgroups of " + std::to_string(layout_.localSize[0]) + "x" +
-                 std::to_string(layout_.localSize[1]) + ", beyond the device's limits (" +
+             what + " " + workgroups + ", beyond the device's limits (" +
                  std::to_string(limits.maxComputeWorkGroupSize[0]) + "x" +
                  std::to_string(limits.maxComputeWorkGroupSize[1]) + ", " +
                  std::to_string(limits.maxComputeWorkGroupInvocations) + " invocations)");

@@ -3,6 +3,7 @@
 // the test). In the Gpu* group, which the asan build runs without leak detection (tests/CMakeLists.txt):
 // the child processes load the Vulkan driver.
 #include "cli/cli_harness.h"
+#include "gpu/spirv_edit.h"
 
 #include "obscura/gpu.h"
 #include "obscura/gpu_shaders.h"
@@ -693,31 +694,30 @@ TEST_F(GpuCommands, BenchGpuRejectsBadArguments) {
 // rebuild. A copy of the embedded gtao module runs; a file that is not SPIR-V, a module whose layout is not
 // the host's, and a folder that does not exist each fail in one line naming what is wrong.
 TEST_F(GpuCommands, ShaderDirReplacesEmbeddedShaders) {
-    const auto writeWords = [](const std::string& file, const std::uint32_t* words, std::size_t count) {
-        std::FILE* f = std::fopen(file.c_str(), "wb");
-        ASSERT_NE(f, nullptr) << file;
-        EXPECT_EQ(std::fwrite(words, sizeof(std::uint32_t), count, f), count);
-        std::fclose(f);
-    };
     const std::string bench = "bench --gpu --sizes 24x16 --cases gtao --frames 2 --warmup 0 --inputs 1 --json";
     std::filesystem::create_directories(path("same"));
     const obscura::gpu::ShaderCode gtao = obscura::gpu::shaderCode("gtao");
-    writeWords(path("same/gtao.spv"), gtao.words, gtao.wordCount);
+    obscura::gpu::testing::writeModule(path("same/gtao.spv"), gtao.words, gtao.wordCount);
     setenv("OBSCURA_SHADER_DIR", path("same").c_str(), 1);
     const CliResult same = runCli(bench);
     EXPECT_EQ(same.code, 0) << same.out;
 
-    // The blur's module where the GTAO pass's belongs: the host's layout check (workgroup size, bindings,
-    // push constants) names it.
+    // The blur's module where the GTAO pass's belongs: the host's layout check (bindings, push constants) names
+    // it. The GTAO pass takes its workgroup size from the module; the blur, which dispatches by its header's,
+    // refuses the GTAO module's size first.
     std::filesystem::create_directories(path("swapped"));
     const obscura::gpu::ShaderCode blur = obscura::gpu::shaderCode("bilateral_separable");
-    writeWords(path("swapped/gtao.spv"), blur.words, blur.wordCount);
+    obscura::gpu::testing::writeModule(path("swapped/gtao.spv"), blur.words, blur.wordCount);
     setenv("OBSCURA_SHADER_DIR", path("swapped").c_str(), 1);
-    expectFailure(bench, {"shader gtao", "the host "});
+    expectFailure(bench, {"shader gtao", "the host binds"});
+    std::filesystem::create_directories(path("blur"));
+    obscura::gpu::testing::writeModule(path("blur/bilateral_separable.spv"), gtao.words, gtao.wordCount);
+    setenv("OBSCURA_SHADER_DIR", path("blur").c_str(), 1);
+    expectFailure(bench, {"shader bilateral_separable", "has workgroups of 16x4x1, the host dispatches 256x1"});
 
     std::filesystem::create_directories(path("bad"));
     const std::uint32_t junk[6] = {1, 2, 3, 4, 5, 6};
-    writeWords(path("bad/gtao.spv"), junk, 6);
+    obscura::gpu::testing::writeModule(path("bad/gtao.spv"), junk, 6);
     setenv("OBSCURA_SHADER_DIR", path("bad").c_str(), 1);
     expectFailure(bench, {path("bad/gtao.spv"), "is not SPIR-V"});
 

@@ -563,13 +563,10 @@ TEST(GpuGtaoTemporal, FusedPassGivesTheFrameOfTheThreeDispatches) {
             EXPECT_LE(worst, kVisibilityBound) << name << when;
         };
         int occluded = 0;
-        const auto packNormalsIf = [&](const GBuffer& g) {
-            return k.packedNormals ? uploadNormals(c, g.normal, true) : uploadChannels(c, g.normal, 3);
-        };
         std::vector<Buffer> depth, normal;
         for (std::size_t f = 0; f < in.gbuffers.size(); ++f) {
             depth.push_back(uploadChannels(c, in.gbuffers[f].depth, 1));
-            normal.push_back(packNormalsIf(in.gbuffers[f]));
+            normal.push_back(uploadNormals(c, in.gbuffers[f].normal, k.packedNormals));
         }
         const auto inputs = [&](std::size_t f) {
             return GtaoTemporalFrameInputs{depth[f], normal[f], in.gbuffers[f].camera, int(f),

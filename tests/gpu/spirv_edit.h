@@ -54,6 +54,15 @@ inline std::vector<std::uint32_t> withWorkgroupSize(std::vector<std::uint32_t> w
     return words;
 }
 
+// Writes a module's words to `file`, as glslc writes a .spv (host byte order, which SPIR-V's magic number
+// tells a reader); fails the calling test on a write error.
+inline void writeModule(const std::filesystem::path& file, const std::uint32_t* words, std::size_t count) {
+    std::ofstream out(file, std::ios::binary);
+    out.write(reinterpret_cast<const char*>(words), std::streamsize(count * sizeof(std::uint32_t)));
+    out.close();
+    EXPECT_TRUE(out.good()) << file;
+}
+
 // A validated context of its own whose shader `name` is `words` instead of the embedded module, loaded as a
 // user would, through OBSCURA_SHADER_DIR: a folder of this object's own under the test's temporary directory,
 // removed with it (the context reads the module when it first makes the pipeline, so the folder lives as long
@@ -64,12 +73,7 @@ public:
         : dir_(std::filesystem::path(::testing::TempDir()) /
                ("obscura-module-" + name + "-" + std::to_string(::getpid()) + "-" + std::to_string(next()++))) {
         std::filesystem::create_directories(dir_);
-        {
-            std::ofstream out(dir_ / (name + ".spv"), std::ios::binary);
-            out.write(reinterpret_cast<const char*>(words.data()),
-                      std::streamsize(words.size() * sizeof(std::uint32_t)));
-            EXPECT_TRUE(out.good()) << dir_ / (name + ".spv");
-        }
+        writeModule(dir_ / (name + ".spv"), words.data(), words.size());
         ::setenv("OBSCURA_SHADER_DIR", dir_.c_str(), 1);
         ContextSettings settings;
         settings.validation = true;
