@@ -24,12 +24,14 @@ OBSCURA_CONST int kAlchemyChapter = 1;  // "Where Corners Stay Dark": c = 0.1 R,
 OBSCURA_CONST int kAlchemyClassTile = 4;
 OBSCURA_CONST int kAlchemyPixelClasses = 16;
 OBSCURA_CONST int kAlchemyMaxSamples = 1024;
-// The compute pass's workgroup: one row of 64, so that a warp is one row of 32 pixels, 8 of each of the 4
-// classes of a class-tile row, whose samples then fall 4 pixels apart. On an H100 (2026-11-25) the pass took
-// 0.051 ms instead of 0.085 with 8x8 at 1920x1080, and 0.197 instead of 0.366 at 3840x2160 (16x4: 0.062 and
-// 0.250; 32x2: 0.052 and 0.205). The host dispatches the size the compiled shader declares, so a shader
-// swapped in through OBSCURA_SHADER_DIR may try another (bench/gpu-candidates).
-OBSCURA_CONST int kAlchemyWorkgroupX = 64;
+// The compute pass's workgroup: one row of 256, so that a warp is one row of 32 pixels, 8 of each of the 4
+// classes of a class-tile row, whose samples then fall 4 pixels apart. On an H100 (2026-11-25) rows beat
+// squares among 64-invocation shapes (1920x1080: 8x8 0.085 ms, 16x4 0.062, 32x2 0.052, 64x1 0.051), and
+// longer rows won again (2026-11-26, 3 rounds in one run): 256x1 took 0.974 of 64x1's time at 1920x1080 and
+// 0.929 at 3840x2160 (0.1804 ms instead of 0.1942), 128x1 0.967 and 0.947. The host dispatches the size the
+// compiled shader declares, so a shader swapped in through OBSCURA_SHADER_DIR may try another
+// (bench/gpu-candidates).
+OBSCURA_CONST int kAlchemyWorkgroupX = 256;
 OBSCURA_CONST int kAlchemyWorkgroupY = 1;
 
 struct AlchemyConstants {

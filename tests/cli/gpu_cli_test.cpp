@@ -704,14 +704,16 @@ TEST_F(GpuCommands, ShaderDirReplacesEmbeddedShaders) {
 
     // The blur's module where the GTAO pass's belongs: the host's layout check (bindings, push constants) names
     // it. The GTAO pass takes its workgroup size from the module; the blur, which dispatches by its header's,
-    // refuses the GTAO module's size first.
+    // refuses the GTAO module's size first (set here, so that the message does not follow the embedded size).
     std::filesystem::create_directories(path("swapped"));
     const obscura::gpu::ShaderCode blur = obscura::gpu::shaderCode("bilateral_separable");
     obscura::gpu::testing::writeModule(path("swapped/gtao.spv"), blur.words, blur.wordCount);
     setenv("OBSCURA_SHADER_DIR", path("swapped").c_str(), 1);
     expectFailure(bench, {"shader gtao", "the host binds"});
     std::filesystem::create_directories(path("blur"));
-    obscura::gpu::testing::writeModule(path("blur/bilateral_separable.spv"), gtao.words, gtao.wordCount);
+    const std::vector<std::uint32_t> gtao16x4 = obscura::gpu::testing::withWorkgroupSize(
+        std::vector<std::uint32_t>(gtao.words, gtao.words + gtao.wordCount), 16, 4);
+    obscura::gpu::testing::writeModule(path("blur/bilateral_separable.spv"), gtao16x4.data(), gtao16x4.size());
     setenv("OBSCURA_SHADER_DIR", path("blur").c_str(), 1);
     expectFailure(bench, {"shader bilateral_separable", "has workgroups of 16x4x1, the host dispatches 256x1"});
 

@@ -5,7 +5,8 @@
 // result is unchanged.
 //
 // reconstruct_interleaved.comp uses it, and gtao_temporal.comp where it runs the same reconstruction inside
-// the accumulation (at full resolution, and on the grid with the grid's history). The half-resolution
+// the accumulation (at full resolution, and on the grid with the grid's history) with the 5x5 and 4x4
+// windows; there the 2x2 windows read their 4 taps from memory. The half-resolution
 // accumulation with the history at full resolution upsamples, reads 4 grid pixels and declares a tile of 1 slot: on an H100 (2026-11-25) the full tile's shared memory alone, never filled, made that
 // variant 1.8x slower (fewer workgroups per SM).
 //
@@ -14,15 +15,17 @@
 //   float gridValueAt(int x, int y, int c)
 // and calls loadGridTile(width, height) from every invocation of the workgroup (it holds a barrier), before
 // any invocation returns. Then gridTileDepth, gridTileNormal and gridTileValue read the tile; they may be
-// asked only for pixels within kGridTileReach of the workgroup's own (all that the reconstruction reads) and
-// inside the grid. The includer's gridDepth, gridNormal and gridValue (temporal_filters.glsl's grid) call them.
+// asked only for pixels within kGridTileReach of the workgroup's own (all that the reconstruction reads).
+// Outside the grid gridTileDepth is +inf (and the others the edge's), so an includer whose filter reads the
+// tile defines GRID_OUTSIDE_IS_SKY true. The includer's gridDepth, gridNormal and gridValue
+// (temporal_filters.glsl's grid) call them.
 #ifndef OBSCURA_GPU_GRID_TILE_GLSL
 #define OBSCURA_GPU_GRID_TILE_GLSL
 
 // How far the reconstruction's taps reach: 2 for the 5x5 and 4x4 windows. An including shader whose window
 // reaches less defines GRID_TILE_REACH as an expression of its specialization constants: the 2x2 windows
-// (obscura/reconstruct_window.h) reach 1, and their tile is then 18x6 slots instead of 20x8 (16x4
-// workgroups), a third fewer loads of depth, normal and values for the same taps.
+// (obscura/reconstruct_window.h) reach 1, and their tile is then 18x10 slots instead of 20x12 (16x8
+// workgroups), a quarter fewer loads of depth, normal and values for the same taps.
 #ifndef GRID_TILE_REACH
 #define GRID_TILE_REACH 2
 #endif
@@ -48,10 +51,12 @@ void loadGridTile(int width, int height) {
     const int first = int(gl_LocalInvocationID.y) * kTemporalWorkgroupX + int(gl_LocalInvocationID.x);
     for (int t = first; t < kGridTileWidth * kGridTileHeight; t += kTemporalWorkgroupX * kTemporalWorkgroupY) {
         const int tx = t % kGridTileWidth, ty = t / kGridTileWidth;
-        // Pixels outside the grid are never read; they repeat the edge so that every read is in bounds.
-        const int x = clamp(tileOrigin.x + tx, 0, width - 1), y = clamp(tileOrigin.y + ty, 0, height - 1);
+        // Slots outside the grid repeat the edge, so that every load is in bounds, with an infinite depth:
+        // the reconstruction skips them as sky (GRID_OUTSIDE_IS_SKY), as the CPU skips taps outside the image.
+        const int ux = tileOrigin.x + tx, uy = tileOrigin.y + ty;
+        const int x = clamp(ux, 0, width - 1), y = clamp(uy, 0, height - 1);
         const int s = ty * kGridTileStride + tx;
-        tileDepth[s] = gridDepthAt(x, y);
+        tileDepth[s] = x == ux && y == uy ? gridDepthAt(x, y) : uintBitsToFloat(0x7f800000u);
         const vec3 n = gridNormalAt(x, y);
         tileNormal[0][s] = n.x;
         tileNormal[1][s] = n.y;

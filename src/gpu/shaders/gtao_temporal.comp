@@ -63,16 +63,21 @@ float gridValueAt(int x, int y, int c) {
     const uint i = uint(y) * uint(gridWidth()) + uint(x);
     return c == 0 ? gridVisibility[i] : gridBent[3 * i + uint(c - 1)];
 }
-// The reconstruction reads the grid from a shared-memory tile (grid_tile.glsl): on an H100 (2026-11-25,
-// visibility only, 1920x1080, full resolution) the pass took 0.086 ms instead of 0.136 without history (the
-// spatial variant) and 0.115 instead of 0.159 with it. The upsampling reads 4 grid pixels straight from
-// memory, with a tile of one slot.
-#define GRID_TILE_SLOTS (kReconstructs ? kGridTileHeight * kGridTileStride : 1)
-#define GRID_TILE_REACH (kWindowPhase >= 4 ? 1 : 2)  // the 2x2 windows reach 1 (obscura/reconstruct_window.h)
+// The reconstruction with the 5x5 and 4x4 windows reads the grid from a shared-memory tile (grid_tile.glsl):
+// on an H100 (2026-11-25, visibility only, 1920x1080, full resolution) the pass took 0.086 ms instead of 0.136
+// without history (the spatial variant) and 0.115 instead of 0.159 with it. The 2x2 windows gather 4 taps, all
+// within one pixel of their own: they read them from memory, where the neighbouring invocations' reads leave
+// them in the caches, without the tile's loads, its barrier and its shared memory (which costs resident
+// workgroups); on the H100 (2026-11-26, the spatio-temporal target's flags) that took the grid's accumulation
+// to 0.930 of the tiled time at 3840x2160 (0.0577 ms instead of 0.0618) and 0.926 at 1920x1080. The
+// upsampling reads 4 grid pixels straight from memory too. Where the tile is not filled it is one slot.
+const bool kTiled = kReconstructs && kWindowPhase < 4;
+#define GRID_TILE_SLOTS (kTiled ? kGridTileHeight * kGridTileStride : 1)
+#define GRID_OUTSIDE_IS_SKY kTiled  // only the tile marks the pixels outside the grid as sky
 #include "grid_tile.glsl"
-float gridDepth(int x, int y) { return kReconstructs ? gridTileDepth(x, y) : gridDepthAt(x, y); }
-vec3 gridNormal(int x, int y) { return kReconstructs ? gridTileNormal(x, y) : gridNormalAt(x, y); }
-float gridValue(int x, int y, int c) { return kReconstructs ? gridTileValue(x, y, c) : gridValueAt(x, y, c); }
+float gridDepth(int x, int y) { return kTiled ? gridTileDepth(x, y) : gridDepthAt(x, y); }
+vec3 gridNormal(int x, int y) { return kTiled ? gridTileNormal(x, y) : gridNormalAt(x, y); }
+float gridValue(int x, int y, int c) { return kTiled ? gridTileValue(x, y, c) : gridValueAt(x, y, c); }
 
 #include "temporal_filters.glsl"
 #include "temporal_pixel.glsl"
@@ -80,7 +85,7 @@ float gridValue(int x, int y, int c) { return kReconstructs ? gridTileValue(x, y
 void main() {
     const ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     const int w = latticeWidth(), h = latticeHeight();
-    if (kReconstructs) loadGridTile(w, h);
+    if (kTiled) loadGridTile(w, h);
     if (p.x >= w || p.y >= h) return;
     const uint i = uint(p.y) * uint(w) + uint(p.x);
     const float depth = depthPlane[pixelIndex(p.x, p.y)];

@@ -58,8 +58,8 @@ int latticeHeight() { return (k.height + 1) / 2; }
 uint pixelIndex(int x, int y) { return uint(2 * y) * uint(k.width) + uint(2 * x); }
 
 // The evaluated pixels: grid pixel tileOrigin + (x, y) in slot y kBlockX + x. Slots of pixels outside the
-// grid hold an infinite depth and nothing else: the reconstruction skips taps outside the grid by its bounds
-// tests, and would skip them as sky without (as bench/gpu-candidates/reconstruct-sky-apron's does).
+// grid hold an infinite depth and nothing else: the reconstruction skips taps there as sky, with no bounds
+// tests (GRID_OUTSIDE_IS_SKY, temporal_filters.glsl).
 const int kTileSlots = kBlockX * kBlockY;
 const int kGridChannels = kBentNormal != 0 ? 4 : 1;
 shared float tileDepth[kTileSlots];
@@ -80,6 +80,7 @@ float gridValue(int x, int y, int c) {
     const int s = tileIndex(x, y);
     return c == 0 ? tileVisibility[s] : tileBent[c - 1][s];
 }
+#define GRID_OUTSIDE_IS_SKY true
 
 #include "temporal_filters.glsl"
 #define k frameConstants

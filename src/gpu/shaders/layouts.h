@@ -127,14 +127,16 @@ OBSCURA_CONST int kGtaoSpecBeyondRadius = 5;
 OBSCURA_CONST int kGtaoSpecPackedNormals = 6;
 // The push constants are one GtaoConstants (obscura/gtao_constants.h).
 OBSCURA_CONST int kGtaoPushConstantBytes = 104;
-// 16x4: a warp is 16 x 2 pixels. With the 4x4 interleave (the spatial and temporal variants) that holds each
-// direction of the pattern 2 times instead of once, so that more of a warp's samples share cache lines; on an
-// H100 (2026-11-25, visibility only) the interleaved pass took 0.244 ms instead of 0.274 at 1920x1080 (0.903
-// instead of 1.183 at 3840x2160), and the plain pass the same as with 8x8. 32x2 gained 1-3% more with the
-// interleave and lost 2% without it. The host dispatches the size the compiled shader declares, so a shader
+// 32x2: a warp is one row of 32 pixels, which holds each direction of the 4x4 interleave (the half-resolution,
+// spatial and temporal variants) 8 times, so that more of a warp's samples share cache lines. On an H100
+// (2026-11-25, visibility only) 16x4 took the interleaved pass 0.244 ms instead of 0.274 with 8x8 at 1920x1080,
+// and 32x2 gained 1-3% more. Since then every configuration a target is held to runs the interleaved pass
+// with planar-nearest samples, and there 32x2 took 0.930 of 16x4's time (gtao-half, 1920x1080), 0.915
+// (3840x2160) and 0.932 on the spatio-temporal grid (2026-11-26, 3 rounds in one run); the plain pass, no
+// target's, lost 2.0% and 1.2%. The host dispatches the size the compiled shader declares, so a shader
 // swapped in through OBSCURA_SHADER_DIR may try another (bench/gpu-candidates).
-OBSCURA_CONST int kGtaoWorkgroupX = 16;
-OBSCURA_CONST int kGtaoWorkgroupY = 4;
+OBSCURA_CONST int kGtaoWorkgroupX = 32;
+OBSCURA_CONST int kGtaoWorkgroupY = 2;
 OBSCURA_CONST int kGtaoRotations = 6;  // ssao::kGtaoRotations, which GLSL cannot include
 
 // ---- gtao_mips.comp (src/gpu/gtao_pass.cpp) ----

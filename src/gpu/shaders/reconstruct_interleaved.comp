@@ -36,6 +36,7 @@ float gridValueAt(int x, int y, int c) {
 float gridDepth(int x, int y) { return gridTileDepth(x, y); }
 vec3 gridNormal(int x, int y) { return gridTileNormal(x, y); }
 float gridValue(int x, int y, int c) { return gridTileValue(x, y, c); }
+#define GRID_OUTSIDE_IS_SKY true  // the tile's apron outside the grid is +inf (grid_tile.glsl)
 
 #include "temporal_filters.glsl"
 

@@ -16,12 +16,23 @@
 //   float gridDepth(int x, int y)  linear depth of grid pixel (x, y), +inf for sky
 //   vec3 gridNormal(int x, int y)  its view normal (the reconstruction's guide; the upsampling reads none)
 //   float gridValue(int x, int y, int c)
+// and may define GRID_OUTSIDE_IS_SKY as an expression of its specialization constants that is true where
+// gridDepth gives +inf for the pixels just outside the grid (a shared-memory tile whose apron is marked so):
+// the reconstruction's taps then skip them by their sky test and need no bounds tests.
 #ifndef OBSCURA_GPU_TEMPORAL_FILTERS_GLSL
 #define OBSCURA_GPU_TEMPORAL_FILTERS_GLSL
 
 #include "obscura/reconstruct_window.h"
 
 #include "vector_math.glsl"  // ---- obscura/math.h ----
+
+#ifndef GRID_OUTSIDE_IS_SKY
+#define GRID_OUTSIDE_IS_SKY false
+#endif
+// On an H100 (2026-11-26) leaving the bounds tests to the sky test took the grid's accumulation with the 5x5
+// window to 0.941 of its time at 1920x1080 and 0.949 at 3840x2160: only workgroups at the image's border
+// ever find a tap outside, and every tap paid for the tests.
+const bool kGridOutsideIsSky = GRID_OUTSIDE_IS_SKY;
 
 // ---- obscura/bilateral.h ----
 float tapWeight(float spatial, float d, vec3 n, float di, vec3 ni, float invTwoSigmaD2, bool useNormal) {
@@ -57,10 +68,11 @@ void reconstructInterleaved(int x, int y, int w, int h, float depthSigma, int wi
     float sum[4] = float[4](0.0, 0.0, 0.0, 0.0), weightSum = 0.0;
     for (int dy = firstY; dy <= lastY; ++dy) {
         const int yy = y + dy;
-        if (yy < 0 || yy >= h) continue;
+        if (!kGridOutsideIsSky && (yy < 0 || yy >= h)) continue;
         for (int dx = firstX; dx <= lastX; ++dx) {
             const int xx = x + dx;
-            if (xx < 0 || xx >= w) continue;
+            if (!kGridOutsideIsSky && (xx < 0 || xx >= w)) continue;
+            // Outside the grid with kGridOutsideIsSky: +inf, skipped here as the CPU's bounds test skips it.
             const float di = gridDepth(xx, yy);
             if (!finiteDepth(di)) continue;
             const float spatial = reconstructWindowWeight(windowPhase, dx, dy);

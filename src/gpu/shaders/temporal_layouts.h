@@ -24,10 +24,14 @@ namespace obscura::gpu {
 // The workgroup of the spatio-temporal passes (reconstruction, upsampling, accumulation). On an H100
 // (2026-11-25, visibility only, 1920x1080) 16x4 took the accumulation 0.104 ms instead of 0.115 with 8x8,
 // its variant without history 0.081 instead of 0.087, and the half-resolution accumulation 0.061 instead of
-// 0.069; 32x2 was slower at full resolution. The host dispatches the size the compiled shaders declare, so
-// shaders swapped in through OBSCURA_SHADER_DIR may try another (bench/gpu-candidates).
+// 0.069; 32x2 was slower at full resolution. 16x8 keeps the 16-pixel rows and halves the share of a
+// shared-memory tile's apron (grid_tile.glsl: 18x10 slots for 128 pixels instead of 18x6 for 64): on the
+// H100 (2026-11-26, 3 rounds in one run) the grid's accumulation with the 5x5 window took 0.901 of 16x4's
+// time at 1920x1080 and 0.902 at 3840x2160, the half-resolution frame's 0.937; the upsampling did not move.
+// The host dispatches the size the compiled shaders declare, so shaders swapped in through
+// OBSCURA_SHADER_DIR may try another (bench/gpu-candidates).
 OBSCURA_CONST int kTemporalWorkgroupX = 16;
-OBSCURA_CONST int kTemporalWorkgroupY = 4;
+OBSCURA_CONST int kTemporalWorkgroupY = 8;
 
 // ---- gtao.comp's variant (layouts.h has its bindings) ----
 // constant_id of the grid step: invocation (x, y) evaluates full-resolution pixel (step x, step y) with the
