@@ -128,6 +128,16 @@ if [ ${#patches[@]} -gt 0 ]; then
     done
   done
   grep -q "^alchemy " "$work/waiting/candidates-ab.txt" || fail "candidates-ab.txt: $(cat "$work/waiting/candidates-ab.txt")"
+  # Every candidate again in the spatio-temporal target's configuration, which targets.txt reads.
+  grep -q "^gtao-temporal-grid .* upsample " "$work/waiting/candidates-grid-ab.txt" ||
+    fail "candidates-grid-ab.txt: $(cat "$work/waiting/candidates-grid-ab.txt")"
+  python3 - "$work/waiting/candidates-grid-ab.json" "$(ls "$work/spv" | tr '\n' ' ')" <<'EOF' ||
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert [v["name"] for v in d["variants"]] == ["embedded"] + sys.argv[2].split(), d["variants"]
+assert all("--packed-output" in v["flags"] and "--alternating-window-size" in v["flags"] for v in d["variants"])
+EOF
+    fail "candidates-grid-ab.json: not every candidate with the target's flags: $(cat "$work/waiting/candidates-grid-ab.json")"
 fi
 if [ ${#probes[@]} -gt 0 ]; then
   grep -q "^alchemy .* alchemy " "$work/waiting/probes-ab.txt" || fail "probes-ab.txt: $(cat "$work/waiting/probes-ab.txt")"

@@ -82,8 +82,23 @@ PY
 expect "spatio-temporal GTAO" 3840x2160 0.1450 "met       " "gtao-temporal-grid (fused-ab: fused; flags: "
 line "spatio-temporal GTAO" 3840x2160 | grep -q -- "--fused-temporal" || fail "fused flags: $(cat "$work/out")"
 
+# candidates-grid-ab.json (gpu-waiting: every candidate with the target's flags) counts too, naming the shaders.
+python3 - "$work" <<'PY'
+import json, os, sys
+flags = ["--gtao-sampling", "planar-nearest", "--alternating-window", "--packed-normals", "--packed-output"]
+rows = lambda ms: [{"case": "gtao-temporal-grid", "size": "3840x2160", "pass": "frame", "ms": ms}]
+json.dump({"device": "NVIDIA H100 80GB HBM3", "bench_flags": ["--cases", "gtao-temporal-grid"], "rounds": 3,
+           "variants": [{"name": "embedded", "flags": flags, "shaders": "", "median_ms": rows(0.151)},
+                        {"name": "copy", "flags": flags, "shaders": "/x/candidates/upsample-grid-pixel-copy",
+                         "median_ms": rows(0.139)}]},
+          open(os.path.join(sys.argv[1], "candidates-grid-ab.json"), "w"))
+PY
+"$targets" "$work" >"$work/out" 2>&1 || fail "gpu-targets failed with candidates-grid-ab.json: $(cat "$work/out")"
+expect "spatio-temporal GTAO" 3840x2160 0.1390 "met       " "(candidates-grid-ab: copy; flags: "
+line "spatio-temporal GTAO" 3840x2160 | grep -q "shaders: upsample-grid-pixel-copy" || fail "shaders: $(cat "$work/out")"
+
 # A missing file leaves its target unanswered; a corrupt one fails, naming it.
-rm "$work/grid-ab.json" "$work/fused-ab.json"
+rm "$work/grid-ab.json" "$work/fused-ab.json" "$work/candidates-grid-ab.json"
 "$targets" "$work" >"$work/out" 2>&1 || fail "gpu-targets failed without grid-ab.json: $(cat "$work/out")"
 line "spatio-temporal GTAO" 3840x2160 | grep -q "unanswered grid-ab.json or fused-ab.json" || fail "not unanswered: $(cat "$work/out")"
 echo '{"variants": [{"name": "x"}]}' >"$work/grid-ab.json"
