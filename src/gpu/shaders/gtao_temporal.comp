@@ -69,7 +69,7 @@ float gridValueAt(int x, int y, int c) {
 // within one pixel of their own: they read them from memory, where the neighbouring invocations' reads leave
 // them in the caches, without the tile's loads, its barrier and its shared memory (which costs resident
 // workgroups); on the H100 (2026-11-26, the spatio-temporal target's flags) that took the grid's accumulation
-// to 0.930 of the tiled time at 3840x2160 (0.0577 ms instead of 0.0618) and 0.926 at 1920x1080. The
+// to 0.934 of the tiled time at 3840x2160 (0.0577 ms instead of 0.0618) and 0.926 at 1920x1080. The
 // upsampling reads 4 grid pixels straight from memory too. Where the tile is not filled it is one slot.
 const bool kTiled = kReconstructs && kWindowPhase < 4;
 #define GRID_TILE_SLOTS (kTiled ? kGridTileHeight * kGridTileStride : 1)
