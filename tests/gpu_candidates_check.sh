@@ -8,7 +8,10 @@
 #   same bits", else within 1e-5;
 # - with no patch waiting, gpu-candidates refuses to run and says so;
 # - gpu-ab times two variants against each other and writes its JSON; it refuses a missing folder;
-# - the probes of bench/gpu-probes (wrong by design, timed only) apply, compile and run in gpu-waiting.
+# - the probes of bench/gpu-probes (wrong by design, timed only) apply, compile and run in gpu-waiting;
+# - gpu-waiting writes every part's file, times each candidate again with the spatio-temporal target's flags
+#   (candidates-grid-ab) and the caller's previous depth against the history's copy (depth-ab), and names a
+#   part that fails while the others run.
 # Exit 77 (skipped) without a Vulkan device, python3 or glslc. Arguments: source dir, build dir, scratch dir.
 source "$(dirname "$0")/check_common.sh"
 check_setup gpu_candidates_check "$@"
