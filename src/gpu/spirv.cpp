@@ -60,7 +60,7 @@ SpirvLayout reflect(const Spirv& code) {
     // which wins over it where the two differ (SPIR-V 1.5, section 3.21 "BuiltIn": WorkgroupSize).
     std::uint32_t workgroupSizeId = 0;
     std::map<std::uint32_t, std::vector<std::uint32_t>> composites;  // id -> constituent ids
-    bool specWorkgroupSize = false;
+    std::set<std::uint32_t> specComposites;                          // those that are specialization constants
     for (std::size_t i = 5; i < code.count;) {
         const std::uint32_t words = code.words[i] >> 16, op = code.words[i] & 0xffffu;
         if (words == 0 || i + words > code.count) malformed("truncated instruction");
@@ -87,7 +87,7 @@ SpirvLayout reflect(const Spirv& code) {
         case OpConstantComposite:
         case OpSpecConstantComposite:
             if (words >= 3) composites[a[1]].assign(a + 2, a + words - 1);
-            if (words >= 3 && op == OpSpecConstantComposite && a[1] == workgroupSizeId) specWorkgroupSize = true;
+            if (words >= 3 && op == OpSpecConstantComposite) specComposites.insert(a[1]);
             break;
         case OpVariable:
             if (words >= 4 && a[2] == StorageClassPushConstant) pushType = a[0];
@@ -109,7 +109,7 @@ SpirvLayout reflect(const Spirv& code) {
     if (workgroupSizeId != 0) {
         // A size the host could only know after specialization: the host dispatches by the declared size, so
         // such a module is refused rather than run with the wrong grid.
-        if (specWorkgroupSize) malformed("workgroup size given by specialization constants");
+        if (specComposites.count(workgroupSizeId)) malformed("workgroup size given by specialization constants");
         const auto size = composites.find(workgroupSizeId);
         if (size == composites.end() || size->second.size() != 3)
             malformed("WorkgroupSize is not a constant 3-component vector");

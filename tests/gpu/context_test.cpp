@@ -76,16 +76,9 @@ TEST(GpuShaders, ReflectionReadsTheWorkgroupSizeADeviceRuns) {
     EXPECT_EQ(size(testing::withWorkgroupSize(embedded, 32, 2)), (std::vector<std::uint32_t>{32, 2, 1}));
     // The built-in's composite made a specialization constant (OpSpecConstantComposite, 51).
     std::vector<std::uint32_t> spec = builtinOnly;
-    std::uint32_t builtin = 0;
-    int changed = 0;
-    for (std::size_t i = 5; i < spec.size(); i += spec[i] >> 16) {
-        if ((spec[i] & 0xffffu) == 71 && spec[i + 2] == 11 && spec[i + 3] == 25) builtin = spec[i + 1];
-        if ((spec[i] & 0xffffu) == 44 && spec[i + 2] == builtin && builtin != 0) {
-            spec[i] = (spec[i] & 0xffff0000u) | 51u;
-            ++changed;
-        }
-    }
-    ASSERT_EQ(changed, 1);
+    const std::size_t composite = testing::workgroupSizeComposite(spec);
+    ASSERT_NE(composite, 0u);
+    spec[composite] = (spec[composite] & 0xffff0000u) | 51u;
     EXPECT_NE(testing::errorMessage([&] { reflect({spec.data(), spec.size()}); }).find("specialization"),
               std::string::npos);
 }
