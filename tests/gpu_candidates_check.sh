@@ -10,8 +10,8 @@
 # - gpu-ab times two variants against each other and writes its JSON; it refuses a missing folder;
 # - the probes of bench/gpu-probes (wrong by design, timed only) apply, compile and run in gpu-waiting;
 # - gpu-waiting writes every part's file, times each candidate again with the spatio-temporal target's flags
-#   (candidates-grid-ab) and the caller's previous depth against the history's copy (depth-ab), and names a
-#   part that fails while the others run.
+#   (candidates-grid-ab), the target's configuration against its fused pass and its history's depth copy
+#   (fused-ab), and names a part that fails while the others run.
 # Exit 77 (skipped) without a Vulkan device, python3 or glslc. Arguments: source dir, build dir, scratch dir.
 source "$(dirname "$0")/check_common.sh"
 check_setup gpu_candidates_check "$@"
@@ -120,7 +120,7 @@ fi
 # gpu-waiting: every part, each into its file, at a tiny size, with one round.
 "$src/scripts/gpu-waiting" --obscura "$tool" --candidates "$work/spv" "${probeFlags[@]}" --rounds 1 --small "$work/waiting" \
   -- --sizes 48x32 --frames 2 --warmup 0 --inputs 1 2>"$work/waiting.err" || fail "gpu-waiting: $(cat "$work/waiting.err")"
-for f in verify.txt grid-ab.txt grid-ab.json fused-ab.txt fused-ab.json depth-ab.txt depth-ab.json pipelines-fused.json tiled-ab.txt tiled-ab.json normals-ab.txt normals-ab.json pipelines.json \
+for f in verify.txt grid-ab.txt grid-ab.json fused-ab.txt fused-ab.json pipelines-fused.json tiled-ab.txt tiled-ab.json normals-ab.txt normals-ab.json pipelines.json \
   internals; do
   [ -e "$work/waiting/$f" ] || fail "gpu-waiting wrote no $f: $(ls "$work/waiting")"
 done
@@ -156,13 +156,14 @@ grep -q "planar-nearest-window2 ms.*planar-nearest-window2-packed-normals ms.*pl
   "$work/waiting/grid-ab.txt" || fail "grid-ab.txt, 2x2 windows: $(cat "$work/waiting/grid-ab.txt")"
 grep -q "planar-nearest-window2-packed-all ms  *planar-nearest-window2-packed-all-fused ms" "$work/waiting/fused-ab.txt" ||
   fail "fused-ab.txt: $(cat "$work/waiting/fused-ab.txt")"
-# The previous depth kept by the caller against the history's copy: the copy's runs lack the flag.
-grep -q "^gtao-temporal-grid .* temporal " "$work/waiting/depth-ab.txt" || fail "depth-ab.txt: $(cat "$work/waiting/depth-ab.txt")"
-python3 - "$work/waiting/depth-ab.json" <<'EOF' || fail "depth-ab.json: $(cat "$work/waiting/depth-ab.json")"
+# The history's depth copy against the caller's previous depth: only the copy's runs lack the flag.
+python3 - "$work/waiting/fused-ab.json" <<'EOF' || fail "fused-ab.json: $(cat "$work/waiting/fused-ab.json")"
 import json, sys
 v = {x["name"]: x["flags"] for x in json.load(open(sys.argv[1]))["variants"]}
-assert list(v) == ["kept", "copy"] and "--keep-previous-depth" in v["kept"] and "--keep-previous-depth" not in v["copy"]
-assert all("--packed-output" in f for f in v.values())
+base = "planar-nearest-window2-packed-all"
+assert list(v) == [base, base + "-fused", base + "-depth-copy"], list(v)
+assert ["--keep-previous-depth" in v[n] for n in v] == [True, True, False], v
+assert all("--packed-output" in f and "--alternating-window-size" in f for f in v.values()), v
 EOF
 # The fused variant has no gtao pass of its own: its column there is "-".
 grep -q "^gtao-temporal-grid  *[0-9x]*  *gtao  *[0-9.]*  *- " "$work/waiting/fused-ab.txt" ||
@@ -175,7 +176,6 @@ if "$src/scripts/gpu-waiting" --obscura "$tool" --small "$work/w3" -- --sizes 16
 fi
 grep -q "grid history's timing FAILED" "$work/waiting.err" || fail "no failure named: $(cat "$work/waiting.err")"
 grep -q "fused pass's timing FAILED" "$work/waiting.err" || fail "no failure named: $(cat "$work/waiting.err")"
-grep -q "previous depth's timing FAILED" "$work/waiting.err" || fail "no failure named: $(cat "$work/waiting.err")"
 grep -q "tiled blur's timing FAILED" "$work/waiting.err" || fail "no failure named: $(cat "$work/waiting.err")"
 grep -q "packed normals' timing FAILED" "$work/waiting.err" || fail "no failure named: $(cat "$work/waiting.err")"
 for f in pipelines.json verify.txt; do [ -s "$work/w3/$f" ] || fail "after a failed part, no $f: $(ls "$work/w3")"; done
