@@ -264,6 +264,12 @@ TEST(GpuGtao, AnotherWorkgroupSizeGivesTheSameResult) {
         EXPECT_EQ(resized.bentNormal.pixels, embedded.bentNormal.pixels) << "interleave " << s.interleave;
     }
     EXPECT_EQ(testing::validationReport(other.context()), "");
+    // The equality above says something only if the rewritten module ran: the same loading with a size no
+    // device has is refused, naming it.
+    testing::ContextWithModule huge("gtao", testing::withWorkgroupSize(words, 65536, 1));
+    const std::string refused = testing::errorMessage(
+        [&] { computeGtao(huge.context(), testing::render("plane", 16, 8), preset(ssao::GtaoQuality::High)); });
+    EXPECT_NE(refused.find("65536x1x1, beyond the device's limits"), std::string::npos) << refused;
     EXPECT_EQ(testing::validationReport(context), "");
 }
 
