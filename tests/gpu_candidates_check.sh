@@ -11,7 +11,8 @@
 # - the probes of bench/gpu-probes (wrong by design, timed only) apply, compile and run in gpu-waiting;
 # - gpu-waiting writes every part's file, times each candidate again with the spatio-temporal target's flags
 #   (candidates-grid-ab), the target's configuration against its fused pass and its history's depth copy
-#   (fused-ab), and names a part that fails while the others run.
+#   (fused-ab), and names a part that fails while the others run; with --parts it runs only the parts named,
+#   and refuses a name it does not know or a part with nothing to time.
 # Exit 77 (skipped) without a Vulkan device, python3 or glslc. Arguments: source dir, build dir, scratch dir.
 source "$(dirname "$0")/check_common.sh"
 check_setup gpu_candidates_check "$@"
@@ -187,4 +188,20 @@ if "$src/scripts/gpu-waiting" --obscura "$tool" --probes "$work/missing" "$work/
   fail "gpu-waiting ran with a missing probes folder"
 fi
 grep -q "probes .* is not a folder" "$work/waiting.err" || fail "$(cat "$work/waiting.err")"
+# --parts: only the parts named run (targets.txt is always written); an unknown name, or a part with nothing to
+# time, is refused before anything runs.
+"$src/scripts/gpu-waiting" --obscura "$tool" --parts fused-ab "$work/w5" \
+  -- --sizes 48x32 --frames 2 --warmup 0 --inputs 1 2>"$work/waiting.err" || fail "gpu-waiting --parts: $(cat "$work/waiting.err")"
+[ "$(cd "$work/w5" && ls | tr '\n' ' ')" = "fused-ab.json fused-ab.txt targets.txt " ] ||
+  fail "gpu-waiting --parts fused-ab wrote: $(ls "$work/w5")"
+grep -q "planar-nearest-window2-packed-all-depth-copy ms" "$work/w5/fused-ab.txt" || fail "$(cat "$work/w5/fused-ab.txt")"
+if "$src/scripts/gpu-waiting" --obscura "$tool" --parts fused-ab,grids-ab "$work/w6" 2>"$work/waiting.err"; then
+  fail "gpu-waiting ran an unknown part"
+fi
+grep -q "no part 'grids-ab'" "$work/waiting.err" || fail "$(cat "$work/waiting.err")"
+[ ! -e "$work/w6" ] || fail "gpu-waiting refused --parts but made $work/w6"
+if "$src/scripts/gpu-waiting" --obscura "$tool" --parts probes-ab "$work/w7" 2>"$work/waiting.err"; then
+  fail "gpu-waiting ran probes-ab without probes"
+fi
+grep -q "names probes-ab but no --probes" "$work/waiting.err" || fail "$(cat "$work/waiting.err")"
 echo "gpu_candidates_check: ok ($count candidates)"
