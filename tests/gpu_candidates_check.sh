@@ -190,7 +190,7 @@ fi
 grep -q "probes .* is not a folder" "$work/waiting.err" || fail "$(cat "$work/waiting.err")"
 # --parts: only the parts named run (targets.txt is always written); an unknown name, or a part with nothing to
 # time, is refused before anything runs.
-"$src/scripts/gpu-waiting" --obscura "$tool" --parts fused-ab "$work/w5" \
+"$src/scripts/gpu-waiting" --obscura "$tool" --parts fused-ab --rounds 1 "$work/w5" \
   -- --sizes 48x32 --frames 2 --warmup 0 --inputs 1 2>"$work/waiting.err" || fail "gpu-waiting --parts: $(cat "$work/waiting.err")"
 [ "$(cd "$work/w5" && ls | tr '\n' ' ')" = "fused-ab.json fused-ab.txt targets.txt " ] ||
   fail "gpu-waiting --parts fused-ab wrote: $(ls "$work/w5")"

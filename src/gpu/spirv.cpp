@@ -16,31 +16,7 @@ namespace obscura::gpu {
 
 namespace {
 
-enum : std::uint32_t {
-    kMagic = 0x07230203,
-    OpExecutionMode = 16,
-    OpTypeInt = 21,
-    OpTypeFloat = 22,
-    OpTypeVector = 23,
-    OpTypeSampledImage = 27,
-    OpTypeArray = 28,
-    OpTypeStruct = 30,
-    OpTypePointer = 32,
-    OpConstant = 43,
-    OpConstantComposite = 44,
-    OpSpecConstantComposite = 51,
-    OpVariable = 59,
-    OpDecorate = 71,
-    OpMemberDecorate = 72,
-    ExecutionModeLocalSize = 17,
-    DecorationSpecId = 1,
-    DecorationBuiltIn = 11,
-    DecorationArrayStride = 6,
-    DecorationBinding = 33,
-    DecorationOffset = 35,
-    BuiltInWorkgroupSize = 25,
-    StorageClassPushConstant = 9,
-};
+using namespace spirv;
 
 [[noreturn]] void malformed(const std::string& why) { fail("SPIR-V", why); }
 

@@ -9,6 +9,36 @@
 
 namespace obscura::gpu {
 
+// The numbers of the SPIR-V binary form that the reflection below reads, and the tests that rewrite a
+// module (tests/gpu/spirv_edit.h) write (SPIR-V 1.5 specification, section 3).
+namespace spirv {
+enum : std::uint32_t {
+    kMagic = 0x07230203,
+    OpExecutionMode = 16,
+    OpTypeInt = 21,
+    OpTypeFloat = 22,
+    OpTypeVector = 23,
+    OpTypeSampledImage = 27,
+    OpTypeArray = 28,
+    OpTypeStruct = 30,
+    OpTypePointer = 32,
+    OpConstant = 43,
+    OpConstantComposite = 44,
+    OpSpecConstantComposite = 51,
+    OpVariable = 59,
+    OpDecorate = 71,
+    OpMemberDecorate = 72,
+    ExecutionModeLocalSize = 17,
+    DecorationSpecId = 1,
+    DecorationBuiltIn = 11,
+    DecorationArrayStride = 6,
+    DecorationBinding = 33,
+    DecorationOffset = 35,
+    BuiltInWorkgroupSize = 25,
+    StorageClassPushConstant = 9,
+};
+} // namespace spirv
+
 struct Spirv {
     const std::uint32_t* words;
     std::size_t count;

@@ -69,16 +69,16 @@ TEST(GpuShaders, ReflectionReadsTheWorkgroupSizeADeviceRuns) {
     const std::vector<std::uint32_t> declared = {std::uint32_t(ssao::kAlchemyWorkgroupX),
                                                  std::uint32_t(ssao::kAlchemyWorkgroupY), 1u};
     EXPECT_EQ(size(embedded), declared);
-    // Only the built-in rewritten: it wins over the execution mode, which still says 64 x 1.
+    // Only the built-in rewritten: it wins over the execution mode, which still says the embedded size.
     const std::vector<std::uint32_t> builtinOnly = testing::withWorkgroupSize(embedded, 24, 3, false);
     ASSERT_NE(builtinOnly, embedded) << "the module has no WorkgroupSize built-in to rewrite";
     EXPECT_EQ(size(builtinOnly), (std::vector<std::uint32_t>{24, 3, 1}));
     EXPECT_EQ(size(testing::withWorkgroupSize(embedded, 32, 2)), (std::vector<std::uint32_t>{32, 2, 1}));
-    // The built-in's composite made a specialization constant (OpSpecConstantComposite, 51).
+    // The built-in's composite made a specialization constant.
     std::vector<std::uint32_t> spec = builtinOnly;
     const std::size_t composite = testing::workgroupSizeComposite(spec);
     ASSERT_NE(composite, 0u);
-    spec[composite] = (spec[composite] & 0xffff0000u) | 51u;
+    spec[composite] = (spec[composite] & 0xffff0000u) | spirv::OpSpecConstantComposite;
     EXPECT_NE(testing::errorMessage([&] { reflect({spec.data(), spec.size()}); }).find("specialization"),
               std::string::npos);
 }

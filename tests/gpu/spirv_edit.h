@@ -3,6 +3,7 @@
 // section 2.3 "Physical Layout" and 3 "Binary Form").
 #pragma once
 
+#include "gpu/spirv.h"
 #include "obscura/gpu.h"
 
 #include <gtest/gtest.h>
@@ -19,16 +20,16 @@
 
 namespace obscura::gpu::testing {
 
-enum : std::uint32_t { OpExecutionMode = 16, OpConstant = 43, OpConstantComposite = 44, OpDecorate = 71 };
-
 // The word index of the OpConstantComposite decorated BuiltIn WorkgroupSize, which glslang emits beside the
 // LocalSize execution mode; 0 where the module has none.
 inline std::size_t workgroupSizeComposite(const std::vector<std::uint32_t>& words) {
     std::uint32_t builtin = 0;
     for (std::size_t i = 5; i < words.size() && (words[i] >> 16) != 0; i += words[i] >> 16) {
         const std::uint32_t op = words[i] & 0xffffu, length = words[i] >> 16;
-        if (op == OpDecorate && length >= 4 && words[i + 2] == 11 && words[i + 3] == 25) builtin = words[i + 1];
-        if (op == OpConstantComposite && length == 6 && words[i + 2] == builtin && builtin != 0) return i;
+        if (op == spirv::OpDecorate && length >= 4 && words[i + 2] == spirv::DecorationBuiltIn &&
+            words[i + 3] == spirv::BuiltInWorkgroupSize)
+            builtin = words[i + 1];
+        if (op == spirv::OpConstantComposite && length == 6 && words[i + 2] == builtin && builtin != 0) return i;
     }
     return 0;
 }
@@ -40,7 +41,8 @@ inline std::vector<std::uint32_t> withWorkgroupSize(std::vector<std::uint32_t> w
                                                     std::uint32_t y, bool executionMode = true) {
     // The execution mode precedes the constants, so rewriting it leaves the composite's index as it was.
     for (std::size_t i = 5; executionMode && i < words.size() && (words[i] >> 16) != 0; i += words[i] >> 16)
-        if ((words[i] & 0xffffu) == OpExecutionMode && (words[i] >> 16) >= 6 && words[i + 2] == 17) {  // LocalSize
+        if ((words[i] & 0xffffu) == spirv::OpExecutionMode && (words[i] >> 16) >= 6 &&
+            words[i + 2] == spirv::ExecutionModeLocalSize) {
             words[i + 3] = x;
             words[i + 4] = y;
         }
@@ -49,14 +51,14 @@ inline std::vector<std::uint32_t> withWorkgroupSize(std::vector<std::uint32_t> w
     // The scalar type of the old constituents: that of the OpConstant defining the first.
     std::uint32_t scalarType = 0;
     for (std::size_t j = 5; j < i; j += words[j] >> 16)
-        if ((words[j] & 0xffffu) == OpConstant && words[j + 2] == words[i + 3]) scalarType = words[j + 1];
+        if ((words[j] & 0xffffu) == spirv::OpConstant && words[j + 2] == words[i + 3]) scalarType = words[j + 1];
     if (scalarType == 0) return words;
     const std::uint32_t idX = words[3], idY = words[3] + 1;
     words[3] += 2;  // the id bound
     words[i + 3] = idX;
     words[i + 4] = idY;
-    const std::vector<std::uint32_t> constants = {(4u << 16) | OpConstant, scalarType, idX, x,
-                                                  (4u << 16) | OpConstant, scalarType, idY, y};
+    const std::vector<std::uint32_t> constants = {(4u << 16) | spirv::OpConstant, scalarType, idX, x,
+                                                  (4u << 16) | spirv::OpConstant, scalarType, idY, y};
     words.insert(words.begin() + std::ptrdiff_t(i), constants.begin(), constants.end());
     return words;
 }
