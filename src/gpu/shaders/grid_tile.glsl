@@ -24,14 +24,14 @@
 
 // How far the reconstruction's taps reach: 2 for the 5x5 and 4x4 windows. An including shader whose window
 // reaches less defines GRID_TILE_REACH as an expression of its specialization constants: the 2x2 windows
-// (obscura/reconstruct_window.h) reach 1, and their tile is then 18x10 slots instead of 20x12 (16x8
-// workgroups), a quarter fewer loads of depth, normal and values for the same taps.
+// (obscura/reconstruct_window.h) reach 1, and their tile is then 34x6 slots instead of 36x8 (32x4
+// workgroups), 29% fewer loads of depth, normal and values for the same taps.
 #ifndef GRID_TILE_REACH
 #define GRID_TILE_REACH 2
 #endif
 const int kGridTileReach = GRID_TILE_REACH;
-const int kGridTileWidth = kTemporalWorkgroupX + 2 * kGridTileReach;
-const int kGridTileHeight = kTemporalWorkgroupY + 2 * kGridTileReach;
+const int kGridTileWidth = kAccumulationWorkgroupX + 2 * kGridTileReach;
+const int kGridTileHeight = kAccumulationWorkgroupY + 2 * kGridTileReach;
 // Rows packed. With 8x8 workgroups, rows 24 floats apart (a warp's 4 rows of 8 reads in 32 different banks)
 // were no faster on an H100 (2026-11-25) and took twice the shared memory.
 const int kGridTileStride = kGridTileWidth;
@@ -47,9 +47,9 @@ shared float tileValue[4][GRID_TILE_SLOTS];
 ivec2 tileOrigin;  // the grid pixel at tile (0, 0)
 
 void loadGridTile(int width, int height) {
-    tileOrigin = ivec2(gl_WorkGroupID.xy) * ivec2(kTemporalWorkgroupX, kTemporalWorkgroupY) - kGridTileReach;
-    const int first = int(gl_LocalInvocationID.y) * kTemporalWorkgroupX + int(gl_LocalInvocationID.x);
-    for (int t = first; t < kGridTileWidth * kGridTileHeight; t += kTemporalWorkgroupX * kTemporalWorkgroupY) {
+    tileOrigin = ivec2(gl_WorkGroupID.xy) * ivec2(kAccumulationWorkgroupX, kAccumulationWorkgroupY) - kGridTileReach;
+    const int first = int(gl_LocalInvocationID.y) * kAccumulationWorkgroupX + int(gl_LocalInvocationID.x);
+    for (int t = first; t < kGridTileWidth * kGridTileHeight; t += kAccumulationWorkgroupX * kAccumulationWorkgroupY) {
         const int tx = t % kGridTileWidth, ty = t / kGridTileWidth;
         // Slots outside the grid repeat the edge, so that every load is in bounds, with an infinite depth:
         // the reconstruction skips them as sky (GRID_OUTSIDE_IS_SKY), as the CPU skips taps outside the image.

@@ -25,7 +25,7 @@
 
 #include "temporal_layouts.h"
 
-layout(local_size_x = kTemporalWorkgroupX, local_size_y = kTemporalWorkgroupY, local_size_z = 1) in;
+layout(local_size_x = kAccumulationWorkgroupX, local_size_y = kAccumulationWorkgroupY, local_size_z = 1) in;
 
 layout(constant_id = kTemporalSpecGridStep) const int kGridStep = 1;
 layout(constant_id = kTemporalSpecDepthSigma) const float kDepthSigma = 0.05;

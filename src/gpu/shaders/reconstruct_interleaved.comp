@@ -11,7 +11,7 @@
 
 #include "temporal_layouts.h"
 
-layout(local_size_x = kTemporalWorkgroupX, local_size_y = kTemporalWorkgroupY, local_size_z = 1) in;
+layout(local_size_x = kAccumulationWorkgroupX, local_size_y = kAccumulationWorkgroupY, local_size_z = 1) in;
 
 layout(constant_id = kReconstructSpecChannels) const int kGridChannels = 1;
 layout(constant_id = kReconstructSpecWindowPhase) const int kWindowPhase = -1;

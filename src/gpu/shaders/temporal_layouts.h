@@ -28,10 +28,19 @@ namespace obscura::gpu {
 // shared-memory tile's apron (grid_tile.glsl: 18x10 slots for 128 pixels instead of 18x6 for 64): on the
 // H100 (2026-11-26, 3 rounds in one run) the grid's accumulation with the 5x5 window took 0.901 of 16x4's
 // time at 1920x1080 and 0.902 at 3840x2160, the half-resolution frame's 0.937; the upsampling did not move.
+// Since then the accumulation and the reconstruction (gtao_temporal.comp, reconstruct_interleaved.comp and
+// their grid_tile.glsl) have workgroups of their own, 32x4: a warp is one row of 32 lattice pixels, so each
+// strided load of the G-buffer spans one row instead of two, and the 5x5 window's tile, at 2.25 slots per
+// pixel instead of 1.88, did not lose for it. On an H200 (2026-11-26, 3 rounds in one run) the grid's
+// accumulation took 0.884 / 0.886 of 16x8's time at 1920x1080 / 3840x2160 with the 5x5 window and
+// 0.994 / 0.979 with the spatio-temporal target's flags; the upsampling in 32x4 took 0.995 to 1.012 of its
+// 16x8 time in two calls, so it keeps 16x8 (kTemporalWorkgroup*).
 // The host dispatches the size the compiled shaders declare, so shaders swapped in through
 // OBSCURA_SHADER_DIR may try another (bench/gpu-candidates).
 OBSCURA_CONST int kTemporalWorkgroupX = 16;
 OBSCURA_CONST int kTemporalWorkgroupY = 8;
+OBSCURA_CONST int kAccumulationWorkgroupX = 32;
+OBSCURA_CONST int kAccumulationWorkgroupY = 4;
 
 // ---- gtao.comp's variant (layouts.h has its bindings) ----
 // constant_id of the grid step: invocation (x, y) evaluates full-resolution pixel (step x, step y) with the
