@@ -6,9 +6,10 @@
 //
 // reconstruct_interleaved.comp uses it, and gtao_temporal.comp where it runs the same reconstruction inside
 // the accumulation (at full resolution, and on the grid with the grid's history) with the 5x5 and 4x4
-// windows; there the 2x2 windows read their 4 taps from memory. The half-resolution
-// accumulation with the history at full resolution upsamples, reads 4 grid pixels and declares a tile of 1 slot: on an H100 (2026-11-25) the full tile's shared memory alone, never filled, made that
-// variant 1.8x slower (fewer workgroups per SM).
+// windows; there the 2x2 windows read their 4 taps from memory. The half-resolution accumulation with the
+// history at full resolution upsamples, reads 4 grid pixels and declares a tile of 1 slot: on an H100
+// (2026-11-25) the full tile's shared memory alone, never filled, made that variant 1.8x slower (fewer
+// workgroups per SM).
 //
 // The including shader declares, before the #include, the grid in global memory:
 //   kGridChannels, float gridDepthAt(int x, int y), vec3 gridNormalAt(int x, int y),
