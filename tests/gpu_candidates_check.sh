@@ -8,7 +8,8 @@
 #   same bits", else within 1e-5;
 # - with no patch waiting, gpu-candidates refuses to run and says so;
 # - gpu-ab times two variants against each other and writes its JSON; it refuses a missing folder;
-# - the probes of bench/gpu-probes (wrong by design, timed only) apply, compile and run in gpu-waiting;
+# - the probes of bench/gpu-probes (wrong by design, timed only) apply, compile and run in gpu-waiting (with
+#   none waiting, probes-ab runs on the build's own alchemy.spv);
 # - gpu-waiting writes every part's file, times each candidate again with the spatio-temporal target's flags
 #   (candidates-grid-ab), the target's configuration against its fused pass and its history's depth copy
 #   (fused-ab), and names a part that fails while the others run; with --parts it runs only the parts named,
@@ -114,12 +115,15 @@ if [ ${#probes[@]} -gt 0 ]; then
   for patch in "${probes[@]}"; do
     check_built "$patch" "$work/probes/$(basename "$patch" .patch)" "$work/built-probes"
   done
-  probeFlags=(--probes "$work/probes")
 else
-  probeFlags=()
+  # None waiting: probes-ab still runs, on a folder holding the build's own alchemy.spv, as the candidates'
+  # parts do above, so that the part is checked whether or not a probe waits.
+  mkdir -p "$work/probes/same"
+  cp "$build/shaders/alchemy.spv" "$work/probes/same/" || fail "the build has no shaders/alchemy.spv"
 fi
+probeNames=$(ls "$work/probes")
 # gpu-waiting: every part, each into its file, at a tiny size, with one round.
-"$src/scripts/gpu-waiting" --obscura "$tool" --candidates "$work/spv" "${probeFlags[@]}" --rounds 1 --small "$work/waiting" \
+"$src/scripts/gpu-waiting" --obscura "$tool" --candidates "$work/spv" --probes "$work/probes" --rounds 1 --small "$work/waiting" \
   -- --sizes 48x32 --frames 2 --warmup 0 --inputs 1 2>"$work/waiting.err" || fail "gpu-waiting: $(cat "$work/waiting.err")"
 for f in verify.txt grid-ab.txt grid-ab.json fused-ab.txt fused-ab.json pipelines-fused.json tiled-ab.txt tiled-ab.json normals-ab.txt normals-ab.json pipelines.json \
   internals; do
@@ -143,13 +147,10 @@ assert all("--packed-output" in v["flags"] and "--alternating-window-size" in v[
 EOF
     fail "candidates-grid-ab.json: not every candidate with the target's flags: $(cat "$work/waiting/candidates-grid-ab.json")"
 fi
-if [ ${#probes[@]} -gt 0 ]; then
-  grep -q "^alchemy .* alchemy " "$work/waiting/probes-ab.txt" || fail "probes-ab.txt: $(cat "$work/waiting/probes-ab.txt")"
-  for patch in "${probes[@]}"; do
-    grep -q " $(basename "$patch" .patch) ms" "$work/waiting/probes-ab.txt" ||
-      fail "probes-ab.txt has no column for $(basename "$patch" .patch): $(cat "$work/waiting/probes-ab.txt")"
-  done
-fi
+grep -q "^alchemy .* alchemy " "$work/waiting/probes-ab.txt" || fail "probes-ab.txt: $(cat "$work/waiting/probes-ab.txt")"
+for n in $probeNames; do
+  grep -q " $n ms" "$work/waiting/probes-ab.txt" || fail "probes-ab.txt has no column for $n: $(cat "$work/waiting/probes-ab.txt")"
+done
 grep -q "^gtao-half " "$work/waiting/tiled-ab.txt" || fail "tiled-ab.txt: $(cat "$work/waiting/tiled-ab.txt")"
 grep -q "^alchemy " "$work/waiting/normals-ab.txt" || fail "normals-ab.txt: $(cat "$work/waiting/normals-ab.txt")"
 grep -q "^gtao-temporal-grid .* upsample " "$work/waiting/grid-ab.txt" || fail "grid-ab.txt: $(cat "$work/waiting/grid-ab.txt")"

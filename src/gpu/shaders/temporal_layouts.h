@@ -21,7 +21,8 @@ namespace obscura::gpu {
 #define OBSCURA_CONST const
 #endif
 
-// The workgroup of the spatio-temporal passes (reconstruction, upsampling, accumulation). On an H100
+// The workgroups of the spatio-temporal passes: kUpsampleWorkgroup* the upsampling's, kAccumulationWorkgroup*
+// the accumulation's and the reconstruction's. All three once had one size; its history: on an H100
 // (2026-11-25, visibility only, 1920x1080) 16x4 took the accumulation 0.104 ms instead of 0.115 with 8x8,
 // its variant without history 0.081 instead of 0.087, and the half-resolution accumulation 0.061 instead of
 // 0.069; 32x2 was slower at full resolution. 16x8 keeps the 16-pixel rows and halves the share of a
@@ -33,12 +34,12 @@ namespace obscura::gpu {
 // strided load of the G-buffer spans one row instead of two, and the 5x5 window's tile, at 2.25 slots per
 // pixel instead of 1.88, did not lose for it. On an H200 (2026-11-26, 3 rounds in one run) the grid's
 // accumulation took 0.884 / 0.886 of 16x8's time at 1920x1080 / 3840x2160 with the 5x5 window and
-// 0.994 / 0.979 with the spatio-temporal target's flags; the upsampling in 32x4 took 0.995 to 1.012 of its
-// 16x8 time in two calls, so it keeps 16x8 (kTemporalWorkgroup*).
+// 0.994 / 0.979 with the spatio-temporal target's flags. The upsampling in 32x4 took 0.995 to 1.012 of its
+// 16x8 time in two calls, where its unchanged shader read 0.999 to 1.007 (noise): no gain, so it keeps 16x8.
 // The host dispatches the size the compiled shaders declare, so shaders swapped in through
 // OBSCURA_SHADER_DIR may try another (bench/gpu-candidates).
-OBSCURA_CONST int kTemporalWorkgroupX = 16;
-OBSCURA_CONST int kTemporalWorkgroupY = 8;
+OBSCURA_CONST int kUpsampleWorkgroupX = 16;
+OBSCURA_CONST int kUpsampleWorkgroupY = 8;
 OBSCURA_CONST int kAccumulationWorkgroupX = 32;
 OBSCURA_CONST int kAccumulationWorkgroupY = 4;
 

@@ -9,7 +9,7 @@
 
 #include "temporal_layouts.h"
 
-layout(local_size_x = kTemporalWorkgroupX, local_size_y = kTemporalWorkgroupY, local_size_z = 1) in;
+layout(local_size_x = kUpsampleWorkgroupX, local_size_y = kUpsampleWorkgroupY, local_size_z = 1) in;
 
 layout(constant_id = kUpsampleSpecChannels) const int kGridChannels = 1;
 layout(constant_id = kUpsampleSpecPackedLow) const int kPackedLow = 0;
