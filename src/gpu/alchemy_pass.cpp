@@ -34,9 +34,8 @@ void recordAlchemy(Context::Impl& c, VkCommandBuffer cmd, const AlchemyBuffers& 
     // Workgroups of the compiled shader's size (ssao::kAlchemyWorkgroupX x Y as embedded): each invocation
     // evaluates its own pixel, so any size gives the same image, and a candidate shader may try another.
     ComputePipeline& pipeline =
-        c.pipeline("alchemy", shaders::alchemy, storageBuffers(kAlchemyBindingCount), kAlchemyPushConstantBytes,
-                   ComputePipeline::kShadersOwnSize, ComputePipeline::kShadersOwnSize,
-                   {b.packedNormals ? 1 : 0});  // kAlchemySpecPackedNormals
+        c.pipelineOfShadersSize("alchemy", shaders::alchemy, storageBuffers(kAlchemyBindingCount),
+                                kAlchemyPushConstantBytes, {b.packedNormals ? 1 : 0});  // kAlchemySpecPackedNormals
     // In binding order: kAlchemyBindingDepth, Normal, Spiral, Output.
     pipeline.dispatchGrid(cmd, {&b.depth, &b.normal, &b.spiral, &b.output}, &k, sizeof k, k.width - 2 * k.guardBand,
                           k.height - 2 * k.guardBand);

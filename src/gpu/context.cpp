@@ -389,6 +389,14 @@ ComputePipeline& Context::Impl::pipeline(const std::string& name, const Spirv& c
     return *p;
 }
 
+ComputePipeline& Context::Impl::pipelineOfShadersSize(const std::string& name, const Spirv& code,
+                                                      const std::vector<BindingKind>& bindings,
+                                                      std::uint32_t pushConstantBytes,
+                                                      const std::vector<std::int32_t>& specialization) {
+    return pipeline(name, code, bindings, pushConstantBytes, ComputePipeline::kShadersOwnSize,
+                    ComputePipeline::kShadersOwnSize, specialization);
+}
+
 void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags srcStage, VkAccessFlags src, VkPipelineStageFlags dstStage,
                    VkAccessFlags dst) {
     VkMemoryBarrier b{};

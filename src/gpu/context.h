@@ -83,6 +83,12 @@ struct Context::Impl {
     ComputePipeline& pipeline(const std::string& name, const Spirv& code, const std::vector<BindingKind>& bindings,
                               std::uint32_t pushConstantBytes, int workgroupX, int workgroupY,
                               const std::vector<std::int32_t>& specialization = {});
+    // The same, in the workgroup size the compiled shader declares (ComputePipeline::kShadersOwnSize): for a
+    // pass whose invocations each evaluate their own pixels, so that a shader swapped in through
+    // OBSCURA_SHADER_DIR may try another size.
+    ComputePipeline& pipelineOfShadersSize(const std::string& name, const Spirv& code,
+                                           const std::vector<BindingKind>& bindings, std::uint32_t pushConstantBytes,
+                                           const std::vector<std::int32_t>& specialization);
 };
 
 // A Vulkan object owned by a device, destroyed with it: move-only.

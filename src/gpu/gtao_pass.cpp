@@ -29,11 +29,13 @@ void recordGtao(Context::Impl& c, VkCommandBuffer cmd, const GtaoBuffers& b, con
                 int gridStep, bool bentNormal, bool packedNormals) {
     assert(gridStep == 1 || gridStep == 2);
     ComputePipeline& pipeline =
-        c.pipeline("gtao", shaders::gtao, std::vector<BindingKind>(kGtaoBindingCount, BindingKind::StorageBuffer),
-                   kGtaoPushConstantBytes, ComputePipeline::kShadersOwnSize, ComputePipeline::kShadersOwnSize,
-                   // kGtaoSpecGridStep, BentNormal, the constants' modes (Sampling ... BeyondRadius), PackedNormals.
-                   {gridStep, bentNormal ? 1 : 0, k.sampling, k.weighting, k.thicknessMode, k.beyondRadius,
-                    packedNormals ? 1 : 0});
+        c.pipelineOfShadersSize("gtao", shaders::gtao,
+                                std::vector<BindingKind>(kGtaoBindingCount, BindingKind::StorageBuffer),
+                                kGtaoPushConstantBytes,
+                                // kGtaoSpecGridStep, BentNormal, the constants' modes (Sampling ... BeyondRadius),
+                                // PackedNormals.
+                                {gridStep, bentNormal ? 1 : 0, k.sampling, k.weighting, k.thicknessMode,
+                                 k.beyondRadius, packedNormals ? 1 : 0});
     // In binding order: kGtaoBindingDepth, Normal, Visibility, BentNormal, DepthMips.
     pipeline.dispatchGrid(cmd, {&b.depth, &b.normal, &b.visibility, &b.bentNormal, &b.depthMips}, &k, sizeof k,
                           (k.width + gridStep - 1) / gridStep, (k.height + gridStep - 1) / gridStep);

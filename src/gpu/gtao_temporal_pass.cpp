@@ -74,10 +74,9 @@ void recordReconstruct(Context::Impl& c, VkCommandBuffer cmd, const ReconstructB
     assert(channels == 1 || channels == 3);
     assert(windowPhase >= -1 && windowPhase <= 7);
     ComputePipeline& pipeline =
-        c.pipeline("reconstruct_interleaved", shaders::reconstruct_interleaved,
-                   storageBuffers(kReconstructBindingCount), kReconstructPushConstantBytes,
-                   ComputePipeline::kShadersOwnSize, ComputePipeline::kShadersOwnSize,
-                   {channels, windowPhase, packedNormals ? 1 : 0});
+        c.pipelineOfShadersSize("reconstruct_interleaved", shaders::reconstruct_interleaved,
+                                storageBuffers(kReconstructBindingCount), kReconstructPushConstantBytes,
+                                {channels, windowPhase, packedNormals ? 1 : 0});
     // (kReconstructSpecChannels, WindowPhase, PackedNormals)
     // In binding order: kReconstructBindingValues, Depth, Normal, Output.
     pipeline.dispatchGrid(cmd, {&b.values, &b.depth, &b.normal, &b.output}, &k, sizeof k, k.width, k.height);
@@ -89,9 +88,10 @@ void recordUpsample(Context::Impl& c, VkCommandBuffer cmd, const UpsampleBuffers
     assert(!packedLow || channels == 1);
     assert(!packedOut || channels == 1);
     ComputePipeline& pipeline =
-        c.pipeline("upsample_depth_aware", shaders::upsample_depth_aware, storageBuffers(kUpsampleBindingCount),
-                   kUpsamplePushConstantBytes, ComputePipeline::kShadersOwnSize, ComputePipeline::kShadersOwnSize,
-                   {channels, packedLow ? 1 : 0, packedOut ? 1 : 0});  // kUpsampleSpecChannels, PackedLow, PackedOut
+        c.pipelineOfShadersSize("upsample_depth_aware", shaders::upsample_depth_aware,
+                                storageBuffers(kUpsampleBindingCount), kUpsamplePushConstantBytes,
+                                // kUpsampleSpecChannels, PackedLow, PackedOut
+                                {channels, packedLow ? 1 : 0, packedOut ? 1 : 0});
     // In binding order: kUpsampleBindingLow, LowDepth, Depth, Output.
     // One invocation per 2x2 block of full-resolution pixels (the shader's main).
     pipeline.dispatchGrid(cmd, {&b.low, &b.lowDepth, &b.depth, &b.output}, &k, sizeof k, (k.width + 1) / 2,
@@ -214,12 +214,12 @@ void GtaoTemporalPasses::record(VkCommandBuffer cmd, const GtaoTemporalFrameInpu
         // 4. Reprojection and exponential accumulation into the other history set. Without temporal filtering the
         // same pass runs with no history: it writes the view bent normals and the planes a later frame would read.
         ComputePipeline& pipeline =
-            c.pipeline("gtao_temporal", shaders::gtao_temporal, storageBuffers(kTemporalBindingCount),
-                       kTemporalPushConstantBytes, ComputePipeline::kShadersOwnSize,
-                       ComputePipeline::kShadersOwnSize,
-                       {step_, std::bit_cast<std::int32_t>(temporal_.depthSigma), variant_.bentNormals ? 1 : 0,
-                        temporal_.packedHistory ? 1 : 0, variant_.callerKeepsDepth ? 0 : 1, gridHistory_ ? 2 : 1,
-                        step_ == 2 && !gridHistory_ ? -1 : phase, variant_.packedNormals ? 1 : 0});
+            c.pipelineOfShadersSize("gtao_temporal", shaders::gtao_temporal, storageBuffers(kTemporalBindingCount),
+                                    kTemporalPushConstantBytes,
+                                    {step_, std::bit_cast<std::int32_t>(temporal_.depthSigma),
+                                     variant_.bentNormals ? 1 : 0, temporal_.packedHistory ? 1 : 0,
+                                     variant_.callerKeepsDepth ? 0 : 1, gridHistory_ ? 2 : 1,
+                                     step_ == 2 && !gridHistory_ ? -1 : phase, variant_.packedNormals ? 1 : 0});
         // (kTemporalSpecGridStep, DepthSigma, BentNormal, PackedHistory, DepthCopy, HistoryStep, WindowPhase: the
         // window where this pass reconstructs, else -1, so that the upsampling variant is one pipeline;
         // PackedNormals.)
@@ -261,11 +261,12 @@ void GtaoTemporalPasses::recordFused(VkCommandBuffer cmd, const ssao::GtaoConsta
     memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
     ComputePipeline& pipeline =
-        context_.pipeline("gtao_temporal_fused", shaders::gtao_temporal_fused, storageBuffers(kFusedBindingCount),
-                          kGtaoPushConstantBytes, ComputePipeline::kShadersOwnSize, ComputePipeline::kShadersOwnSize,
-                          {k.sampling, k.weighting, k.thicknessMode, k.beyondRadius, variant_.packedNormals ? 1 : 0,
-                           variant_.bentNormals ? 1 : 0, std::bit_cast<std::int32_t>(temporal_.depthSigma),
-                           temporal_.packedHistory ? 1 : 0, variant_.callerKeepsDepth ? 0 : 1, phase});
+        context_.pipelineOfShadersSize("gtao_temporal_fused", shaders::gtao_temporal_fused,
+                                       storageBuffers(kFusedBindingCount), kGtaoPushConstantBytes,
+                                       {k.sampling, k.weighting, k.thicknessMode, k.beyondRadius,
+                                        variant_.packedNormals ? 1 : 0, variant_.bentNormals ? 1 : 0,
+                                        std::bit_cast<std::int32_t>(temporal_.depthSigma),
+                                        temporal_.packedHistory ? 1 : 0, variant_.callerKeepsDepth ? 0 : 1, phase});
     // (kFusedSpecSampling ... BeyondRadius: the constants' modes, as recordGtao sets gtao.comp's; PackedNormals,
     // BentNormal, DepthSigma, PackedHistory, DepthCopy, WindowPhase.) Workgroups of the compiled shader's size
     // (kFusedWorkgroupX x kFusedWorkgroupY as embedded), which overlap by the window's side less one: each
