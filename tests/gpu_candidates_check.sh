@@ -33,15 +33,27 @@ if [ ${#patches[@]} -eq 0 ]; then
 else
   "$src/scripts/gpu-candidates" "$work/spv" >"$work/built" 2>&1 || fail "gpu-candidates failed: $(cat "$work/built")"
 fi
+# The shaders compiled into folder DIR, sorted, on one line.
+built_shaders() { (cd "$1" && ls ./*.spv | sed 's|^\./||; s|\.spv$||' | sort | tr '\n' ' '); }
 # PATCH DIR LOG: every shader PATCH edits changed and was compiled into DIR (an edited include changes its
-# includers too, so DIR may hold more); LOG is what gpu-candidates printed.
+# includers too, so DIR may hold more); LOG is what gpu-candidates printed. A combination (an `Applies:` line
+# naming other patches of its folder) is checked against what its parts edit, and must hold every shader
+# that one of its parts, built beside it in DIR's parent, holds.
 check_built() {
-  local name got shader
+  local name got shader parts part files=("$1")
   name=$(basename "$1" .patch)
   [ -d "$2" ] || fail "$name: no folder built: $(cat "$3")"
-  got=$(cd "$2" && ls ./*.spv | sed 's|^\./||; s|\.spv$||' | sort | tr '\n' ' ')
+  got=$(built_shaders "$2")
   [ -n "$got" ] || fail "$name: no shader changed"
-  for shader in $(grep '^+++ b/src/gpu/shaders/.*\.comp' "$1" | sed 's|.*/||; s|\.comp.*||'); do
+  parts=$(sed -n '/^diff --git/q; s/^Applies: *//p' "$1")
+  for part in $parts; do
+    [ -d "$(dirname "$2")/$part" ] || fail "$name: its part $part was not built"
+    for shader in $(built_shaders "$(dirname "$2")/$part"); do
+      case " $got" in *" $shader "*) ;; *) fail "$name: built only '$got', without $part's $shader" ;; esac
+    done
+    files+=("$(dirname "$1")/$part.patch")
+  done
+  for shader in $(cat "${files[@]}" | grep '^+++ b/src/gpu/shaders/.*\.comp' | sed 's|.*/||; s|\.comp.*||'); do
     case " $got" in *" $shader "*) ;; *) fail "$name: the patch edits $shader.comp, built only '$got'" ;; esac
   done
 }
