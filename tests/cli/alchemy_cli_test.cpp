@@ -4,6 +4,7 @@
 #include "obscura/image_io.h"
 
 #include "cli/cli_harness.h"
+#include "scoped_env.h"
 
 #include "obscura/gpu.h"
 
@@ -84,9 +85,11 @@ TEST_F(GpuCli, AlchemyAoMatchesTheCpu) {
     for (const std::string blur : {"none", "separable", "2d"}) {
         r = run(in + " --blur " + blur + " -o " + path("cpu.exr"));
         ASSERT_EQ(r.code, 0) << r.out;
-        setenv("OBSCURA_VALIDATION", "1", 1);  // the child inherits it; a message would print a warning
-        r = run(in + " --gpu --blur " + blur + " -o " + path("gpu.exr"));
-        unsetenv("OBSCURA_VALIDATION");
+        {
+            // The child inherits it; a message would print a warning.
+            const obscura::testutil::ScopedEnv validation("OBSCURA_VALIDATION", "1");
+            r = run(in + " --gpu --blur " + blur + " -o " + path("gpu.exr"));
+        }
         ASSERT_EQ(r.code, 0) << r.out;
         EXPECT_EQ(r.out.find("warning"), std::string::npos) << r.out;  // no validation message
         const obscura::Image cpu = obscura::readExr(path("cpu.exr")), gpu = obscura::readExr(path("gpu.exr"));

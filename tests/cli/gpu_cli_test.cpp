@@ -4,6 +4,7 @@
 // the child processes load the Vulkan driver.
 #include "cli/cli_harness.h"
 #include "gpu/spirv_edit.h"
+#include "scoped_env.h"
 
 #include "obscura/gpu.h"
 #include "obscura/gpu_shaders.h"
@@ -55,9 +56,8 @@ protected:
     }
     // Runs a command that must succeed on the GPU with validation on and no validation message.
     CliResult runGpu(const std::string& args) {
-        setenv("OBSCURA_VALIDATION", "1", 1);
+        const obscura::testutil::ScopedEnv validation("OBSCURA_VALIDATION", "1");
         CliResult r = runCli(args + " --gpu");
-        unsetenv("OBSCURA_VALIDATION");
         EXPECT_EQ(r.code, 0) << args << "\n" << r.out;
         EXPECT_EQ(r.out.find("warning"), std::string::npos) << r.out;
         return r;
@@ -349,10 +349,10 @@ TEST_F(GpuCommands, BenchGpuReportsEveryCase) {
     // warm-up and 5 timed frames (so one submission holds both, and the last holds 1); the same passes per
     // case, each frame's split checked as it is read (above), with validation on (the barriers between the
     // frames of a submission included).
-    setenv("OBSCURA_VALIDATION", "1", 1);
-    const CliResult batched =
-        runCli("bench --gpu --sizes 24x16 --frames 5 --warmup 2 --inputs 2 --frames-per-submit 3 --json");
-    unsetenv("OBSCURA_VALIDATION");
+    const CliResult batched = [&] {
+        const obscura::testutil::ScopedEnv validation("OBSCURA_VALIDATION", "1");
+        return runCli("bench --gpu --sizes 24x16 --frames 5 --warmup 2 --inputs 2 --frames-per-submit 3 --json");
+    }();
     ASSERT_EQ(batched.code, 0) << batched.out;
     EXPECT_EQ(batched.out.find("warning"), std::string::npos) << batched.out;
     const nlohmann::json bj = nlohmann::json::parse(batched.out.substr(batched.out.find('{')));
@@ -698,7 +698,7 @@ TEST_F(GpuCommands, ShaderDirReplacesEmbeddedShaders) {
     std::filesystem::create_directories(path("same"));
     const obscura::gpu::ShaderCode gtao = obscura::gpu::shaderCode("gtao");
     obscura::gpu::testing::writeModule(path("same/gtao.spv"), gtao.words, gtao.wordCount);
-    setenv("OBSCURA_SHADER_DIR", path("same").c_str(), 1);
+    obscura::testutil::ScopedEnv shaderDir("OBSCURA_SHADER_DIR", path("same"));
     const CliResult same = runCli(bench);
     EXPECT_EQ(same.code, 0) << same.out;
 
@@ -708,24 +708,23 @@ TEST_F(GpuCommands, ShaderDirReplacesEmbeddedShaders) {
     std::filesystem::create_directories(path("swapped"));
     const obscura::gpu::ShaderCode blur = obscura::gpu::shaderCode("bilateral_separable");
     obscura::gpu::testing::writeModule(path("swapped/gtao.spv"), blur.words, blur.wordCount);
-    setenv("OBSCURA_SHADER_DIR", path("swapped").c_str(), 1);
+    shaderDir.set(path("swapped"));
     expectFailure(bench, {"shader gtao", "the host binds"});
     std::filesystem::create_directories(path("blur"));
     const std::vector<std::uint32_t> gtao16x4 = obscura::gpu::testing::withWorkgroupSize(
         std::vector<std::uint32_t>(gtao.words, gtao.words + gtao.wordCount), 16, 4);
     obscura::gpu::testing::writeModule(path("blur/bilateral_separable.spv"), gtao16x4.data(), gtao16x4.size());
-    setenv("OBSCURA_SHADER_DIR", path("blur").c_str(), 1);
+    shaderDir.set(path("blur"));
     expectFailure(bench, {"shader bilateral_separable", "has workgroups of 16x4x1, the host dispatches 256x1"});
 
     std::filesystem::create_directories(path("bad"));
     const std::uint32_t junk[6] = {1, 2, 3, 4, 5, 6};
     obscura::gpu::testing::writeModule(path("bad/gtao.spv"), junk, 6);
-    setenv("OBSCURA_SHADER_DIR", path("bad").c_str(), 1);
+    shaderDir.set(path("bad"));
     expectFailure(bench, {path("bad/gtao.spv"), "is not SPIR-V"});
 
-    setenv("OBSCURA_SHADER_DIR", path("nowhere").c_str(), 1);
+    shaderDir.set(path("nowhere"));
     expectFailure(bench, {"OBSCURA_SHADER_DIR", "nowhere", "is not a folder"});
-    unsetenv("OBSCURA_SHADER_DIR");
 }
 
 TEST_F(GpuCommands, RenderRejectsABadDevice) {

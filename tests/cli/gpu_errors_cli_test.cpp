@@ -2,9 +2,11 @@
 // line naming the problem, a non-zero exit and no output file, whether or not this machine has a device
 // (the environment hides it from the child process).
 #include "cli_harness.h"
+#include "scoped_env.h"
 
-#include <cstdlib>
+#include <memory>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -20,25 +22,15 @@ protected:
     }
     // Sets an environment variable for the children run in this test; the old value comes back after it.
     void setEnv(const char* name, const std::string& value) {
-        const char* old = std::getenv(name);
-        saved_.push_back({name, old ? std::string(old) : std::string(), old != nullptr});
-        setenv(name, value.c_str(), 1);
+        env_.push_back(std::make_unique<obscura::testutil::ScopedEnv>(name, value));
     }
     void TearDown() override {
-        for (const Saved& s : saved_) {
-            if (s.had) setenv(s.name, s.value.c_str(), 1);
-            else unsetenv(s.name);
-        }
+        while (!env_.empty()) env_.pop_back();  // the last set first
         CliTest::TearDown();
     }
 
 private:
-    struct Saved {
-        const char* name;
-        std::string value;
-        bool had;
-    };
-    std::vector<Saved> saved_;
+    std::vector<std::unique_ptr<obscura::testutil::ScopedEnv>> env_;
 };
 
 TEST_F(GpuErrorsCli, NoLoader) {

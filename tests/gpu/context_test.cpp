@@ -1,6 +1,7 @@
 // The Vulkan context and its resources: device choice and its errors, the block suballocator's free list,
 // the SPIR-V reflection the passes check their layouts with, staged upload and download.
 #include "gpu_test_util.h"
+#include "scoped_env.h"
 #include "spirv_edit.h"
 
 #include "gpu/allocator.h"
@@ -124,14 +125,10 @@ TEST(GpuContext, RejectsAMissingDevice) {
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("deviceIndex"), std::string::npos) << e.what();
     }
-    const char* old = std::getenv("OBSCURA_GPU_DEVICE");
-    const std::string saved = old ? old : "";
-    setenv("OBSCURA_GPU_DEVICE", "x", 1);
+    testutil::ScopedEnv device("OBSCURA_GPU_DEVICE", "x");
     EXPECT_THROW(Context{}, Error);
-    setenv("OBSCURA_GPU_DEVICE", "0", 1);
+    device.set("0");
     EXPECT_EQ(Context{}.device().index, 0);
-    if (old) setenv("OBSCURA_GPU_DEVICE", saved.c_str(), 1);
-    else unsetenv("OBSCURA_GPU_DEVICE");
 }
 
 // Upload and download through staging buffers, in sizes that straddle the allocator's 64 MiB block (a

@@ -5,11 +5,11 @@
 
 #include "gpu/spirv.h"
 #include "obscura/gpu.h"
+#include "scoped_env.h"
 
 #include <gtest/gtest.h>
 
 #include <cstdint>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -83,16 +83,10 @@ public:
                ("obscura-module-" + name + "-" + std::to_string(::getpid()) + "-" + std::to_string(next()++))) {
         std::filesystem::create_directories(dir_);
         writeModule(dir_ / (name + ".spv"), words.data(), words.size());
-        ::setenv("OBSCURA_SHADER_DIR", dir_.c_str(), 1);
+        const testutil::ScopedEnv shaderDir("OBSCURA_SHADER_DIR", dir_.string());
         ContextSettings settings;
         settings.validation = true;
-        try {
-            context_ = std::make_unique<Context>(settings);
-        } catch (...) {
-            ::unsetenv("OBSCURA_SHADER_DIR");
-            throw;
-        }
-        ::unsetenv("OBSCURA_SHADER_DIR");
+        context_ = std::make_unique<Context>(settings);
     }
     ~ContextWithModule() {
         context_.reset();
