@@ -137,15 +137,37 @@ probeNames=$(ls "$work/probes")
 # gpu-waiting: every part, each into its file, at a tiny size, with one round.
 "$src/scripts/gpu-waiting" --obscura "$tool" --candidates "$work/spv" --probes "$work/probes" --rounds 1 --small "$work/waiting" \
   -- --sizes 48x32 --frames 2 --warmup 0 --inputs 1 2>"$work/waiting.err" || fail "gpu-waiting: $(cat "$work/waiting.err")"
-for f in verify.txt grid-ab.txt grid-ab.json fused-ab.txt fused-ab.json pipelines-fused.json tiled-ab.txt tiled-ab.json normals-ab.txt normals-ab.json pipelines.json \
-  internals; do
+for f in verify.txt grid-ab.txt grid-ab.json fused-ab.txt fused-ab.json pipelines-fused.json pipelines-target.json \
+  tiled-ab.txt tiled-ab.json normals-ab.txt normals-ab.json pipelines.json internals; do
   [ -e "$work/waiting/$f" ] || fail "gpu-waiting wrote no $f: $(ls "$work/waiting")"
 done
+# FILE: a statistics run in the spatio-temporal target's configuration (lavapipe reports no statistics, so the
+# run's own record of its flags is what can be checked here).
+has_target_flags() {
+  python3 - "$1" <<'PY' || fail "$1 is not a run in the target's configuration"
+import json, sys
+r = json.load(open(sys.argv[1]))
+want = {"alternating_window": True, "alternating_window_size": 2, "packed_history": True, "packed_normals": True,
+        "packed_output": True, "keep_previous_depth": True, "bent_normals": False, "fused_temporal": False,
+        "gtao_sampling": "planar-nearest"}
+got = {k: r.get(k) for k in want}
+cases = sorted({c["case"] for c in r["cases"]})
+sys.exit(0 if got == want and cases == ["gtao-temporal-grid"] else f"{got} {cases}")
+PY
+}
+has_target_flags "$work/waiting/pipelines-target.json"
 if [ ${#patches[@]} -gt 0 ]; then
   for n in $(ls "$work/spv"); do
     for f in "verify-$n.txt" "pipelines-$n.json"; do
       [ -s "$work/waiting/$f" ] || fail "gpu-waiting wrote no $f"
     done
+    # A candidate that changes a shader of the spatio-temporal target's frame has its statistics there too.
+    d=$work/spv/$n
+    if [ -f "$d/gtao.spv" ] || [ -f "$d/gtao_temporal.spv" ] || [ -f "$d/upsample_depth_aware.spv" ]; then
+      has_target_flags "$work/waiting/pipelines-$n-target.json"
+    elif [ -e "$work/waiting/pipelines-$n-target.json" ]; then
+      fail "pipelines-$n-target.json for a candidate outside the target's frame"
+    fi
   done
   grep -q "^alchemy " "$work/waiting/candidates-ab.txt" || fail "candidates-ab.txt: $(cat "$work/waiting/candidates-ab.txt")"
   # Every candidate again in the spatio-temporal target's configuration, which targets.txt reads.
