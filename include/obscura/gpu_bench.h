@@ -83,6 +83,8 @@ struct GpuBenchCase {
     int width = 0, height = 0;
     int frames = 0;           // timed frames
     std::vector<GpuPassTime> passes;  // in dispatch order
+    std::vector<std::string> shaders;  // the shaders its frames dispatched (src/gpu/shaders/NAME.comp), sorted:
+                                       // the cases a changed shader reaches (OBSCURA_SHADER_DIR)
     double medianMs = 0;      // median over the frames of the frame's GPU time: its passes' times added up,
                               // from the timestamp before its first pass to the one after its last
     double minMs = 0;         // fastest frame

@@ -69,7 +69,8 @@ public:
 
 private:
     Context::Impl& context_;
-    std::string name_;
+    std::string name_;    // the cache's key: the shader's name, then its specialization constants in <>
+    std::string shader_;  // the shader's name alone (Context::Impl::dispatched)
     SpirvLayout layout_;
     std::vector<BindingKind> kinds_;
     Unique<VkDescriptorSetLayout> setLayout_;

@@ -351,6 +351,7 @@ GpuBenchCase benchGpuCase(Context& context, const std::string& name, const std::
     std::map<std::string, std::vector<double>> passMs;
     std::vector<std::string> order;
     const int total = settings.warmup + settings.frames;
+    c.dispatched.clear();  // what the setup dispatched (clears, a first history) is not the frame's
     for (int first = 0; first < total; first += settings.framesPerSubmit) {
         const int count = std::min(settings.framesPerSubmit, total - first);
         std::vector<int> marksAfterFrame;  // marks recorded once frame first + k is recorded
@@ -401,6 +402,7 @@ GpuBenchCase benchGpuCase(Context& context, const std::string& name, const std::
         const std::vector<double>& ms = passMs[pass];
         result.passes.push_back({pass, median(ms), *std::min_element(ms.begin(), ms.end())});
     }
+    result.shaders.assign(c.dispatched.begin(), c.dispatched.end());
     result.medianMs = median(frameMs);
     result.minMs = *std::min_element(frameMs.begin(), frameMs.end());
     return result;

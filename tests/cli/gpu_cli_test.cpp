@@ -314,9 +314,21 @@ TEST_F(GpuCommands, BenchGpuReportsEveryCase) {
         {"gtao-temporal-half", {"gtao", "denoise", "temporal"}},
         // With the grid's history the accumulation reconstructs its grid pixel, and the upsampling comes last.
         {"gtao-temporal-grid", {"gtao", "temporal", "upsample"}}};
+    // The shaders each frame dispatched, by their src/gpu/shaders names: scripts/gpu-waiting times a changed
+    // shader in the cases that name it, so a case must name every shader it runs and no other.
+    const std::map<std::string, std::vector<std::string>> shaders = {
+        {"alchemy", {"alchemy", "bilateral_separable"}},
+        {"alchemy-fused", {"alchemy_blur_row", "bilateral_separable"}},
+        {"gtao", {"bilateral_separable", "gtao"}},
+        {"gtao-half", {"bilateral_separable", "gtao", "upsample_depth_aware"}},
+        {"gtao-spatial", {"gtao", "gtao_temporal"}},
+        {"gtao-temporal", {"gtao", "gtao_temporal"}},
+        {"gtao-temporal-half", {"gtao", "gtao_temporal", "reconstruct_interleaved"}},
+        {"gtao-temporal-grid", {"gtao", "gtao_temporal", "upsample_depth_aware"}}};
     for (const auto& c : j["cases"]) {
         const std::string name = c["case"];
         ASSERT_TRUE(passes.count(name)) << name;
+        EXPECT_EQ(c["shaders"].get<std::vector<std::string>>(), shaders.at(name)) << name;
         // A frame's time is its passes' added up (gpu_bench.h), so the passes are named, in order, and
         // timed; the frames' split into passes is checked by benchGpuCase itself (each frame must time the
         // first frame's passes), which the batched run below exercises.
@@ -535,6 +547,11 @@ TEST_F(GpuCommands, BenchGpuBlurTiled) {
         std::set<std::string> passes;
         for (const auto& p : b["cases"][i]["passes"]) passes.insert(p["name"].get<std::string>());
         EXPECT_EQ(passes.count(applies ? "blur" : "blur-columns"), 1u) << name;
+        // The shaders a case names are what it ran: the tiled shader in place of the separable one.
+        const auto names = [](const nlohmann::json& c) { return c["shaders"].get<std::set<std::string>>(); };
+        EXPECT_EQ(names(b["cases"][i]).count("bilateral_tiled"), applies ? 1u : 0u) << name;
+        EXPECT_EQ(names(b["cases"][i]).count("bilateral_separable"), applies ? 0u : 1u) << name;
+        EXPECT_EQ(names(a["cases"][i]).count("bilateral_tiled"), 0u) << name;
     }
     expectFailure("bench --gpu --blur-tiled --blur-radius 9", {"--blur-tiled", "up to 8", "--blur-radius is 9"});
     expectFailure("bench --gpu --blur-tiled --half-blur-radius 12", {"--blur-tiled", "--half-blur-radius is 12"});

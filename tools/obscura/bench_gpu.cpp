@@ -412,7 +412,8 @@ void runGpuBench(const GpuBenchOptions& o) {
                                        {"bytes_per_frame", r.bytes},
                                        {"gbytes_per_s", r.gigabytesPerSecond()},
                                        {"fraction_of_peak", fraction},
-                                       {"passes", passes}});
+                                       {"passes", passes},
+                                       {"shaders", r.shaders}});
             if (o.json) continue;
             if (!headerPrinted) {
                 std::printf("\n%-19s %-10s %9s %9s %10s %8s %6s  %s\n", "case", "size", "ms", "min ms", "Mpixel/s", "MB",
