@@ -10,8 +10,9 @@
 # - gpu-ab times two variants against each other and writes its JSON; it refuses a missing folder;
 # - the probes of bench/gpu-probes (wrong by design, timed only) apply, compile and run in gpu-waiting (with
 #   none waiting, probes-ab runs on the build's own alchemy.spv);
-# - gpu-waiting writes every part's file, times each candidate again with the spatio-temporal target's flags
-#   (candidates-grid-ab), the target's configuration against its fused pass and its history's depth copy
+# - gpu-waiting writes every part's file, times each candidate in the cases whose frames run a shader it
+#   replaces (bench's list of each case's shaders), and again with the spatio-temporal target's flags where
+#   it replaces a shader of that frame (candidates-grid-ab), the target's configuration against its fused pass and its history's depth copy
 #   (fused-ab), and names a part that fails while the others run; with --parts it runs only the parts named,
 #   and refuses a name it does not know or a part with nothing to time.
 # Exit 77 (skipped) without a Vulkan device, python3 or glslc. Arguments: source dir, build dir, scratch dir.
@@ -169,18 +170,36 @@ if [ ${#patches[@]} -gt 0 ]; then
       fail "pipelines-$n-target.json for a candidate outside the target's frame"
     fi
   done
-  grep -q "^alchemy " "$work/waiting/candidates-ab.txt" || fail "candidates-ab.txt: $(cat "$work/waiting/candidates-ab.txt")"
-  # Every candidate again in the spatio-temporal target's configuration, which targets.txt reads.
-  grep -q "^gtao-temporal-grid .* upsample " "$work/waiting/candidates-grid-ab.txt" ||
-    fail "candidates-grid-ab.txt: $(cat "$work/waiting/candidates-grid-ab.txt")"
-  python3 - "$work/waiting/candidates-grid-ab.json" "$(ls "$work/spv" | tr '\n' ' ')" <<'EOF' ||
-import json, sys
-d = json.load(open(sys.argv[1]))
-assert [v["name"] for v in d["variants"]] == ["embedded"] + sys.argv[2].split(), d["variants"]
-assert all("--packed-output" in v["flags"] and "--alternating-window-size" in v["flags"] for v in d["variants"])
-EOF
-    fail "candidates-grid-ab.json: not every candidate with the target's flags: $(cat "$work/waiting/candidates-grid-ab.json")"
 fi
+grep -q "^alchemy " "$work/waiting/candidates-ab.txt" || fail "candidates-ab.txt: $(cat "$work/waiting/candidates-ab.txt")"
+grep -q "^gtao-temporal-grid .* upsample " "$work/waiting/candidates-grid-ab.txt" ||
+  fail "candidates-grid-ab.txt: $(cat "$work/waiting/candidates-grid-ab.txt")"
+# Each candidate timed in exactly the cases whose frames dispatch a shader it replaces (bench's own list of a
+# case's shaders, read here apart from gpu-waiting), the embedded shaders in all of them; and again in the
+# spatio-temporal target's configuration when it replaces a shader of that frame (gtao, gtao_temporal,
+# upsample_depth_aware), with the target's flags.
+"$tool" bench --gpu --json --sizes 48x32 --frames 1 --warmup 0 --inputs 1 --visibility-only \
+  --cases alchemy,alchemy-fused,gtao,gtao-half,gtao-temporal-grid >"$work/reach.json" ||
+  fail "bench for the cases' shaders failed"
+python3 - "$work/waiting" "$work/spv" "$work/reach.json" <<'EOF' ||
+import json, os, sys
+out, spv, reach = sys.argv[1:]
+shaders = {c["case"]: set(c["shaders"]) for c in json.load(open(reach))["cases"]}
+replaced = {n: {f[:-4] for f in os.listdir(os.path.join(spv, n)) if f.endswith(".spv")} for n in os.listdir(spv)}
+def cases(variant):
+    return {m["case"] for m in variant["median_ms"]}
+ab = json.load(open(os.path.join(out, "candidates-ab.json")))["variants"]
+assert ab[0]["name"] == "embedded" and cases(ab[0]) == set(shaders), (ab[0]["name"], cases(ab[0]))
+want = {n: {c for c, s in shaders.items() if s & replaced[n]} for n in sorted(replaced)}
+got = {v["name"]: cases(v) for v in ab[1:]}
+assert got == {n: c for n, c in want.items() if c}, (got, want)
+grid = json.load(open(os.path.join(out, "candidates-grid-ab.json")))["variants"]
+target = {"gtao", "gtao_temporal", "upsample_depth_aware"}
+names = [v["name"] for v in grid]
+assert names[0] == "embedded" and sorted(names[1:]) == [n for n in sorted(replaced) if replaced[n] & target], names
+assert all("--packed-output" in v["flags"] and "--alternating-window-size" in v["flags"] for v in grid)
+EOF
+  fail "the candidates' parts did not time each candidate in the cases it reaches: $(cat "$work/waiting/candidates-ab.json")"
 grep -q "^alchemy .* alchemy " "$work/waiting/probes-ab.txt" || fail "probes-ab.txt: $(cat "$work/waiting/probes-ab.txt")"
 for n in $probeNames; do
   grep -q " $n ms" "$work/waiting/probes-ab.txt" || fail "probes-ab.txt has no column for $n: $(cat "$work/waiting/probes-ab.txt")"
