@@ -10,7 +10,7 @@
 # - gpu-ab times two variants against each other and writes its JSON; it refuses a missing folder;
 # - the probes of bench/gpu-probes (wrong by design, timed only) apply, compile and run in gpu-waiting (with
 #   none waiting, probes-ab runs on the build's own alchemy.spv);
-# - gpu-waiting writes every part's file, times each candidate in the cases whose frames run a shader it
+# - gpu-waiting writes every part's file (candidates.txt too: each candidate's verdict), times each candidate in the cases whose frames run a shader it
 #   replaces (bench's list of each case's shaders), and again with the spatio-temporal target's flags where
 #   it replaces a shader of that frame (candidates-grid-ab), the target's configuration against its fused pass and its history's depth copy
 #   (fused-ab), and names a part that fails while the others run; with --parts it runs only the parts named,
@@ -139,8 +139,13 @@ probeNames=$(ls "$work/probes")
 "$src/scripts/gpu-waiting" --obscura "$tool" --candidates "$work/spv" --probes "$work/probes" --rounds 1 --small "$work/waiting" \
   -- --sizes 48x32 --frames 2 --warmup 0 --inputs 1 2>"$work/waiting.err" || fail "gpu-waiting: $(cat "$work/waiting.err")"
 for f in verify.txt grid-ab.txt grid-ab.json fused-ab.txt fused-ab.json pipelines-fused.json pipelines-target.json \
-  tiled-ab.txt tiled-ab.json normals-ab.txt normals-ab.json pipelines.json internals; do
+  tiled-ab.txt tiled-ab.json normals-ab.txt normals-ab.json pipelines.json internals candidates.txt; do
   [ -e "$work/waiting/$f" ] || fail "gpu-waiting wrote no $f: $(ls "$work/waiting")"
+done
+# candidates.txt (gpu-candidates-report) has a verdict and the device's gpu-verify for every candidate.
+for n in $(ls "$work/spv"); do
+  sed -n "/^$n: /,/^\$/p" "$work/waiting/candidates.txt" | grep -q "gpu-verify on the device: passed" ||
+    fail "candidates.txt: no verdict with a passed gpu-verify for $n: $(cat "$work/waiting/candidates.txt")"
 done
 # FILE: a statistics run in the spatio-temporal target's configuration (lavapipe reports no statistics, so the
 # run's own record of its flags is what can be checked here).
