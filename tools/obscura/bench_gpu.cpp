@@ -160,7 +160,9 @@ void GpuBenchOptions::add(CLI::App& bench) {
         ->capture_default_str();
     bench.add_option("--gpu-device", device, "--gpu: Vulkan device index (-1: OBSCURA_GPU_DEVICE, else the first discrete GPU)")
         ->capture_default_str();
-    bench.add_flag("--json", json, "--gpu: print JSON instead of a table");
+    bench.add_flag("--json", json,
+                   "--gpu: print JSON instead of a table (each case also names the shaders its frames dispatched, "
+                   "\"shaders\")");
     bench.add_flag("--pipeline-stats", pipelineStats,
                    "--gpu: after the timings, what the driver says of each compute pipeline it compiled "
                    "(VK_KHR_pipeline_executable_properties: registers per invocation, code size, spills, ... as the "
