@@ -43,6 +43,8 @@ def stats(regs):
 json.dump(stats({"alchemy<0>": 27, "bilateral_separable<0,0>": 30}), open(os.path.join(out, "pipelines.json"), "w"))
 json.dump(stats({"alchemy<0>": 27, "bilateral_separable<0,0>": 38}), open(os.path.join(out, "pipelines-fast.json"), "w"))
 json.dump(stats({"alchemy<0>": 27, "bilateral_separable<0,0>": 30}), open(os.path.join(out, "pipelines-same.json"), "w"))
+json.dump(stats({"alchemy<0>": 27}), open(os.path.join(out, "pipelines-target.json"), "w"))
+json.dump(stats({"gtao<1>": 48}), open(os.path.join(out, "pipelines-same-target.json"), "w"))
 line = "demo --size 133x77 --ao alchemy      mean |diff| 1e-07  max 2e-05  values > 2e-3: {} of 10241\n"
 open(os.path.join(out, "verify-fast.txt"), "w").write(line.format(0) * 3)
 open(os.path.join(out, "verify-slow.txt"), "w").write(line.format(0) + line.format(11))
@@ -64,6 +66,7 @@ expect slow "^slow: loses$"
 expect slow "gpu-verify on the device: FAILED \(1 of 2: demo --size 133x77 --ao alchemy\)"
 expect same "^same: no change$"
 expect same "registers: the same as the embedded shaders'"
+expect same "registers in the target's frame: no pipeline in common"
 expect same "gpu-verify on the device: not run"
 expect mixed "^mixed: mixed$"
 expect mixed "alchemy 1080p: frame 0\.950 \(0\.0950 ms\); alchemy 0\.900$"
