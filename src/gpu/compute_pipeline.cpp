@@ -29,7 +29,7 @@ ComputePipeline::ComputePipeline(Context::Impl& context, const Spirv& code, cons
 ComputePipeline::ComputePipeline(Context::Impl& context, const Spirv& code, const std::string& name,
                                  const std::vector<BindingKind>& kinds, std::uint32_t pushConstantBytes, int workgroupX,
                                  int workgroupY, const std::vector<std::int32_t>& specialization)
-    : context_(context), name_(name), shader_(name.substr(0, name.find('<'))), layout_(reflect(code)), kinds_(kinds) {
+    : context_(context), name_(name), layout_(reflect(code)), kinds_(kinds) {
     const int bindings = int(kinds.size());
     const std::string what = "shader " + name;
     // dispatchGrid divides the image by the size the shader declares; a size the host names must be that one.
@@ -186,7 +186,7 @@ void ComputePipeline::dispatch(VkCommandBuffer cmd, std::initializer_list<Resour
     if (pushBytes > 0)
         vkCmdPushConstants(cmd, pipelineLayout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, pushBytes, pushConstants);
     vkCmdDispatch(cmd, groupsX, groupsY, 1);
-    context_.dispatched.insert(shader_);
+    ++dispatches_;
 }
 
 void ComputePipeline::dispatchGrid(VkCommandBuffer cmd, std::initializer_list<Resource> resources,

@@ -60,6 +60,9 @@ public:
     // What the driver said of the compiled pipeline, when the context captures it (Context::pipelineReports).
     const std::vector<PipelineExecutable>& executables() const { return executables_; }
     const std::string& describeError() const { return describeError_; }  // why they are missing, if they are
+    // Dispatches recorded since the pipeline was made: `obscura bench --gpu` names the shaders a case ran by
+    // the pipelines whose count its frames raised.
+    std::uint64_t dispatches() const { return dispatches_; }
     // Called by Context::Impl::submit before recording: the descriptor sets are free again.
     void beginCommands() { used_ = 0; }
 
@@ -69,8 +72,7 @@ public:
 
 private:
     Context::Impl& context_;
-    std::string name_;    // the cache's key: the shader's name, then its specialization constants in <>
-    std::string shader_;  // the shader's name alone (Context::Impl::dispatched)
+    std::string name_;  // the cache's key: the shader's name, then its specialization constants in <>
     SpirvLayout layout_;
     std::vector<BindingKind> kinds_;
     Unique<VkDescriptorSetLayout> setLayout_;
@@ -79,6 +81,7 @@ private:
     Unique<VkDescriptorPool> pool_;
     VkDescriptorSet sets_[kSetsPerSubmit] = {};  // freed with the pool
     int used_ = 0;
+    std::uint64_t dispatches_ = 0;
     std::vector<PipelineExecutable> executables_;
     std::string describeError_;
 };

@@ -11,7 +11,6 @@
 #include <map>
 #include <memory>
 #include <mutex>
-#include <set>
 #include <utility>
 #include <string>
 #include <vector>
@@ -52,10 +51,6 @@ struct Context::Impl {
 
     // Made once per context: creating a pipeline compiles its shader to the device's machine code.
     std::map<std::string, std::unique_ptr<ComputePipeline>> pipelines;
-    // The shaders (src/gpu/shaders/NAME.comp, without specialization) recorded into a dispatch since this was
-    // last cleared: `obscura bench --gpu` clears it before each case's frames, so that a case names the
-    // shaders its time comes from, and a changed shader is timed in the cases it reaches.
-    std::set<std::string> dispatched;
     // OBSCURA_SHADER_DIR: a folder whose NAME.spv replaces the embedded shader NAME (for timing a changed
     // shader without a rebuild); the words of the files read from it, by shader name.
     std::string shaderDir;

@@ -17,10 +17,12 @@
 #include "obscura/gtao_temporal.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <cstdio>
 #include <functional>
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -351,7 +353,9 @@ GpuBenchCase benchGpuCase(Context& context, const std::string& name, const std::
     std::map<std::string, std::vector<double>> passMs;
     std::vector<std::string> order;
     const int total = settings.warmup + settings.frames;
-    c.dispatched.clear();  // what the setup dispatched (clears, a first history) is not the frame's
+    // Each pipeline's dispatches before the frames (the setup's clears and first history are not the frame's).
+    std::map<std::string, std::uint64_t> dispatchesBefore;
+    for (const auto& [key, pipeline] : c.pipelines) dispatchesBefore[key] = pipeline->dispatches();
     for (int first = 0; first < total; first += settings.framesPerSubmit) {
         const int count = std::min(settings.framesPerSubmit, total - first);
         std::vector<int> marksAfterFrame;  // marks recorded once frame first + k is recorded
@@ -402,7 +406,11 @@ GpuBenchCase benchGpuCase(Context& context, const std::string& name, const std::
         const std::vector<double>& ms = passMs[pass];
         result.passes.push_back({pass, median(ms), *std::min_element(ms.begin(), ms.end())});
     }
-    result.shaders.assign(c.dispatched.begin(), c.dispatched.end());
+    // The shaders of the pipelines the frames dispatched: a cache key is the shader's name, then <constants>.
+    std::set<std::string> shaders;
+    for (const auto& [key, pipeline] : c.pipelines)
+        if (pipeline->dispatches() > dispatchesBefore[key]) shaders.insert(key.substr(0, key.find('<')));
+    result.shaders.assign(shaders.begin(), shaders.end());
     result.medianMs = median(frameMs);
     result.minMs = *std::min_element(frameMs.begin(), frameMs.end());
     return result;
