@@ -88,10 +88,10 @@ for patch in "${patches[@]}"; do
   count=$((count + 1))
 done
 
-# gpu-ab: the embedded shaders against the first candidate (or the build's alchemy.spv), one round, at a tiny
+# gpu-ab: the embedded shaders against the first candidate (or the build's alchemy.spv), two rounds, at a tiny
 # size.
 first=$(ls "$work/spv" | head -1)
-"$src/scripts/gpu-ab" --obscura "$tool" --rounds 1 --json "$work/ab.json" embedded "cand=$work/spv/$first" \
+"$src/scripts/gpu-ab" --obscura "$tool" --rounds 2 --json "$work/ab.json" embedded "cand=$work/spv/$first" \
   -- --sizes 64x32 --cases alchemy --frames 3 --warmup 0 --inputs 1 >"$work/ab" 2>"$work/ab.err" ||
   fail "gpu-ab failed: $(cat "$work/ab.err")"
 grep -Eq '^alchemy +64x32 +frame +[0-9.]+ +[0-9.]+ +[0-9.]+$' "$work/ab" || fail "no frame row: $(cat "$work/ab")"
@@ -100,8 +100,12 @@ python3 - "$work/ab.json" <<'EOF' || fail "gpu-ab's JSON: $(cat "$work/ab.json")
 import json, sys
 d = json.load(open(sys.argv[1]))
 assert [v["name"] for v in d["variants"]] == ["embedded", "cand"]
-assert all(len(v["rounds_ms"]) == 1 and v["median_ms"] for v in d["variants"])
+assert all(len(v["rounds_ms"]) == 2 and v["median_ms"] for v in d["variants"])
 assert all(m["ms"] > 0 for v in d["variants"] for m in v["median_ms"])
+# frame_spread (gpu-candidates-report reads it): the frame's two rounds apart, over their median.
+for v in d["variants"]:
+    a, b = (m["ms"] for r in v["rounds_ms"] for m in r if m["pass"] == "frame")
+    assert abs(v["frame_spread"] - abs(a - b) / ((a + b) / 2)) < 1e-12, (v["frame_spread"], a, b)
 EOF
 # A variant that is a flag: --flags-for reaches that variant's runs alone (bench says so in its JSON).
 "$src/scripts/gpu-ab" --obscura "$tool" --rounds 1 --json "$work/flags.json" two tiled --flags-for "tiled=--blur-tiled" \
