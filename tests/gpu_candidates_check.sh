@@ -10,11 +10,12 @@
 # - gpu-ab times two variants against each other and writes its JSON; it refuses a missing folder;
 # - the probes of bench/gpu-probes (wrong by design, timed only) apply, compile and run in gpu-waiting (with
 #   none waiting, probes-ab runs on the build's own alchemy.spv);
-# - gpu-waiting writes every part's file (candidates.txt too: each candidate's verdict), times each candidate in the cases whose frames run a shader it
-#   replaces (bench's list of each case's shaders), and again with the spatio-temporal target's flags where
-#   it replaces a shader of that frame (candidates-grid-ab), the target's configuration against its fused pass and its history's depth copy
-#   (fused-ab), and names a part that fails while the others run; with --parts it runs only the parts named,
-#   and refuses a name it does not know or a part with nothing to time.
+# - gpu-waiting writes every part's file (candidates.txt too: each candidate's verdict), times each candidate
+#   in the cases whose frames run a shader it replaces (bench's list of each case's shaders), and again with
+#   the spatio-temporal target's flags where it replaces a shader of that frame (candidates-grid-ab), the
+#   target's configuration against its fused pass and its history's depth copy (fused-ab), and names a part
+#   that fails while the others run; with --parts it runs only the parts named, and refuses a name it does not
+#   know or a part with nothing to time.
 # Exit 77 (skipped) without a Vulkan device, python3 or glslc. Arguments: source dir, build dir, scratch dir.
 source "$(dirname "$0")/check_common.sh"
 check_setup gpu_candidates_check "$@"
@@ -177,12 +178,19 @@ sys.exit(0 if got == want and cases == ["gtao-temporal-grid"] else f"{got} {case
 PY
 }
 has_target_flags "$work/waiting/pipelines-target.json"
+# The shaders of the spatio-temporal target's frame, as this check knows them apart from gpu-waiting.
+targetShaders="gtao gtao_temporal upsample_depth_aware"
+# Whether candidate folder DIR replaces one of them.
+in_target() {
+  local shader
+  for shader in $targetShaders; do [ -f "$1/$shader.spv" ] && return 0; done
+  return 1
+}
 if [ ${#patches[@]} -gt 0 ]; then
   for n in $(ls "$work/spv"); do
     [ -s "$work/waiting/pipelines-$n.json" ] || fail "gpu-waiting wrote no pipelines-$n.json"
     # A candidate that changes a shader of the spatio-temporal target's frame has its statistics there too.
-    d=$work/spv/$n
-    if [ -f "$d/gtao.spv" ] || [ -f "$d/gtao_temporal.spv" ] || [ -f "$d/upsample_depth_aware.spv" ]; then
+    if in_target "$work/spv/$n"; then
       has_target_flags "$work/waiting/pipelines-$n-target.json"
     elif [ -e "$work/waiting/pipelines-$n-target.json" ]; then
       fail "pipelines-$n-target.json for a candidate outside the target's frame"
@@ -194,14 +202,15 @@ grep -q "^gtao-temporal-grid .* upsample " "$work/waiting/candidates-grid-ab.txt
   fail "candidates-grid-ab.txt: $(cat "$work/waiting/candidates-grid-ab.txt")"
 # Each candidate timed in exactly the cases whose frames dispatch a shader it replaces (bench's own list of a
 # case's shaders, read here apart from gpu-waiting), the embedded shaders in all of them; and again in the
-# spatio-temporal target's configuration when it replaces a shader of that frame (gtao, gtao_temporal,
-# upsample_depth_aware), with the target's flags.
+# spatio-temporal target's configuration when it replaces a shader of that frame ($targetShaders), with the
+# target's flags.
 "$tool" bench --gpu --json --sizes 48x32 --frames 1 --warmup 0 --inputs 1 --visibility-only \
   --cases alchemy,alchemy-fused,gtao,gtao-half,gtao-temporal-grid >"$work/reach.json" ||
   fail "bench for the cases' shaders failed"
-python3 - "$work/waiting" "$work/spv" "$work/reach.json" <<'EOF' ||
+python3 - "$work/waiting" "$work/spv" "$work/reach.json" "$targetShaders" <<'EOF' ||
 import json, os, sys
-out, spv, reach = sys.argv[1:]
+out, spv, reach, target = sys.argv[1:]
+target = set(target.split())
 shaders = {c["case"]: set(c["shaders"]) for c in json.load(open(reach))["cases"]}
 replaced = {n: {f[:-4] for f in os.listdir(os.path.join(spv, n)) if f.endswith(".spv")} for n in os.listdir(spv)}
 def cases(variant):
@@ -212,7 +221,6 @@ want = {n: {c for c, s in shaders.items() if s & replaced[n]} for n in sorted(re
 got = {v["name"]: cases(v) for v in ab[1:]}
 assert got == {n: c for n, c in want.items() if c}, (got, want)
 grid = json.load(open(os.path.join(out, "candidates-grid-ab.json")))["variants"]
-target = {"gtao", "gtao_temporal", "upsample_depth_aware"}
 names = [v["name"] for v in grid]
 assert names[0] == "embedded" and sorted(names[1:]) == [n for n in sorted(replaced) if replaced[n] & target], names
 assert all("--packed-output" in v["flags"] and "--alternating-window-size" in v["flags"] for v in grid)
