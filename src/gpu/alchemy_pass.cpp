@@ -58,7 +58,8 @@ void recordAlchemyBlurred(Context::Impl& c, VkCommandBuffer cmd, const AlchemyBl
     constants.blur.axis = 0;
     // In binding order: kAlchemyBindingDepth, Normal, Spiral, kAlchemyBlurBindingLogSpatial, Output.
     pipeline.dispatch(cmd, {&b.depth, &b.normal, &b.spiral, &b.logSpatial, &b.scratch}, &constants, sizeof constants,
-                      std::uint32_t(bilateralGroupsX(0, f.constants.width)), std::uint32_t(f.constants.height));
+                      std::uint32_t(alchemyBlurRowGroupsX(f.constants.width, f.constants.radius)),
+                      std::uint32_t(f.constants.height));
     if (mark) mark("alchemy-rows");
     computeBarrier(cmd);  // the vertical pass reads the rows
     // Its normal binding is unread without the normal weight; the depth buffer stands in for it.

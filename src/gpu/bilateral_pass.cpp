@@ -42,7 +42,8 @@ void recordSeparableBilateralAxis(Context::Impl& c, VkCommandBuffer cmd, const S
         c.pipeline("bilateral_separable", shaders::bilateral_separable,
                    std::vector<BindingKind>(kBilateralBindingCount, BindingKind::StorageBuffer),
                    kBilateralPushConstantBytes, kBilateralWorkgroupX, kBilateralWorkgroupY,
-                   {f.constants.useNormal, b.packedNormals ? 1 : 0});  // kBilateralSpecUseNormal, PackedNormals
+                   {f.constants.useNormal, b.packedNormals ? 1 : 0,
+                    bilateralSpecUnrolled(f.constants.radius, f.constants.useNormal)});  // kBilateralSpec...
     BilateralConstants k = f.constants;
     k.axis = axis;
     // In binding order: kBilateralBindingDepth, Normal, LogSpatial, Input, Output.
@@ -60,7 +61,8 @@ void recordSeparableBilateral(Context::Impl& c, VkCommandBuffer cmd, const Separ
             c.pipeline("bilateral_tiled", shaders::bilateral_tiled,
                        std::vector<BindingKind>(kBilateralBindingCount, BindingKind::StorageBuffer),
                        kBilateralPushConstantBytes, kBilateralTiledWorkgroupX, kBilateralTiledWorkgroupY,
-                       {f.constants.useNormal, b.packedNormals ? 1 : 0});  // kBilateralSpecUseNormal, PackedNormals
+                       {f.constants.useNormal, b.packedNormals ? 1 : 0,
+                        bilateralSpecUnrolled(f.constants.radius, f.constants.useNormal)});  // kBilateralSpec...
         const std::uint32_t tilesX = std::uint32_t((f.constants.width + kBilateralTiledTile - 1) / kBilateralTiledTile);
         const std::uint32_t tilesY = std::uint32_t((f.constants.height + kBilateralTiledTile - 1) / kBilateralTiledTile);
         pipeline.dispatch(cmd, {&b.depth, &b.normal, &b.logSpatial, &b.input, &b.output}, &f.constants,

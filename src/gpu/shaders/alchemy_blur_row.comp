@@ -3,13 +3,18 @@
 // more on each side, into shared memory, and blurs them there. The raw AO never goes through memory, and
 // the frame has one dispatch and one barrier fewer than alchemy.comp followed by both passes of
 // bilateral_separable.comp; its vertical pass follows this one. The apron is evaluated twice, by this
-// workgroup and its neighbour: 2 radius / 256 more estimator work (5% at radius 6).
+// workgroup and its neighbour: 2 radius / (256 - 2 radius) more estimator work (5% at radius 6).
+// Each invocation evaluates one pixel and the workgroup blurs the middle 256 - 2 radius of them. Before,
+// 2 radius invocations evaluated a second pixel (the apron) while the other 244 waited at the barrier: on an
+// H100 (2026-11-27, docs/PERFORMANCE.md) this took the rows from 0.0747 to 0.0637 ms at 1920x1080 (0.853)
+// and the fused frame from 0.1003 to 0.0894 ms (0.891); at 3840x2160 0.904 and 0.927. The same bits.
 //
 // The estimator is alchemy.comp's (alchemy_pixel.glsl) and the taps are bilateral_separable.comp's
 // (bilateral_taps.glsl), on the same values in the same order, so the result has the same bits as the two
 // dispatches it replaces wherever the compiler rounds both alike (lavapipe: tests/gpu).
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
 
 #include "obscura/alchemy_constants.h"
 #include "layouts.h"
@@ -32,7 +37,8 @@ layout(std430, binding = kAlchemyBlurBindingOutput) writeonly buffer Output { fl
 #include "alchemy_pixel.glsl"
 
 const int kUseNormal = 0;  // the separable blur's default (bilateral_taps.glsl)
-const int kSlots = kBilateralHorizontalTileX + 2 * kBilateralMaxRadius;
+const int kUnrolled = 0;   // the unrolled taps gained nothing here (bilateral_taps.glsl)
+const int kSlots = kBilateralHorizontalTileX;
 shared vec2 tile[kSlots];  // depth, input
 shared float tileLogSpatial[2 * kBilateralMaxRadius + 1];
 
@@ -43,25 +49,33 @@ int tileIndex(int line, int i) { return i; }
 void main() {
     const int invocation = int(gl_LocalInvocationID.x);
     const int y = int(gl_WorkGroupID.y);  // the output row; the host dispatches b.height rows
-    const int x = int(gl_WorkGroupID.x) * kBilateralHorizontalTileX + invocation;
-    // The tile starts radius pixels before the row's first one. Its slots outside the image stay unwritten:
-    // the tap loop never reads them (tFirst, tLast below), as the blur skips taps outside the image.
-    const int start = x - invocation - b.radius;
-    for (int i = invocation; i < kBilateralHorizontalTileX + 2 * b.radius; i += kBilateralHorizontalTileX) {
-        const int a = start + i;
-        if (a < 0 || a >= b.width) continue;
+    // Each invocation evaluates one pixel, and the workgroup blurs the middle tile - 2 radius pixels of its
+    // tile, a segment: no invocation evaluates a second pixel of the apron while the rest of its workgroup
+    // waits at the barrier. The host dispatches one workgroup per segment (alchemyBlurRowGroupsX, layouts.h);
+    // a workgroup still takes every segment from its index on, in steps of the workgroups' count, so that a
+    // host dispatching fewer gets the whole row.
+    const int outputs = kBilateralHorizontalTileX - 2 * b.radius;
+    const int segments = (b.width + outputs - 1) / outputs;
+    for (int i = invocation; i <= 2 * b.radius; i += kBilateralHorizontalTileX)
+        tileLogSpatial[i] = logSpatial[i];
+    for (int s = int(gl_WorkGroupID.x); s < segments; s += int(gl_NumWorkGroups.x)) {
+        // Slot i holds pixel s outputs - radius + i. Those outside the image stay unwritten: the tap loop
+        // never reads them (tFirst, tLast below), as the blur skips taps outside the image.
         // Output pixel (a, y) is pixel (a + guardBand, y + guardBand) of the guard-banded buffers.
-        tile[i] = vec2(depth[uint(y + k.guardBand) * uint(k.width) + uint(a + k.guardBand)],
-                       alchemyPixel(a + k.guardBand, y + k.guardBand));
+        const int a = s * outputs - b.radius + invocation, ga = a + k.guardBand, gy = y + k.guardBand;
+        if (a >= 0 && a < b.width)
+            tile[invocation] = vec2(depth[uint(gy) * uint(k.width) + uint(ga)], alchemyPixel(ga, gy));
+        barrier();
+        const int x = s * outputs + invocation;
+        if (invocation < outputs && x < b.width) {
+            const int centre = invocation + b.radius;
+            const float d = tile[centre].x;
+            const float c = b.depthScale / (d * d);  // 0 on sky: its output is its input anyway
+            const int tFirst = max(-b.radius, -x), tLast = min(b.radius, b.width - 1 - x);
+            const uint o = uint(y) * uint(b.width) + uint(x);
+            aoOut[o] = bilateralTaps(0, centre, b.radius, tFirst, tLast, d, c, vec3(0.0), o, 1);
+        }
+        // The taps have read the tile before the next segment writes it.
+        if (s + int(gl_NumWorkGroups.x) < segments) barrier();
     }
-    for (int i = invocation; i <= 2 * b.radius; i += kBilateralHorizontalTileX) tileLogSpatial[i] = logSpatial[i];
-    barrier();
-    if (x >= b.width) return;
-
-    const int centre = invocation + b.radius;
-    const float d = tile[centre].x;
-    const float c = b.depthScale / (d * d);  // 0 on sky: its output is its input anyway
-    const int tFirst = max(-b.radius, -x), tLast = min(b.radius, b.width - 1 - x);
-    const uint o = uint(y) * uint(b.width) + uint(x);
-    aoOut[o] = bilateralTaps(0, centre, b.radius, tFirst, tLast, d, c, vec3(0.0), o, 1);
 }

@@ -15,6 +15,7 @@
 // 0.050 ms with these; at 3840x2160, 0.277, 0.230 and 0.183 ms.
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
 
 #include "layouts.h"
 
@@ -25,6 +26,7 @@ layout(constant_id = kBilateralSpecUseNormal) const int kUseNormal = 0;  // = k.
 layout(push_constant, std430) uniform Constants { BilateralConstants k; };
 layout(std430, binding = kBilateralBindingDepth) readonly buffer DepthPlane { float depth[]; };
 layout(constant_id = kBilateralSpecPackedNormals) const int kPackedNormals = 0;
+layout(constant_id = kBilateralSpecUnrolled) const int kUnrolled = 0;  // bilateralSpecUnrolled (layouts.h)
 layout(std430, binding = kBilateralBindingNormal) readonly buffer NormalPlane { uint normalWords[]; };
 layout(std430, binding = kBilateralBindingLogSpatial) readonly buffer Spatial { float logSpatial[]; };
 layout(std430, binding = kBilateralBindingInput) readonly buffer Input { float aoIn[]; };

@@ -22,6 +22,7 @@
 // filter, so only contraction of a multiply-add by the GPU's compiler can round differently there.
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
 
 #include "temporal_layouts.h"
 

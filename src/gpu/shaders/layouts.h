@@ -84,6 +84,11 @@ OBSCURA_CONST int kBilateralSpecUseNormal = 0;
 // constant_id of the normals' layout where the blur reads them (useNormal 1), as gtao.comp's
 // kGtaoSpecPackedNormals: 0 3 floats per pixel, 1 one octahedral word (also bilateral_2d.comp's).
 OBSCURA_CONST int kBilateralSpecPackedNormals = 1;
+// constant_id of the unrolled taps (bilateral_taps.glsl) in bilateral_separable and bilateral_tiled: 1 where
+// the radius is kBilateralUnrolledRadius (the default) and the normal weight is off (bilateralSpecUnrolled),
+// so that the other variants hold only the tap loop; their code cost the 5-tap blur 5-7% on an H100.
+OBSCURA_CONST int kBilateralSpecUnrolled = 2;
+OBSCURA_CONST int kBilateralUnrolledRadius = 6;
 
 // ---- alchemy_blur_row.comp (src/gpu/alchemy_pass.cpp) ----
 // Alchemy AO and the horizontal pass of its separable blur in one dispatch: a workgroup evaluates a row of
@@ -163,6 +168,15 @@ inline constexpr int bilateralGroupsX(int axis, int width) {
 inline constexpr int bilateralGroupsY(int axis, int height) {
     const int tile = axis == 0 ? kBilateralHorizontalTileY : kBilateralVerticalTileY;
     return (height + tile - 1) / tile;
+}
+// kBilateralSpecUnrolled's value for a blur of this radius, with or without the normal weight.
+inline constexpr int bilateralSpecUnrolled(int radius, int useNormal) {
+    return radius == kBilateralUnrolledRadius && useNormal == 0 ? 1 : 0;
+}
+// alchemy_blur_row.comp's workgroups along x: each blurs a segment of its 256-pixel tile less radius at each end.
+inline constexpr int alchemyBlurRowGroupsX(int width, int radius) {
+    const int outputs = kBilateralHorizontalTileX - 2 * radius;
+    return (width + outputs - 1) / outputs;
 }
 static_assert(kBilateralHorizontalTileX * kBilateralHorizontalTileY == kBilateralWorkgroupX * kBilateralWorkgroupY &&
                   kBilateralVerticalTileX * kBilateralVerticalTileY == kBilateralWorkgroupX * kBilateralWorkgroupY &&

@@ -104,16 +104,14 @@ void normalizeGridVector(inout float result[4]) {
     result[b + 2] = v.z;
 }
 
-// The upsampling to full-resolution pixel (x, y) of depth d from the lowWidth x lowHeight grid, channel by
-// channel in result[0..kGridChannels).
-void upsampleDepthAware(int x, int y, float d, int lowWidth, int lowHeight, float depthSigma, out float result[4]) {
+// The upsampling of upsampleDepthAware below, past the taps' positions: grid pixels x0..x1 x y0..y1 and the
+// pixel's place fx, fy between them. A caller that knows them without the conversions (a 2x2 block's
+// invocation) calls it directly.
+void upsampleDepthAwareAt(int x0, int y0, int x1, int y1, float fx, float fy, float d, float depthSigma,
+                          out float result[4]) {
     // Image out(w, h, channels, channels == 1 ? 1 : 0): an unoccluded sky, no bent normal.
     for (int c = 0; c < 4; ++c) result[c] = kGridScalar && c == 0 ? 1.0 : 0.0;
     if (!finiteDepth(d)) return;
-    const float gx = 0.5 * float(x), gy = 0.5 * float(y);
-    const int x0 = min(int(gx), lowWidth - 1), y0 = min(int(gy), lowHeight - 1);
-    const int x1 = min(x0 + 1, lowWidth - 1), y1 = min(y0 + 1, lowHeight - 1);
-    const float fx = gx - float(x0), fy = gy - float(y0);
     const int tx[4] = int[4](x0, x1, x0, x1), ty[4] = int[4](y0, y0, y1, y1);
     const float bilinear[4] = float[4]((1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy);
     const float sigma = depthSigma * d;
@@ -154,6 +152,16 @@ void upsampleDepthAware(int x, int y, float d, int lowWidth, int lowHeight, floa
     }
     for (int c = 0; c < kGridChannels; ++c) result[c] = sum[c] / weightSum;
     normalizeGridVector(result);
+}
+
+// The upsampling to full-resolution pixel (x, y) of depth d from the lowWidth x lowHeight grid, channel by
+// channel in result[0..kGridChannels).
+void upsampleDepthAware(int x, int y, float d, int lowWidth, int lowHeight, float depthSigma, out float result[4]) {
+    const float gx = 0.5 * float(x), gy = 0.5 * float(y);
+    const int x0 = min(int(gx), lowWidth - 1), y0 = min(int(gy), lowHeight - 1);
+    const int x1 = min(x0 + 1, lowWidth - 1), y1 = min(y0 + 1, lowHeight - 1);
+    const float fx = gx - float(x0), fy = gy - float(y0);
+    upsampleDepthAwareAt(x0, y0, x1, y1, fx, fy, d, depthSigma, result);
 }
 
 #endif

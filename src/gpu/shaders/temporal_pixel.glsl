@@ -120,21 +120,37 @@ void temporalPixel(int x, int y, vec3 bent, inout float visibility, inout vec3 n
     const float gx = (prev.x - 0.5) * toLattice, gy = (prev.y - 0.5) * toLattice;
     const int x0 = int(floor(gx)), y0 = int(floor(gy));
     const float fx = gx - float(x0), fy = gy - float(y0);
+    // The four taps' history, loaded together before the tests below read it: tested as it arrived, a tap's
+    // normal was asked for only once its depth had passed, and its visibility once its normal had, three round
+    // trips to memory one after the other. The loads are clamped to the lattice; the tests still skip the taps
+    // outside it and those of no weight, so the sums are the same. On an H100 (2026-11-27) the grid's
+    // accumulation went to 0.873 / 0.919 of its time at 1920x1080 / 3840x2160 (its 5x5 window), 0.932 / 0.977
+    // with the spatio-temporal target's flags, though it takes 8-9 more registers (39-40, from 30-32).
+    float tapDepth[4], tapVisibility[4], tapLength[4];
+    vec3 tapNormal[4], tapBent[4];
+    [[unroll]] for (int t = 0; t < 4; ++t) {
+        const int tx = clamp(x0 + (t & 1), 0, w - 1), ty = clamp(y0 + (t >> 1), 0, h - 1);
+        const uint ti = uint(ty) * uint(w) + uint(tx);
+        tapDepth[t] = previousDepthAt(ti, tx, ty);
+        tapNormal[t] = previousNormalWorldAt(ti);
+        tapVisibility[t] = previousVisibilityAt(ti);
+        tapLength[t] = previousLengthAt(ti);
+        tapBent[t] = kBentNormal != 0 ? previousBentWorldAt(ti) : vec3(0.0);
+    }
     float weightSum = 0.0, historyVisibility = 0.0, historyLength = 0.0;
     vec3 historyBent = vec3(0.0);
-    for (int t = 0; t < 4; ++t) {
+    [[unroll]] for (int t = 0; t < 4; ++t) {
         const int tx = x0 + (t & 1), ty = y0 + (t >> 1);
         const float bw = ((t & 1) != 0 ? fx : 1.0 - fx) * ((t >> 1) != 0 ? fy : 1.0 - fy);
         if (bw <= 0.0 || tx < 0 || ty < 0 || tx >= w || ty >= h) continue;
-        const uint ti = uint(ty) * uint(w) + uint(tx);
-        const float pd = previousDepthAt(ti, tx, ty);
+        const float pd = tapDepth[t];
         // Disocclusion: the previous frame saw another surface there, or one facing elsewhere.
         if (!finiteDepth(pd) || abs(pd - expectedDepth) > k.rejectDepth * expectedDepth) continue;
-        if (dot3(previousNormalWorldAt(ti), nWorld) < k.rejectNormalCos) continue;
+        if (dot3(tapNormal[t], nWorld) < k.rejectNormalCos) continue;
         weightSum += bw;
-        historyVisibility += bw * previousVisibilityAt(ti);
-        if (kBentNormal != 0) historyBent += previousBentWorldAt(ti) * bw;
-        historyLength += bw * previousLengthAt(ti);
+        historyVisibility += bw * tapVisibility[t];
+        if (kBentNormal != 0) historyBent += tapBent[t] * bw;
+        historyLength += bw * tapLength[t];
     }
     // Less than a quarter of the footprint confirmed: too little to trust.
     if (weightSum < 0.25) return;
