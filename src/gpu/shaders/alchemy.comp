@@ -12,6 +12,7 @@
 // a driver that fuses multiply-adds or divides less exactly agrees to rounding instead.
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
 
 #include "obscura/alchemy_constants.h"
 #include "layouts.h"
