@@ -46,10 +46,16 @@ void recordAlchemyBlurred(Context::Impl& c, VkCommandBuffer cmd, const AlchemyBl
                           const std::function<void(const char*)>& mark) {
     assert(f.constants.useNormal == 0 && f.constants.width == k.width - 2 * k.guardBand &&
            f.constants.height == k.height - 2 * k.guardBand);
+    // Workgroups of the compiled shader's width (kBilateralHorizontalTileX as embedded), each blurring that
+    // width less the radius at each end: a candidate shader may try another width.
     ComputePipeline& pipeline =
-        c.pipeline("alchemy_blur_row", shaders::alchemy_blur_row, storageBuffers(kAlchemyBlurBindingCount),
-                   kAlchemyBlurPushConstantBytes, kBilateralHorizontalTileX, 1,
-                   {b.packedNormals ? 1 : 0});  // kAlchemySpecPackedNormals
+        c.pipelineOfShadersSize("alchemy_blur_row", shaders::alchemy_blur_row, storageBuffers(kAlchemyBlurBindingCount),
+                                kAlchemyBlurPushConstantBytes, {b.packedNormals ? 1 : 0});  // kAlchemySpecPackedNormals
+    const std::uint32_t* size = pipeline.layout().localSize;
+    if (size[1] != 1 || int(size[0]) <= 2 * f.constants.radius)
+        fail("shader alchemy_blur_row", "has workgroups of " + std::to_string(size[0]) + "x" + std::to_string(size[1]) +
+                                            ": a row of more than 2 radius (" + std::to_string(2 * f.constants.radius) +
+                                            ") invocations is what it blurs");
     struct {
         ssao::AlchemyConstants alchemy;
         BilateralConstants blur;
@@ -58,7 +64,7 @@ void recordAlchemyBlurred(Context::Impl& c, VkCommandBuffer cmd, const AlchemyBl
     constants.blur.axis = 0;
     // In binding order: kAlchemyBindingDepth, Normal, Spiral, kAlchemyBlurBindingLogSpatial, Output.
     pipeline.dispatch(cmd, {&b.depth, &b.normal, &b.spiral, &b.logSpatial, &b.scratch}, &constants, sizeof constants,
-                      std::uint32_t(alchemyBlurRowGroupsX(f.constants.width, f.constants.radius)),
+                      std::uint32_t(alchemyBlurRowGroupsX(f.constants.width, f.constants.radius, int(size[0]))),
                       std::uint32_t(f.constants.height));
     if (mark) mark("alchemy-rows");
     computeBarrier(cmd);  // the vertical pass reads the rows

@@ -5,6 +5,7 @@
 
 #include "gpu/image_planes.h"
 #include "gpu/spirv.h"
+#include "gpu/shaders/layouts.h"
 
 #include "obscura/alchemy.h"
 #include "obscura/error.h"
@@ -233,6 +234,26 @@ TEST(GpuAlchemy, FusedRowBlurMatchesTheSeparatePasses) {
     EXPECT_EQ(testing::errorMessage([&] { alchemyAOBlurred(context, g, bad, {}); }),
               testing::errorMessage([&] { ssao::alchemyAO(g, bad); }));
     EXPECT_EQ(testing::validationReport(context), "");
+}
+
+// The fused rows dispatch by the width their module declares (a candidate may try another), each workgroup
+// blurring that width less the radius at each end. A module whose row is no wider than 2 radius, or that is
+// more than one row, is refused in one line naming the shader, before anything is dispatched.
+TEST(GpuAlchemy, FusedRowsRefuseAWorkgroupThatCannotHoldTheirApron) {
+    const std::vector<std::uint32_t> embedded(shaders::alchemy_blur_row.words,
+                                              shaders::alchemy_blur_row.words + shaders::alchemy_blur_row.count);
+    ASSERT_EQ(reflect({embedded.data(), embedded.size()}).localSize[0], std::uint32_t(kBilateralHorizontalTileX));
+    const GBuffer g = testing::render("plane", 40, 8);
+    for (const auto& [x, y] : {std::pair{12u, 1u}, std::pair{256u, 2u}}) {
+        testing::ContextWithModule other("alchemy_blur_row", testing::withWorkgroupSize(embedded, x, y));
+        const std::string refused = testing::errorMessage([&] { alchemyAOBlurred(other.context(), g, {}, {}); });
+        EXPECT_NE(refused.find("shader alchemy_blur_row: has workgroups of " + std::to_string(x) + "x" +
+                               std::to_string(y)),
+                  std::string::npos)
+            << refused;
+        EXPECT_NE(refused.find("more than 2 radius (12)"), std::string::npos) << refused;
+        EXPECT_EQ(testing::validationReport(other.context()), "");
+    }
 }
 
 

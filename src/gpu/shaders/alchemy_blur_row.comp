@@ -19,7 +19,9 @@
 #include "obscura/alchemy_constants.h"
 #include "layouts.h"
 
-layout(local_size_x = kBilateralHorizontalTileX, local_size_y = 1, local_size_z = 1) in;
+// A row of kRowTile invocations (the host reads the size back from the module: alchemy_pass.cpp).
+const int kRowTile = kBilateralHorizontalTileX;
+layout(local_size_x = kRowTile, local_size_y = 1, local_size_z = 1) in;
 
 // The estimator's constants `k` (alchemy_pixel.glsl reads them by that name), then the blur's `b` on the
 // output grid: width and height are the output's, axis 0, no normal weight.
@@ -38,7 +40,7 @@ layout(std430, binding = kAlchemyBlurBindingOutput) writeonly buffer Output { fl
 
 const int kUseNormal = 0;  // the separable blur's default (bilateral_taps.glsl)
 const int kUnrolled = 0;   // the unrolled taps gained nothing here (bilateral_taps.glsl)
-const int kSlots = kBilateralHorizontalTileX;
+const int kSlots = kRowTile;
 shared vec2 tile[kSlots];  // depth, input
 shared float tileLogSpatial[2 * kBilateralMaxRadius + 1];
 
@@ -54,9 +56,9 @@ void main() {
     // waits at the barrier. The host dispatches one workgroup per segment (alchemyBlurRowGroupsX, layouts.h);
     // a workgroup still takes every segment from its index on, in steps of the workgroups' count, so that a
     // host dispatching fewer gets the whole row.
-    const int outputs = kBilateralHorizontalTileX - 2 * b.radius;
+    const int outputs = kRowTile - 2 * b.radius;
     const int segments = (b.width + outputs - 1) / outputs;
-    for (int i = invocation; i <= 2 * b.radius; i += kBilateralHorizontalTileX)
+    for (int i = invocation; i <= 2 * b.radius; i += kRowTile)
         tileLogSpatial[i] = logSpatial[i];
     for (int s = int(gl_WorkGroupID.x); s < segments; s += int(gl_NumWorkGroups.x)) {
         // Slot i holds pixel s outputs - radius + i. Those outside the image stay unwritten: the tap loop

@@ -173,9 +173,10 @@ inline constexpr int bilateralGroupsY(int axis, int height) {
 inline constexpr int bilateralSpecUnrolled(int radius, int useNormal) {
     return radius == kBilateralUnrolledRadius && useNormal == 0 ? 1 : 0;
 }
-// alchemy_blur_row.comp's workgroups along x: each blurs a segment of its 256-pixel tile less radius at each end.
-inline constexpr int alchemyBlurRowGroupsX(int width, int radius) {
-    const int outputs = kBilateralHorizontalTileX - 2 * radius;
+// alchemy_blur_row.comp's workgroups along x: each blurs a segment of its tile (one pixel per invocation,
+// kBilateralHorizontalTileX as embedded) less radius at each end.
+inline constexpr int alchemyBlurRowGroupsX(int width, int radius, int tile = kBilateralHorizontalTileX) {
+    const int outputs = tile - 2 * radius;
     return (width + outputs - 1) / outputs;
 }
 static_assert(kBilateralHorizontalTileX * kBilateralHorizontalTileY == kBilateralWorkgroupX * kBilateralWorkgroupY &&
