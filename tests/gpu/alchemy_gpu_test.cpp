@@ -183,8 +183,9 @@ TEST(GpuAlchemy, RejectsBadInputAsTheCpuPassDoes) {
 // G-buffer) and against the CPU path. The two GPU paths compute the same values in the same order, so on
 // lavapipe they agree to the bit (held to 0 there; 1e-6 elsewhere, where a compiler may round the two
 // modules differently); the CPU bound is bilateralFilter's own, 2e-3 (tests/gpu/bilateral_gpu_test.cpp).
-// Sizes: odd in both axes, narrower than a 256-pixel row, several rows wide; radius 6 (the default), 1 and
-// 32 (the tile's largest), a guard band, normals rebuilt from depth.
+// Sizes: odd in both axes, narrower than a workgroup's row, and rows of 2 and 4 workgroups (333 pixels at
+// radius 6, 244 each; 600 at radius 32, 192 each), so that the seams between them are compared; radius 6 (the
+// default), 1 and 32 (the tile's largest), a guard band, normals rebuilt from depth.
 TEST(GpuAlchemy, FusedRowBlurMatchesTheSeparatePasses) {
     OBSCURA_GPU_CONTEXT(context);
     const bool lavapipe = context.device().name.rfind("llvmpipe", 0) == 0;
