@@ -43,17 +43,18 @@ float bilateralTaps(int line, int centre, int radius, int tFirst, int tLast, flo
         bilateralTapsUnrolled(slot, 1, d, c, sum, wsum);
     else if (unrolled && step == kBilateralVerticalTileX)
         bilateralTapsUnrolled(slot, kBilateralVerticalTileX, d, c, sum, wsum);
-    else
-    for (int t = tFirst; t <= tLast; ++t, slot += step) {
-        const vec2 tap = tile[slot];
-        const float dd = tap.x - d;
-        float w = exp2(tileLogSpatial[t + radius] - dd * dd * c);
-        if (kUseNormal != 0) {
-            const uint o = uint(int(x) + t * stride);
-            w *= max(0.0, dot(n, loadNormal(o)));
+    else {
+        for (int t = tFirst; t <= tLast; ++t, slot += step) {
+            const vec2 tap = tile[slot];
+            const float dd = tap.x - d;
+            float w = exp2(tileLogSpatial[t + radius] - dd * dd * c);
+            if (kUseNormal != 0) {
+                const uint o = uint(int(x) + t * stride);
+                w *= max(0.0, dot(n, loadNormal(o)));
+            }
+            sum += w * tap.y;
+            wsum += w;
         }
-        sum += w * tap.y;
-        wsum += w;
     }
     // A centre on sky or with no weight (impossible for a surface: its own tap counts) keeps its input.
     const bool keep = d < 1e30 && wsum > 0.0;
