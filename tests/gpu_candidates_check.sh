@@ -8,8 +8,10 @@
 #   same bits", else within 1e-5;
 # - with no patch waiting, gpu-candidates refuses to run and says so;
 # - gpu-ab times two variants against each other and writes its JSON; it refuses a missing folder;
-# - the probes of bench/gpu-probes (wrong by design, timed only) apply, compile and run in gpu-waiting (with
-#   none waiting, probes-ab runs on the build's own alchemy.spv);
+# - the probes of bench/gpu-probes (wrong by design, timed only) apply, compile and run in gpu-waiting, each in
+#   the cases of probes-ab whose frames dispatch a shader it replaces, and in the spatio-temporal target's
+#   configuration (probes-grid-ab) when it replaces a shader of that frame (with none waiting, both parts run on
+#   the build's own alchemy.spv and gtao.spv);
 # - gpu-waiting writes every part's file (candidates.txt too: each candidate's verdict), times each candidate
 #   in the cases whose frames run a shader it replaces (bench's list of each case's shaders), and again with
 #   the spatio-temporal target's flags where it replaces a shader of that frame (candidates-grid-ab), the
@@ -134,12 +136,12 @@ if [ ${#probes[@]} -gt 0 ]; then
     check_built "$patch" "$work/probes/$(basename "$patch" .patch)" "$work/built-probes"
   done
 else
-  # None waiting: probes-ab still runs, on a folder holding the build's own alchemy.spv, as the candidates'
-  # parts do above, so that the part is checked whether or not a probe waits.
+  # None waiting: probes-ab and probes-grid-ab still run, on a folder holding the build's own alchemy.spv and
+  # gtao.spv, as the candidates' parts do above, so that the parts are checked whether or not a probe waits.
   mkdir -p "$work/probes/same"
-  cp "$build/shaders/alchemy.spv" "$work/probes/same/" || fail "the build has no shaders/alchemy.spv"
+  cp "$build/shaders/alchemy.spv" "$build/shaders/gtao.spv" "$work/probes/same/" ||
+    fail "the build has no shaders/alchemy.spv or gtao.spv"
 fi
-probeNames=$(ls "$work/probes")
 # gpu-waiting: every part, each into its file, at a tiny size, with one round.
 "$src/scripts/gpu-waiting" --obscura "$tool" --candidates "$work/spv" --probes "$work/probes" --rounds 1 --small "$work/waiting" \
   -- --sizes 48x32 --frames 2 --warmup 0 --inputs 1 2>"$work/waiting.err" || fail "gpu-waiting: $(cat "$work/waiting.err")"
@@ -200,36 +202,42 @@ fi
 grep -q "^alchemy " "$work/waiting/candidates-ab.txt" || fail "candidates-ab.txt: $(cat "$work/waiting/candidates-ab.txt")"
 grep -q "^gtao-temporal-grid .* upsample " "$work/waiting/candidates-grid-ab.txt" ||
   fail "candidates-grid-ab.txt: $(cat "$work/waiting/candidates-grid-ab.txt")"
-# Each candidate timed in exactly the cases whose frames dispatch a shader it replaces (bench's own list of a
-# case's shaders, read here apart from gpu-waiting), the embedded shaders in all of them; and again in the
-# spatio-temporal target's configuration when it replaces a shader of that frame ($targetShaders), with the
-# target's flags.
-"$tool" bench --gpu --json --sizes 48x32 --frames 1 --warmup 0 --inputs 1 --visibility-only \
-  --cases alchemy,alchemy-fused,gtao,gtao-half,gtao-temporal-grid >"$work/reach.json" ||
-  fail "bench for the cases' shaders failed"
-python3 - "$work/waiting" "$work/spv" "$work/reach.json" "$targetShaders" <<'EOF' ||
+# PART FOLDER CASES [BENCH_FLAGS...]: each variant of folder FOLDER (a candidate or a probe) timed in PART.json
+# in exactly the cases of CASES whose frames dispatch a shader it replaces (bench's own list of a case's
+# shaders, read here apart from gpu-waiting), the embedded shaders in all of them; and in PART's grid twin
+# (PART with "-ab" made "-grid-ab") with the target's flags exactly when it replaces a shader of that frame
+# ($targetShaders).
+check_reach() {
+  local part=$1 folder=$2 list=$3
+  shift 3
+  "$tool" bench --gpu --json --sizes 48x32 --frames 1 --warmup 0 --inputs 1 --visibility-only "$@" \
+    --cases "$list" >"$work/reach-$part.json" || fail "bench for the shaders of $part's cases failed"
+  python3 - "$work/waiting" "$folder" "$work/reach-$part.json" "$targetShaders" "$part" <<'EOF' ||
 import json, os, sys
-out, spv, reach, target = sys.argv[1:]
+out, folder, reach, target, part = sys.argv[1:]
 target = set(target.split())
 shaders = {c["case"]: set(c["shaders"]) for c in json.load(open(reach))["cases"]}
-replaced = {n: {f[:-4] for f in os.listdir(os.path.join(spv, n)) if f.endswith(".spv")} for n in os.listdir(spv)}
+replaced = {n: {f[:-4] for f in os.listdir(os.path.join(folder, n)) if f.endswith(".spv")} for n in os.listdir(folder)}
 def cases(variant):
     return {m["case"] for m in variant["median_ms"]}
-ab = json.load(open(os.path.join(out, "candidates-ab.json")))["variants"]
+ab = json.load(open(os.path.join(out, part + ".json")))["variants"]
 assert ab[0]["name"] == "embedded" and cases(ab[0]) == set(shaders), (ab[0]["name"], cases(ab[0]))
 want = {n: {c for c, s in shaders.items() if s & replaced[n]} for n in sorted(replaced)}
 got = {v["name"]: cases(v) for v in ab[1:]}
 assert got == {n: c for n, c in want.items() if c}, (got, want)
-grid = json.load(open(os.path.join(out, "candidates-grid-ab.json")))["variants"]
+grid = json.load(open(os.path.join(out, part.replace("-ab", "-grid-ab") + ".json")))["variants"]
 names = [v["name"] for v in grid]
 assert names[0] == "embedded" and sorted(names[1:]) == [n for n in sorted(replaced) if replaced[n] & target], names
-assert all("--packed-output" in v["flags"] and "--alternating-window-size" in v["flags"] for v in grid)
+held = ("--packed-output", "--alternating-window-size", "--keep-previous-depth")
+assert all(f in v["flags"] for v in grid for f in held), [v["flags"] for v in grid]
 EOF
-  fail "the candidates' parts did not time each candidate in the cases it reaches: $(cat "$work/waiting/candidates-ab.json")"
+    fail "$part did not time each of $folder in the cases it reaches: $(cat "$work/waiting/$part.json")"
+}
+check_reach candidates-ab "$work/spv" alchemy,alchemy-fused,gtao,gtao-half,gtao-temporal-grid
 grep -q "^alchemy .* alchemy " "$work/waiting/probes-ab.txt" || fail "probes-ab.txt: $(cat "$work/waiting/probes-ab.txt")"
-for n in $probeNames; do
-  grep -q " $n ms" "$work/waiting/probes-ab.txt" || fail "probes-ab.txt has no column for $n: $(cat "$work/waiting/probes-ab.txt")"
-done
+grep -q "^gtao-temporal-grid .* upsample " "$work/waiting/probes-grid-ab.txt" ||
+  fail "probes-grid-ab.txt: $(cat "$work/waiting/probes-grid-ab.txt")"
+check_reach probes-ab "$work/probes" alchemy,alchemy-fused,gtao-half --gtao-sampling planar-nearest
 grep -q "^gtao-half " "$work/waiting/tiled-ab.txt" || fail "tiled-ab.txt: $(cat "$work/waiting/tiled-ab.txt")"
 grep -q "^alchemy " "$work/waiting/normals-ab.txt" || fail "normals-ab.txt: $(cat "$work/waiting/normals-ab.txt")"
 grep -q "^gtao-temporal-grid .* upsample " "$work/waiting/grid-ab.txt" || fail "grid-ab.txt: $(cat "$work/waiting/grid-ab.txt")"

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # scripts/gpu-targets on gpu-ab JSON files made up here, with figures chosen on both sides of each target:
 # the fastest configuration that may count wins, nearest samples are not held to the spatio-temporal target
-# however fast, a missing file leaves its target unanswered, a corrupt one fails naming it.
+# however fast, the probes' files are never read, a missing file leaves its target unanswered, a corrupt one
+# fails naming it.
 # Arguments: source dir, build dir, scratch dir. Exit 77 (skipped) without python3.
 source "$(dirname "$0")/check_common.sh"
 check_setup gpu_targets_check "$@"
@@ -42,6 +43,14 @@ write("alchemy-combined-ab.json", ["--cases", "alchemy"], [
     variant("embedded", [], "", [("alchemy", "1920x1080", "frame", 0.0990), ("alchemy-fused", "1920x1080", "frame", 0.0985)]),
     variant("packed-tiled-float-floor", ["--packed-normals", "--blur-tiled"], "/x/candidates/alchemy-float-floor/",
             [("alchemy", "1920x1080", "frame", 0.0812)]),
+])
+# Probes (wrong by design) far under every target: never read, so the expectations below stand.
+write("probes-ab.json", ["--cases", "alchemy"], [
+    variant("alchemy-rows-no-taps", [], "/x/probes/alchemy-rows-no-taps/", [("alchemy-fused", "1920x1080", "frame", 0.010)]),
+])
+write("probes-grid-ab.json", grid, [
+    variant("gtao-store-only", ["--gtao-sampling", "planar-nearest"], "/x/probes/gtao-store-only/",
+            [("gtao-temporal-grid", "3840x2160", "frame", 0.010)]),
 ])
 PY
 "$targets" "$work" >"$work/out" 2>&1 || fail "gpu-targets failed: $(cat "$work/out")"
