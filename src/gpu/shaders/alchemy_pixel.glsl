@@ -19,8 +19,9 @@ int alchemySpiralAt(int count, int cls) {
 }
 
 // One sample of alchemyPixel at spiral offset `offset`, added to sum; none for a sample outside the image.
+// `centre` is the pixel's own index in `depth`.
 void alchemySample(vec2 offset, float fx, float fy, float radiusPixels, float cx, float cy, float cz, float nx,
-                   float ny, float nz, float shift, float radius2, bool paper, inout float sum) {
+                   float ny, float nz, float shift, float radius2, bool paper, uint centre, inout float sum) {
     const int sx = floorToInt(fx + offset.x * radiusPixels);
     const int sy = floorToInt(fy + offset.y * radiusPixels);
     if (uint(sx) >= uint(k.width) || uint(sy) >= uint(k.height)) return;  // unseen: empty
@@ -36,7 +37,31 @@ void alchemySample(vec2 offset, float fx, float fy, float radiusPixels, float cx
     sum += term * float(vv < radius2);
 }
 
+// A pixel's samples are a run of kAlchemyUnrolledSamples, unrolled (alchemyUnrolledSamples), or a loop for any
+// other count. The run is split so that each change tried on it (bench/gpu-candidates) edits one place: the
+// sample (alchemySample), its spiral offset (alchemyUnrolledOffset) or the run's call (alchemyPixel); their
+// patches then apply together, and a combination of them is their patches, not a copy of their hunks.
 const int kAlchemyUnrolledSamples = 12;
+
+// The spiral offset of the unrolled run's sample i, for the pixel of class cls whose run starts at float
+// `offsets` of the table.
+vec2 alchemyUnrolledOffset(int offsets, int cls, int i) {
+    return spiral[offsets / 2 + i];
+}
+
+// The paper's 12 samples (every pixel's count with the level of detail off, the default) unrolled: the count is
+// a push constant, so the loop was a loop, each sample's spiral and depth loads issued after the sample before
+// had been summed unless the compiler reordered them; unrolled, the 12 pairs of loads can be issued ahead. On an
+// H100 (2026-11-27, 3 rounds in one run) the estimator went to 0.972 / 0.982 of its time at 1920x1080 /
+// 3840x2160 and the fused rows (alchemy_blur_row.comp) to 0.952 / 0.942: the Alchemy target's frame from 0.0876
+// to 0.0846 ms, for one more register (28). The same operations in the same order.
+void alchemyUnrolledSamples(int offsets, int cls, float fx, float fy, float radiusPixels, float cx, float cy,
+                            float cz, float nx, float ny, float nz, float shift, float radius2, bool paper,
+                            uint centre, inout float sum) {
+    [[unroll]] for (int i = 0; i < kAlchemyUnrolledSamples; ++i)
+        alchemySample(alchemyUnrolledOffset(offsets, cls, i), fx, fy, radiusPixels, cx, cy, cz, nx, ny, nz, shift,
+                      radius2, paper, centre, sum);
+}
 
 float alchemyPixel(int x, int y) {
     const uint c = uint(y) * uint(k.width) + uint(x);
@@ -50,28 +75,21 @@ float alchemyPixel(int x, int y) {
     int count = k.samples;
     if (k.lodRadiusPixels > 0.0 && radiusPixels < k.lodRadiusPixels)
         count = clamp(int(ceil(float(k.samples) * radiusPixels / k.lodRadiusPixels)), k.minSamples, k.samples);
-    const int offsets = alchemySpiralAt(count, (y % kAlchemyClassTile) * kAlchemyClassTile + x % kAlchemyClassTile);
+    const int cls = (y % kAlchemyClassTile) * kAlchemyClassTile + x % kAlchemyClassTile;
+    const int offsets = alchemySpiralAt(count, cls);
     // Paper: + z_C beta with z_C < 0; chapter: - bias. Both are one constant per pixel.
     const float shift = k.formulation == kAlchemyPaper ? cz * k.bias : -k.bias;
     // The paper drops samples at |v| >= r, the chapter's step() keeps |v| = r: one ulp of r^2 apart.
     const float radius2 = k.formulation == kAlchemyPaper ? k.radius2 : nextUp(k.radius2);
     const bool paper = k.formulation == kAlchemyPaper;
     float sum = 0.0;
-    // The paper's 12 samples (every pixel's count with the level of detail off, the default) unrolled: the
-    // count is a push constant, so the loop was a loop, each sample's spiral and depth loads issued after
-    // the sample before had been summed unless the compiler reordered them; unrolled, the 12 pairs of loads
-    // can be issued ahead. On an H100 (2026-11-27, 3 rounds in one run) the estimator went to 0.972 / 0.982 of
-    // its time at 1920x1080 / 3840x2160 and the fused rows (alchemy_blur_row.comp) to 0.952 / 0.942: the
-    // Alchemy target's frame from 0.0876 to 0.0846 ms, for one more register (28). The same operations in the
-    // same order.
     if (count == kAlchemyUnrolledSamples) {
-        [[unroll]] for (int i = 0; i < kAlchemyUnrolledSamples; ++i)
-            alchemySample(spiral[offsets / 2 + i], fx, fy, radiusPixels, cx, cy, cz, nx, ny, nz, shift, radius2,
-                          paper, sum);
+        alchemyUnrolledSamples(offsets, cls, fx, fy, radiusPixels, cx, cy, cz, nx, ny, nz, shift, radius2, paper, c,
+                               sum);
     } else {
         for (int i = 0; i < count; ++i)
             alchemySample(spiral[offsets / 2 + i], fx, fy, radiusPixels, cx, cy, cz, nx, ny, nz, shift, radius2,
-                          paper, sum);
+                          paper, c, sum);
     }
     const float a = max(0.0, 1.0 - k.intensity / float(count) * sum);
     return k.contrast == 1.0 ? a : pow(a, k.contrast);
