@@ -43,7 +43,7 @@ void recordAlchemy(Context::Impl& c, VkCommandBuffer cmd, const AlchemyBuffers& 
 
 void recordAlchemyBlurred(Context::Impl& c, VkCommandBuffer cmd, const AlchemyBlurredBuffers& b,
                           const ssao::AlchemyConstants& k, const SeparableBilateral& f,
-                          const std::function<void(const char*)>& mark) {
+                          const std::function<void(const char*)>& mark, std::uint32_t rowGroupsX) {
     assert(f.constants.useNormal == 0 && f.constants.width == k.width - 2 * k.guardBand &&
            f.constants.height == k.height - 2 * k.guardBand);
     // Workgroups of the compiled shader's width (kBilateralHorizontalTileX as embedded), each blurring that
@@ -63,9 +63,10 @@ void recordAlchemyBlurred(Context::Impl& c, VkCommandBuffer cmd, const AlchemyBl
     static_assert(sizeof constants == kAlchemyBlurPushConstantBytes, "the two blocks back to back, as the shader has them");
     constants.blur.axis = 0;
     // In binding order: kAlchemyBindingDepth, Normal, Spiral, kAlchemyBlurBindingLogSpatial, Output.
+    if (rowGroupsX == 0)
+        rowGroupsX = std::uint32_t(alchemyBlurRowGroupsX(f.constants.width, f.constants.radius, int(size[0])));
     pipeline.dispatch(cmd, {&b.depth, &b.normal, &b.spiral, &b.logSpatial, &b.scratch}, &constants, sizeof constants,
-                      std::uint32_t(alchemyBlurRowGroupsX(f.constants.width, f.constants.radius, int(size[0]))),
-                      std::uint32_t(f.constants.height));
+                      rowGroupsX, std::uint32_t(f.constants.height));
     if (mark) mark("alchemy-rows");
     computeBarrier(cmd);  // the vertical pass reads the rows
     // Its normal binding is unread without the normal weight; the depth buffer stands in for it.
@@ -91,6 +92,12 @@ Buffer normalPlane(Context::Impl& c, const GBuffer& g, const ssao::AlchemySettin
 
 Image alchemyAOBlurred(Context& context, const GBuffer& g, const ssao::AlchemySettings& s,
                        const ssao::BilateralSettings& blur, AlchemyFormats formats) {
+    return alchemyAOBlurredInRowGroups(context, g, s, blur, formats, 0);
+}
+
+Image alchemyAOBlurredInRowGroups(Context& context, const GBuffer& g, const ssao::AlchemySettings& s,
+                                  const ssao::BilateralSettings& blur, AlchemyFormats formats,
+                                  std::uint32_t rowGroupsX) {
     const ssao::AlchemyConstants k = ssao::alchemyConstants(s, g.camera);
     ssao::validateAlchemyGBuffer(g, s);
     checkFormats(s, formats);
@@ -116,7 +123,8 @@ Image alchemyAOBlurred(Context& context, const GBuffer& g, const ssao::AlchemySe
                 computeBarrier(cmd);
             }
             recordAlchemyBlurred(c, cmd,
-                                 {depth, normal, table, blurDepth, spatial, rows, result, formats.packedNormals}, k, f);
+                                 {depth, normal, table, blurDepth, spatial, rows, result, formats.packedNormals}, k, f,
+                                 {}, rowGroupsX);
         },
         true);
     Image image(cropped.width(), cropped.height(), 1);

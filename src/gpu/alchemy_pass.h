@@ -47,9 +47,17 @@ struct AlchemyBlurredBuffers {
 // recordAlchemy and recordSeparableBilateral record, in two dispatches instead of three. The filter is
 // separableBilateral(settings, out width, out height) without the normal weight (asserted). After each
 // dispatch it calls mark(stage) if set, so that a caller can write a timestamp: "alchemy-rows", then
-// "blur-columns".
+// "blur-columns". rowGroupsX 0 dispatches one workgroup per segment of a row (alchemyBlurRowGroupsX); fewer
+// also cover the row, each workgroup taking every segment from its index on (docs/INTEGRATION.md offers that
+// to an engine), with the same result.
 void recordAlchemyBlurred(Context::Impl& context, VkCommandBuffer cmd, const AlchemyBlurredBuffers& buffers,
                           const ssao::AlchemyConstants& k, const SeparableBilateral& filter,
-                          const std::function<void(const char*)>& mark = {});
+                          const std::function<void(const char*)>& mark = {}, std::uint32_t rowGroupsX = 0);
+
+// gpu::alchemyAOBlurred with recordAlchemyBlurred's rowGroupsX (0: one workgroup per segment, as the public
+// call dispatches).
+Image alchemyAOBlurredInRowGroups(Context& context, const GBuffer& gbuffer, const ssao::AlchemySettings& settings,
+                                  const ssao::BilateralSettings& blur, AlchemyFormats formats,
+                                  std::uint32_t rowGroupsX);
 
 } // namespace obscura::gpu

@@ -3,6 +3,7 @@
 #include "gpu_test_util.h"
 #include "spirv_edit.h"
 
+#include "gpu/alchemy_pass.h"
 #include "gpu/image_planes.h"
 #include "gpu/spirv.h"
 #include "gpu/shaders/layouts.h"
@@ -234,6 +235,33 @@ TEST(GpuAlchemy, FusedRowBlurMatchesTheSeparatePasses) {
     bad.radius = -1;
     EXPECT_EQ(testing::errorMessage([&] { alchemyAOBlurred(context, g, bad, {}); }),
               testing::errorMessage([&] { ssao::alchemyAO(g, bad); }));
+    EXPECT_EQ(testing::validationReport(context), "");
+}
+
+// An engine may dispatch fewer workgroups along a row than it has segments (docs/INTEGRATION.md): each then
+// takes every segment from its index on, and the image is the same, bit for bit. Rows of 2 and 4 segments
+// (333 pixels at radius 6, 244 each; 600 at radius 32, 192 each) in 1, 2 and 3 workgroups: one workgroup
+// for the whole row, one per pair, and a row of 4 in 3, whose first workgroup takes segments 0 and 3.
+TEST(GpuAlchemy, FusedRowsInFewerWorkgroupsTakeEverySegment) {
+    OBSCURA_GPU_CONTEXT(context);
+    ssao::BilateralSettings wide;
+    wide.radius = 32;
+    struct Case {
+        const char* scene;
+        int w, h;
+        ssao::BilateralSettings blur;
+        int segments;
+    };
+    for (const Case& c : {Case{"demo", 333, 61, {}, 2}, Case{"corner", 600, 40, wide, 4}}) {
+        ASSERT_EQ(alchemyBlurRowGroupsX(c.w, c.blur.radius), c.segments) << c.scene;
+        const GBuffer g = testing::render(c.scene, c.w, c.h);
+        const Image each = alchemyAOBlurred(context, g, {}, c.blur);
+        for (std::uint32_t groups = 1; groups < std::uint32_t(c.segments); ++groups) {
+            const Image fewer = alchemyAOBlurredInRowGroups(context, g, {}, c.blur, {}, groups);
+            ASSERT_EQ(fewer.width, each.width);
+            EXPECT_EQ(fewer.pixels, each.pixels) << c.scene << ", " << groups << " workgroups a row";
+        }
+    }
     EXPECT_EQ(testing::validationReport(context), "");
 }
 
