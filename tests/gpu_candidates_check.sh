@@ -14,7 +14,8 @@
 #   the build's own alchemy.spv and gtao.spv);
 # - gpu-waiting writes every part's file (candidates.txt too: each candidate's verdict), times each candidate
 #   in the cases whose frames run a shader it replaces (bench's list of each case's shaders), and again with
-#   the spatio-temporal target's flags where it replaces a shader of that frame (candidates-grid-ab), the
+#   the spatio-temporal target's flags where it replaces a shader of that frame (candidates-grid-ab), a
+#   candidate whose patch has a `Parts:` line (its folder's parts file) only in the parts it names, the
 #   target's configuration against its fused pass and its history's depth copy (fused-ab), and names a part
 #   that fails while the others run; with --parts it runs only the parts named, and refuses a name it does not
 #   know or a part with nothing to time.
@@ -60,6 +61,13 @@ check_built() {
   for shader in $(cat "${files[@]}" | grep '^+++ b/src/gpu/shaders/.*\.comp' | sed 's|.*/||; s|\.comp.*||'); do
     case " $got" in *" $shader "*) ;; *) fail "$name: the patch edits $shader.comp, built only '$got'" ;; esac
   done
+  # A `Parts:` line (the timing parts of gpu-waiting that time it) goes into the folder's parts file.
+  parts=$(sed -n '/^diff --git/q; s/^Parts: *//p' "$1")
+  if [ -n "$parts" ]; then
+    [ "$(cat "$2/parts" 2>/dev/null)" = "$parts" ] || fail "$name: Parts: $parts, but its folder's parts file: $(cat "$2/parts" 2>&1)"
+  elif [ -e "$2/parts" ]; then
+    fail "$name: a parts file without a Parts: line"
+  fi
 }
 count=0
 for patch in "${patches[@]}"; do
@@ -142,6 +150,12 @@ else
   cp "$build/shaders/alchemy.spv" "$build/shaders/gtao.spv" "$work/probes/same/" ||
     fail "the build has no shaders/alchemy.spv or gtao.spv"
 fi
+# A folder timed only in the target's configuration (what a patch's `Parts: candidates-grid-ab` makes): the
+# build's own gtao.spv, which the default cases' frames dispatch too; check_reach below holds gpu-waiting to
+# leaving it out of candidates-ab.
+mkdir -p "$work/spv/grid-only"
+cp "$build/shaders/gtao.spv" "$work/spv/grid-only/" || fail "the build has no shaders/gtao.spv"
+echo candidates-grid-ab >"$work/spv/grid-only/parts"
 # gpu-waiting: every part, each into its file, at a tiny size, with one round.
 "$src/scripts/gpu-waiting" --obscura "$tool" --candidates "$work/spv" --probes "$work/probes" --rounds 1 --small "$work/waiting" \
   -- --sizes 48x32 --frames 2 --warmup 0 --inputs 1 2>"$work/waiting.err" || fail "gpu-waiting: $(cat "$work/waiting.err")"
@@ -218,22 +232,34 @@ out, folder, reach, target, part = sys.argv[1:]
 target = set(target.split())
 shaders = {c["case"]: set(c["shaders"]) for c in json.load(open(reach))["cases"]}
 replaced = {n: {f[:-4] for f in os.listdir(os.path.join(folder, n)) if f.endswith(".spv")} for n in os.listdir(folder)}
+# A folder's parts file names the only parts that time it.
+def timed(n, p):
+    f = os.path.join(folder, n, "parts")
+    return not os.path.exists(f) or p in open(f).read().split()
+gridPart = part.replace("-ab", "-grid-ab")
 def cases(variant):
     return {m["case"] for m in variant["median_ms"]}
 ab = json.load(open(os.path.join(out, part + ".json")))["variants"]
 assert ab[0]["name"] == "embedded" and cases(ab[0]) == set(shaders), (ab[0]["name"], cases(ab[0]))
-want = {n: {c for c, s in shaders.items() if s & replaced[n]} for n in sorted(replaced)}
+want = {n: {c for c, s in shaders.items() if s & replaced[n]} for n in sorted(replaced) if timed(n, part)}
 got = {v["name"]: cases(v) for v in ab[1:]}
 assert got == {n: c for n, c in want.items() if c}, (got, want)
-grid = json.load(open(os.path.join(out, part.replace("-ab", "-grid-ab") + ".json")))["variants"]
+grid = json.load(open(os.path.join(out, gridPart + ".json")))["variants"]
 names = [v["name"] for v in grid]
-assert names[0] == "embedded" and sorted(names[1:]) == [n for n in sorted(replaced) if replaced[n] & target], names
+assert names[0] == "embedded" and sorted(names[1:]) == [n for n in sorted(replaced)
+                                                        if replaced[n] & target and timed(n, gridPart)], names
 held = ("--packed-output", "--alternating-window-size", "--keep-previous-depth")
 assert all(f in v["flags"] for v in grid for f in held), [v["flags"] for v in grid]
 EOF
     fail "$part did not time each of $folder in the cases it reaches: $(cat "$work/waiting/$part.json")"
 }
 check_reach candidates-ab "$work/spv" alchemy,alchemy-fused,gtao,gtao-half,gtao-temporal-grid
+grep -q "candidate grid-only is timed only in candidates-grid-ab (its Parts: line): not in candidates-ab" \
+  "$work/waiting.err" || fail "no word of grid-only left out of candidates-ab: $(cat "$work/waiting.err")"
+python3 - "$work/waiting/candidates-grid-ab.json" <<'EOF' || fail "grid-only is not in candidates-grid-ab.json"
+import json, sys
+assert "grid-only" in [v["name"] for v in json.load(open(sys.argv[1]))["variants"]]
+EOF
 grep -q "^alchemy .* alchemy " "$work/waiting/probes-ab.txt" || fail "probes-ab.txt: $(cat "$work/waiting/probes-ab.txt")"
 grep -q "^gtao-temporal-grid .* upsample " "$work/waiting/probes-grid-ab.txt" ||
   fail "probes-grid-ab.txt: $(cat "$work/waiting/probes-grid-ab.txt")"
