@@ -18,7 +18,7 @@
 #   candidate whose patch has a `Parts:` line (its folder's parts file) only in the parts it names, the
 #   target's configuration against its fused pass and its history's depth copy (fused-ab), and names a part
 #   that fails while the others run; with --parts it runs only the parts named, and refuses a name it does not
-#   know or a part with nothing to time.
+#   know or a part with nothing to time; it checks the candidates that pay first, then the mixed ones.
 # Exit 77 (skipped) without a Vulkan device, python3 or glslc. Arguments: source dir, build dir, scratch dir.
 source "$(dirname "$0")/check_common.sh"
 check_setup gpu_candidates_check "$@"
@@ -318,4 +318,15 @@ if "$src/scripts/gpu-waiting" --obscura "$tool" --parts probes-ab "$work/w7" 2>"
   fail "gpu-waiting ran probes-ab without probes"
 fi
 grep -q "names probes-ab but no --probes" "$work/waiting.err" || fail "$(cat "$work/waiting.err")"
+# gpu-verify's order: the candidates that pay first, then the mixed ones, none that loses, whatever their names'
+# order (the verdicts are written here, as gpu-candidates-report would after timings that said so).
+mkdir -p "$work/order/a-mixed" "$work/order/b-pays" "$work/order/c-loses" "$work/w8"
+for n in a-mixed b-pays c-loses; do cp "$build/shaders/gtao.spv" "$work/order/$n/"; done
+printf 'a-mixed: mixed\n\nb-pays: pays\n\nc-loses: loses\n' >"$work/w8/candidates.txt"
+"$src/scripts/gpu-waiting" --obscura "$tool" --candidates "$work/order" --parts verify --small "$work/w8" \
+  2>"$work/waiting.err" || fail "gpu-waiting --parts verify: $(cat "$work/waiting.err")"
+[ "$(grep -o 'gpu-verify with [a-z-]*' "$work/waiting.err" | tr '\n' ' ')" = \
+  "gpu-verify with b-pays gpu-verify with a-mixed gpu-verify with c-loses " ] ||
+  fail "gpu-verify's order: $(grep 'gpu-verify with' "$work/waiting.err")"
+grep -q "gpu-verify with c-loses left out: loses" "$work/waiting.err" || fail "no word of c-loses left out"
 echo "gpu_candidates_check: ok ($count candidates)"
