@@ -181,19 +181,20 @@ for n in $(ls "$work/spv"); do
 done
 # FILE: a statistics run in the spatio-temporal target's configuration (lavapipe reports no statistics, so the
 # run's own record of its flags is what can be checked here).
-has_target_flags() {
-  python3 - "$1" <<'PY' || fail "$1 is not a run in the target's configuration"
+has_target_flags() {  # FILE [SAMPLING: the target's planar-nearest unless given]
+  python3 - "$1" "${2:-planar-nearest}" <<'PY' || fail "$1 is not a run in the target's configuration"
 import json, sys
 r = json.load(open(sys.argv[1]))
 want = {"alternating_window": True, "alternating_window_size": 2, "packed_history": True, "packed_normals": True,
         "packed_output": True, "keep_previous_depth": True, "bent_normals": False, "fused_temporal": False,
-        "gtao_sampling": "planar-nearest"}
+        "gtao_sampling": sys.argv[2]}
 got = {k: r.get(k) for k in want}
 cases = sorted({c["case"] for c in r["cases"]})
 sys.exit(0 if got == want and cases == ["gtao-temporal-grid"] else f"{got} {cases}")
 PY
 }
 has_target_flags "$work/waiting/pipelines-target.json"
+has_target_flags "$work/waiting/pipelines-target-nearest.json" nearest
 # The shaders of the spatio-temporal target's frame, as this check knows them apart from gpu-waiting.
 targetShaders="gtao gtao_temporal upsample_depth_aware"
 # Whether candidate folder DIR replaces one of them.
