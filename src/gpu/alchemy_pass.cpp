@@ -62,9 +62,9 @@ void recordAlchemyBlurred(Context::Impl& c, VkCommandBuffer cmd, const AlchemyBl
     } constants{k, f.constants};
     static_assert(sizeof constants == kAlchemyBlurPushConstantBytes, "the two blocks back to back, as the shader has them");
     constants.blur.axis = 0;
-    // In binding order: kAlchemyBindingDepth, Normal, Spiral, kAlchemyBlurBindingLogSpatial, Output.
     if (rowGroupsX == 0)
         rowGroupsX = std::uint32_t(alchemyBlurRowGroupsX(f.constants.width, f.constants.radius, int(size[0])));
+    // In binding order: kAlchemyBindingDepth, Normal, Spiral, kAlchemyBlurBindingLogSpatial, Output.
     pipeline.dispatch(cmd, {&b.depth, &b.normal, &b.spiral, &b.logSpatial, &b.scratch}, &constants, sizeof constants,
                       rowGroupsX, std::uint32_t(f.constants.height));
     if (mark) mark("alchemy-rows");
