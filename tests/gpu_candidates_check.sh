@@ -4,15 +4,17 @@
 # - every patch applies to this checkout and compiles, and changes the shaders it edits (and those that
 #   include a file it edits);
 # - each candidate agrees with the CPU path (scripts/gpu-verify --small, whose list has the fused Alchemy
-#   pass), and with the embedded shaders, the fused pass included: to the bit where its header says "the
-#   same bits", else within 1e-5;
+#   pass; a combination through its parts), and with the embedded shaders, the fused pass included: to the bit
+#   where its header says "the same bits", else within 1e-5;
 # - with no patch waiting, gpu-candidates refuses to run and says so;
 # - gpu-ab times two variants against each other and writes its JSON; it refuses a missing folder;
 # - the probes of bench/gpu-probes (wrong by design, timed only) apply, compile and run in gpu-waiting, each in
 #   the cases of probes-ab whose frames dispatch a shader it replaces, and in the spatio-temporal target's
 #   configuration (probes-grid-ab) when it replaces a shader of that frame (with none waiting, both parts run on
 #   the build's own alchemy.spv and gtao.spv);
-# - gpu-waiting writes every part's file (candidates.txt too: each candidate's verdict), times each candidate
+# - gpu-waiting (run on a few of the candidates: the first, one with a parts file, one that reaches the
+#   spatio-temporal target's frame, so that this check's time does not grow with their number) writes every
+#   part's file (candidates.txt too: each candidate's verdict), times each candidate
 #   in the cases whose frames run a shader it replaces (bench's list of each case's shaders), and again with
 #   the spatio-temporal target's flags where it replaces a shader of that frame (candidates-grid-ab), a
 #   candidate whose patch has a `Parts:` line (its folder's parts file) only in the parts it names, the
@@ -69,29 +71,40 @@ check_built() {
     fail "$name: a parts file without a Parts: line"
   fi
 }
+# The renders each candidate is held to the embedded shaders on; the embedded shaders' are made once, into e<i>.
+renders=("demo --size 133x77 --ao alchemy" "demo --size 133x77 --ao gtao"
+         "stairs --size 120x70 --ao alchemy --blur-radius 32"
+         "stairs --size 120x70 --ao alchemy --ao-guard-band 8 --gpu-fused-blur"
+         "stairs --size 97x63 --ao gtao --frames 3"
+         "demo --size 133x77 --ao gtao --frames 4 --gtao-half-res --gtao-grid-history --gtao-alternating-window"
+         "stairs --size 97x63 --ao gtao --frames 5 --gtao-half-res --gtao-grid-history --gtao-packed-history --gtao-alternating-window --gtao-alternating-window-size 2"
+         "demo --size 133x77 --ao gtao --frames 5 --gtao-half-res --gtao-grid-history --gtao-packed-history --gtao-alternating-window --gtao-alternating-window-size 2 --gpu-fused-temporal")
+if [ ${#patches[@]} -gt 0 ]; then
+  for i in "${!renders[@]}"; do
+    # shellcheck disable=SC2086  # the list's words are separate arguments
+    "$tool" render ${renders[$i]} -q --gpu -o "$work/e$i.png" --aov-dir "$work/e$i" >/dev/null
+  done
+fi
 count=0
 for patch in "${patches[@]}"; do
   name=$(basename "$patch" .patch)
   dir=$work/spv/$name
   check_built "$patch" "$dir" "$work/built"
 
-  OBSCURA_SHADER_DIR=$dir "$src/scripts/gpu-verify" "$tool" --small >"$work/verify" 2>&1 ||
-    fail "$name: gpu-verify failed: $(cat "$work/verify")"
+  # A combination's parts are each held to the CPU here; the combination is held to the embedded shaders below
+  # (and on the device to the CPU, by gpu-waiting).
+  if ! grep -q '^Applies:' <(sed '/^diff --git/q' "$patch"); then
+    OBSCURA_SHADER_DIR=$dir "$src/scripts/gpu-verify" "$tool" --small >"$work/verify" 2>&1 ||
+      fail "$name: gpu-verify failed: $(cat "$work/verify")"
+  fi
 
   limit=1e-5
   grep -q '^Results: the same bits' "$patch" && limit=0
-  for args in "demo --size 133x77 --ao alchemy" "demo --size 133x77 --ao gtao" \
-              "stairs --size 120x70 --ao alchemy --blur-radius 32" \
-              "stairs --size 120x70 --ao alchemy --ao-guard-band 8 --gpu-fused-blur" \
-              "stairs --size 97x63 --ao gtao --frames 3" \
-              "demo --size 133x77 --ao gtao --frames 4 --gtao-half-res --gtao-grid-history --gtao-alternating-window" \
-              "stairs --size 97x63 --ao gtao --frames 5 --gtao-half-res --gtao-grid-history --gtao-packed-history --gtao-alternating-window --gtao-alternating-window-size 2" \
-              "demo --size 133x77 --ao gtao --frames 5 --gtao-half-res --gtao-grid-history --gtao-packed-history --gtao-alternating-window --gtao-alternating-window-size 2 --gpu-fused-temporal"; do
-    # shellcheck disable=SC2086  # the list's words are separate arguments
-    "$tool" render $args -q --gpu -o "$work/e.png" --aov-dir "$work/e" >/dev/null
+  for i in "${!renders[@]}"; do
+    args=${renders[$i]}
     # shellcheck disable=SC2086
     OBSCURA_SHADER_DIR=$dir "$tool" render $args -q --gpu -o "$work/c.png" --aov-dir "$work/c" >/dev/null
-    line=$(python3 "$src/scripts/exrdiff.py" "$work/e/ao.exr" "$work/c/ao.exr" "$name")
+    line=$(python3 "$src/scripts/exrdiff.py" "$work/e$i/ao.exr" "$work/c/ao.exr" "$name")
     max=$(echo "$line" | sed 's/.*max \([^ ]*\).*/\1/')
     python3 -c "import sys; sys.exit(0 if float('$max') <= $limit else 1)" ||
       fail "$name: $args: against the embedded shader, max $max > $limit: $line"
@@ -153,11 +166,31 @@ fi
 # A folder timed only in the target's configuration (what a patch's `Parts: candidates-grid-ab` makes): the
 # build's own gtao.spv, which the default cases' frames dispatch too; check_reach below holds gpu-waiting to
 # leaving it out of candidates-ab.
-mkdir -p "$work/spv/grid-only"
-cp "$build/shaders/gtao.spv" "$work/spv/grid-only/" || fail "the build has no shaders/gtao.spv"
-echo candidates-grid-ab >"$work/spv/grid-only/parts"
+# The shaders of the spatio-temporal target's frame, as this check knows them apart from gpu-waiting.
+targetShaders="gtao gtao_temporal upsample_depth_aware"
+# Whether candidate folder DIR replaces one of them.
+in_target() {
+  local shader
+  for shader in $targetShaders; do [ -f "$1/$shader.spv" ] && return 0; done
+  return 1
+}
+# gpu-waiting's own logic is checked on a few of the candidates, so that this check's time does not grow with
+# their number (each was held to the CPU and the embedded shaders above): the first in name order, the first
+# with a parts file, the first without one that replaces a shader of the target's frame, and grid-only.
+mkdir -p "$work/wspv"
+pickedParts="" pickedTarget=""
+for n in $(ls "$work/spv"); do
+  pick=0
+  if [ "$n" = "$(ls "$work/spv" | head -1)" ]; then pick=1; fi
+  if [ -f "$work/spv/$n/parts" ] && [ -z "$pickedParts" ]; then pick=1; pickedParts=$n; fi
+  if [ ! -f "$work/spv/$n/parts" ] && [ -z "$pickedTarget" ] && in_target "$work/spv/$n"; then pick=1; pickedTarget=$n; fi
+  if [ $pick = 1 ]; then cp -r "$work/spv/$n" "$work/wspv/"; fi
+done
+mkdir -p "$work/wspv/grid-only"
+cp "$build/shaders/gtao.spv" "$work/wspv/grid-only/" || fail "the build has no shaders/gtao.spv"
+echo candidates-grid-ab >"$work/wspv/grid-only/parts"
 # gpu-waiting: every part, each into its file, at a tiny size, with one round.
-"$src/scripts/gpu-waiting" --obscura "$tool" --candidates "$work/spv" --probes "$work/probes" --rounds 1 --small "$work/waiting" \
+"$src/scripts/gpu-waiting" --obscura "$tool" --candidates "$work/wspv" --probes "$work/probes" --rounds 1 --small "$work/waiting" \
   -- --sizes 48x32 --frames 2 --warmup 0 --inputs 1 2>"$work/waiting.err" || fail "gpu-waiting: $(cat "$work/waiting.err")"
 for f in verify.txt grid-ab.txt grid-ab.json fused-ab.txt fused-ab.json pipelines-fused.json pipelines-target.json \
   tiled-ab.txt tiled-ab.json normals-ab.txt normals-ab.json pipelines.json internals candidates.txt; do
@@ -166,7 +199,7 @@ done
 # candidates.txt (gpu-candidates-report) has a verdict for every candidate, and the device's gpu-verify passed
 # for each, except one that lost or did not change in the timings (lavapipe's are noise), whose check gpu-waiting
 # leaves out and says so.
-for n in $(ls "$work/spv"); do
+for n in $(ls "$work/wspv"); do
   verdict=$(grep -E "^$n: " "$work/waiting/candidates.txt" | cut -d' ' -f2-) ||
     fail "candidates.txt: no verdict for $n: $(cat "$work/waiting/candidates.txt")"
   case "$verdict" in
@@ -195,19 +228,11 @@ PY
 }
 has_target_flags "$work/waiting/pipelines-target.json"
 has_target_flags "$work/waiting/pipelines-target-nearest.json" nearest
-# The shaders of the spatio-temporal target's frame, as this check knows them apart from gpu-waiting.
-targetShaders="gtao gtao_temporal upsample_depth_aware"
-# Whether candidate folder DIR replaces one of them.
-in_target() {
-  local shader
-  for shader in $targetShaders; do [ -f "$1/$shader.spv" ] && return 0; done
-  return 1
-}
 if [ ${#patches[@]} -gt 0 ]; then
-  for n in $(ls "$work/spv"); do
+  for n in $(ls "$work/wspv"); do
     [ -s "$work/waiting/pipelines-$n.json" ] || fail "gpu-waiting wrote no pipelines-$n.json"
     # A candidate that changes a shader of the spatio-temporal target's frame has its statistics there too.
-    if in_target "$work/spv/$n"; then
+    if in_target "$work/wspv/$n"; then
       has_target_flags "$work/waiting/pipelines-$n-target.json"
     elif [ -e "$work/waiting/pipelines-$n-target.json" ]; then
       fail "pipelines-$n-target.json for a candidate outside the target's frame"
@@ -255,7 +280,7 @@ EOF
     fail "$part did not time each of $folder in the cases it reaches: $(cat "$work/waiting/$part.json")"
 }
 # check_reach holds grid-only (a parts file) out of candidates-ab and in candidates-grid-ab; the call says so.
-check_reach candidates-ab "$work/spv" alchemy,alchemy-fused,gtao,gtao-half,gtao-temporal-grid
+check_reach candidates-ab "$work/wspv" alchemy,alchemy-fused,gtao,gtao-half,gtao-temporal-grid
 grep -q "candidate grid-only is timed only in candidates-grid-ab (its Parts: line): not in candidates-ab" \
   "$work/waiting.err" || fail "no word of grid-only left out of candidates-ab: $(cat "$work/waiting.err")"
 grep -q "^alchemy .* alchemy " "$work/waiting/probes-ab.txt" || fail "probes-ab.txt: $(cat "$work/waiting/probes-ab.txt")"
