@@ -163,9 +163,6 @@ else
   cp "$build/shaders/alchemy.spv" "$build/shaders/gtao.spv" "$work/probes/same/" ||
     fail "the build has no shaders/alchemy.spv or gtao.spv"
 fi
-# A folder timed only in the target's configuration (what a patch's `Parts: candidates-grid-ab` makes): the
-# build's own gtao.spv, which the default cases' frames dispatch too; check_reach below holds gpu-waiting to
-# leaving it out of candidates-ab.
 # The shaders of the spatio-temporal target's frame, as this check knows them apart from gpu-waiting.
 targetShaders="gtao gtao_temporal upsample_depth_aware"
 # Whether candidate folder DIR replaces one of them.
@@ -186,6 +183,9 @@ for n in $(ls "$work/spv"); do
   if [ ! -f "$work/spv/$n/parts" ] && [ -z "$pickedTarget" ] && in_target "$work/spv/$n"; then pick=1; pickedTarget=$n; fi
   if [ $pick = 1 ]; then cp -r "$work/spv/$n" "$work/wspv/"; fi
 done
+# And a folder timed only in the target's configuration (what a patch's `Parts: candidates-grid-ab` makes): the
+# build's own gtao.spv, which the default cases' frames dispatch too; check_reach below holds gpu-waiting to
+# leaving it out of candidates-ab.
 mkdir -p "$work/wspv/grid-only"
 cp "$build/shaders/gtao.spv" "$work/wspv/grid-only/" || fail "the build has no shaders/gtao.spv"
 echo candidates-grid-ab >"$work/wspv/grid-only/parts"
