@@ -40,6 +40,9 @@ if [ ${#patches[@]} -eq 0 ]; then
 else
   "$src/scripts/gpu-candidates" "$work/spv" >"$work/built" 2>&1 || fail "gpu-candidates failed: $(cat "$work/built")"
 fi
+# PATCH KEY: the words of PATCH's header line `KEY: ...` (before its first diff), or nothing. Read here apart
+# from gpu-candidates, whose reading of them this check holds to.
+header_line() { sed -n "/^diff --git/q; s/^$2: *//p" "$1"; }
 # The shaders compiled into folder DIR, sorted, on one line.
 built_shaders() { (cd "$1" && ls ./*.spv | sed 's|^\./||; s|\.spv$||' | sort | tr '\n' ' '); }
 # PATCH DIR LOG: every shader PATCH edits changed and was compiled into DIR (an edited include changes its
@@ -47,13 +50,13 @@ built_shaders() { (cd "$1" && ls ./*.spv | sed 's|^\./||; s|\.spv$||' | sort | t
 # naming other patches of its folder) is checked against what its parts edit, and must hold every shader
 # that one of its parts, built beside it in DIR's parent, holds.
 check_built() {
-  local name got shader parts part files=("$1")
+  local name got shader applied part timing files=("$1")
   name=$(basename "$1" .patch)
   [ -d "$2" ] || fail "$name: no folder built: $(cat "$3")"
   got=$(built_shaders "$2")
   [ -n "$got" ] || fail "$name: no shader changed"
-  parts=$(sed -n '/^diff --git/q; s/^Applies: *//p' "$1")
-  for part in $parts; do
+  applied=$(header_line "$1" Applies)
+  for part in $applied; do
     [ -d "$(dirname "$2")/$part" ] || fail "$name: its part $part was not built"
     for shader in $(built_shaders "$(dirname "$2")/$part"); do
       case " $got" in *" $shader "*) ;; *) fail "$name: built only '$got', without $part's $shader" ;; esac
@@ -64,9 +67,9 @@ check_built() {
     case " $got" in *" $shader "*) ;; *) fail "$name: the patch edits $shader.comp, built only '$got'" ;; esac
   done
   # A `Parts:` line (the timing parts of gpu-waiting that time it) goes into the folder's parts file.
-  parts=$(sed -n '/^diff --git/q; s/^Parts: *//p' "$1")
-  if [ -n "$parts" ]; then
-    [ "$(cat "$2/parts" 2>/dev/null)" = "$parts" ] || fail "$name: Parts: $parts, but its folder's parts file: $(cat "$2/parts" 2>&1)"
+  timing=$(header_line "$1" Parts)
+  if [ -n "$timing" ]; then
+    [ "$(cat "$2/parts" 2>/dev/null)" = "$timing" ] || fail "$name: Parts: $timing, but its folder's parts file: $(cat "$2/parts" 2>&1)"
   elif [ -e "$2/parts" ]; then
     fail "$name: a parts file without a Parts: line"
   fi
@@ -93,7 +96,7 @@ for patch in "${patches[@]}"; do
 
   # A combination's parts are each held to the CPU here; the combination is held to the embedded shaders below
   # (and on the device to the CPU, by gpu-waiting).
-  if ! grep -q '^Applies:' <(sed '/^diff --git/q' "$patch"); then
+  if [ -z "$(header_line "$patch" Applies)" ]; then
     OBSCURA_SHADER_DIR=$dir "$src/scripts/gpu-verify" "$tool" --small >"$work/verify" 2>&1 ||
       fail "$name: gpu-verify failed: $(cat "$work/verify")"
   fi
@@ -178,7 +181,7 @@ mkdir -p "$work/wspv"
 pickedParts="" pickedTarget=""
 for n in $(ls "$work/spv"); do
   pick=0
-  if [ "$n" = "$(ls "$work/spv" | head -1)" ]; then pick=1; fi
+  if [ "$n" = "$first" ]; then pick=1; fi  # gpu-ab's, above
   if [ -f "$work/spv/$n/parts" ] && [ -z "$pickedParts" ]; then pick=1; pickedParts=$n; fi
   if [ ! -f "$work/spv/$n/parts" ] && [ -z "$pickedTarget" ] && in_target "$work/spv/$n"; then pick=1; pickedTarget=$n; fi
   if [ $pick = 1 ]; then cp -r "$work/spv/$n" "$work/wspv/"; fi

@@ -32,7 +32,7 @@ for part in ${parts//,/ }; do
 done
 shopt -s nullglob
 for kind in candidates probes; do
-  folder=$kind; [ $kind = probes ] && folder=gpu-probes || folder=gpu-candidates
+  folder=gpu-$kind
   patches=("$src/bench/$folder"/*.patch)
   if [ ${#patches[@]} -gt 0 ]; then
     grep -q -- "--$kind .gl/$kind" "$work/waiting.sh" || fail "patches wait in bench/$folder, but waiting.sh has no --$kind"
