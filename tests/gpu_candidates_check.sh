@@ -56,6 +56,9 @@ check_built() {
   got=$(built_shaders "$2")
   [ -n "$got" ] || fail "$name: no shader changed"
   applied=$(header_line "$1" Applies)
+  # A patch without hunks is a combination; were its Applies: line read as nothing, the parts' checks below
+  # would be skipped without a word.
+  grep -q '^diff --git' "$1" || [ -n "$applied" ] || fail "$name: no hunk of its own, and no Applies: line read"
   for part in $applied; do
     [ -d "$(dirname "$2")/$part" ] || fail "$name: its part $part was not built"
     for shader in $(built_shaders "$(dirname "$2")/$part"); do
