@@ -45,17 +45,16 @@ fi
 header_line() { sed -n "/^diff --git/q; s/^$2: *//p" "$1"; }
 # The shaders compiled into folder DIR, sorted, on one line.
 built_shaders() { (cd "$1" && ls ./*.spv | sed 's|^\./||; s|\.spv$||' | sort | tr '\n' ' '); }
-# PATCH DIR LOG: every shader PATCH edits changed and was compiled into DIR (an edited include changes its
-# includers too, so DIR may hold more); LOG is what gpu-candidates printed. A combination (an `Applies:` line
-# naming other patches of its folder) is checked against what its parts edit, and must hold every shader
-# that one of its parts, built beside it in DIR's parent, holds.
+# PATCH DIR LOG APPLIED: every shader PATCH edits changed and was compiled into DIR (an edited include changes
+# its includers too, so DIR may hold more); LOG is what gpu-candidates printed. A combination (APPLIED: the
+# words of its `Applies:` line, naming other patches of its folder) is checked against what its parts edit, and
+# must hold every shader that one of its parts, built beside it in DIR's parent, holds.
 check_built() {
-  local name got shader applied part timing files=("$1")
+  local name got shader applied=$4 part timing files=("$1")
   name=$(basename "$1" .patch)
   [ -d "$2" ] || fail "$name: no folder built: $(cat "$3")"
   got=$(built_shaders "$2")
   [ -n "$got" ] || fail "$name: no shader changed"
-  applied=$(header_line "$1" Applies)
   # A patch without hunks is a combination; were its Applies: line read as nothing, the parts' checks below
   # would be skipped without a word.
   grep -q '^diff --git' "$1" || [ -n "$applied" ] || fail "$name: no hunk of its own, and no Applies: line read"
@@ -95,11 +94,12 @@ count=0
 for patch in "${patches[@]}"; do
   name=$(basename "$patch" .patch)
   dir=$work/spv/$name
-  check_built "$patch" "$dir" "$work/built"
+  applied=$(header_line "$patch" Applies)
+  check_built "$patch" "$dir" "$work/built" "$applied"
 
   # A combination's parts are each held to the CPU here; the combination is held to the embedded shaders below
   # (and on the device to the CPU, by gpu-waiting).
-  if [ -z "$(header_line "$patch" Applies)" ]; then
+  if [ -z "$applied" ]; then
     OBSCURA_SHADER_DIR=$dir "$src/scripts/gpu-verify" "$tool" --small >"$work/verify" 2>&1 ||
       fail "$name: gpu-verify failed: $(cat "$work/verify")"
   fi
@@ -160,7 +160,7 @@ if [ ${#probes[@]} -gt 0 ]; then
   "$src/scripts/gpu-candidates" --probes "$work/probes" >"$work/built-probes" 2>&1 ||
     fail "gpu-candidates --probes failed: $(cat "$work/built-probes")"
   for patch in "${probes[@]}"; do
-    check_built "$patch" "$work/probes/$(basename "$patch" .patch)" "$work/built-probes"
+    check_built "$patch" "$work/probes/$(basename "$patch" .patch)" "$work/built-probes" "$(header_line "$patch" Applies)"
   done
 else
   # None waiting: probes-ab and probes-grid-ab still run, on a folder holding the build's own alchemy.spv and
