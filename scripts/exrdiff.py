@@ -49,6 +49,17 @@ def read_exr(path):
                     a = array.array('f'); a.frombytes(chunk); values[name].extend(a)
     return values
 
+def difference(a, b):
+    """The sum and max of |A - B| over every value of two files read_exr read alike, the count of values, and
+    how many differ by more than 2e-3."""
+    total, worst, count, over = 0.0, 0.0, 0, 0
+    for name in a:
+        for x, y in zip(a[name], b[name]):
+            # Equal infinities (sky depths) and two NaNs count as equal; one NaN against a number as infinite.
+            d = 0.0 if x == y or (x != x and y != y) else abs(x - y) if x == x and y == y else float('inf')
+            total += d; worst = max(worst, d); count += 1; over += d > 2e-3
+    return total, worst, count, over
+
 def main():
     if len(sys.argv) not in (3, 4):
         sys.exit('usage: exrdiff.py A.exr B.exr [LABEL]')
@@ -58,12 +69,7 @@ def main():
         sys.exit('exrdiff.py: %s: not a scanline EXR this script reads (%s)' % (' or '.join(sys.argv[1:3]), e))
     if sorted(a) != sorted(b) or any(len(a[n]) != len(b[n]) for n in a):
         sys.exit('exrdiff.py: %s and %s differ in channels or size' % (sys.argv[1], sys.argv[2]))
-    total, worst, count, over = 0.0, 0.0, 0, 0
-    for name in a:
-        for x, y in zip(a[name], b[name]):
-            # Equal infinities (sky depths) and two NaNs count as equal; one NaN against a number as infinite.
-            d = 0.0 if x == y or (x != x and y != y) else abs(x - y) if x == x and y == y else float('inf')
-            total += d; worst = max(worst, d); count += 1; over += d > 2e-3
+    total, worst, count, over = difference(a, b)
     label = sys.argv[3] if len(sys.argv) == 4 else sys.argv[2]
     print('%-100s mean |diff| %.2e  max %.2e  values > 2e-3: %d of %d' % (label, total / max(count, 1), worst, over, count))
 
