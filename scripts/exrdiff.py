@@ -50,8 +50,10 @@ def read_exr(path):
     return values
 
 def difference(a, b):
-    """The sum and max of |A - B| over every value of two files read_exr read alike, the count of values, and
-    how many differ by more than 2e-3."""
+    """The sum and max of |A - B| over every value of two files read_exr read, the count of values, and how
+    many differ by more than 2e-3. ValueError if their channels or sizes differ."""
+    if sorted(a) != sorted(b) or any(len(a[n]) != len(b[n]) for n in a):
+        raise ValueError('differ in channels or size')
     total, worst, count, over = 0.0, 0.0, 0, 0
     for name in a:
         for x, y in zip(a[name], b[name]):
@@ -67,9 +69,10 @@ def main():
         a, b = read_exr(sys.argv[1]), read_exr(sys.argv[2])
     except (OSError, AssertionError, KeyError, IndexError, struct.error, zlib.error) as e:
         sys.exit('exrdiff.py: %s: not a scanline EXR this script reads (%s)' % (' or '.join(sys.argv[1:3]), e))
-    if sorted(a) != sorted(b) or any(len(a[n]) != len(b[n]) for n in a):
-        sys.exit('exrdiff.py: %s and %s differ in channels or size' % (sys.argv[1], sys.argv[2]))
-    total, worst, count, over = difference(a, b)
+    try:
+        total, worst, count, over = difference(a, b)
+    except ValueError as e:
+        sys.exit('exrdiff.py: %s and %s %s' % (sys.argv[1], sys.argv[2], e))
     label = sys.argv[3] if len(sys.argv) == 4 else sys.argv[2]
     print('%-100s mean |diff| %.2e  max %.2e  values > 2e-3: %d of %d' % (label, total / max(count, 1), worst, over, count))
 
