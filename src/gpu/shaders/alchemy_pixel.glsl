@@ -19,14 +19,18 @@ int alchemySpiralAt(int count, int cls) {
 }
 
 // One sample of alchemyPixel at spiral offset `offset`, added to sum; none for a sample outside the image.
-// `centre` is the pixel's own index in `depth`.
+// `centre` is the pixel's own index in `depth`: a sample outside the image reads the centre's depth instead of
+// branching around its load, and adds nothing, so that no branch stands between the samples' loads (the unrolled
+// run's loads can then be issued ahead of the tests too). On an H100 (2026-11-27, third call, 3 rounds in one
+// run) the estimator went to 0.945 / 0.984 of its time at 1920x1080 / 3840x2160 and the fused rows to 0.984 /
+// 0.988 (alchemy-fused's frame 0.989 / 0.991), for 28 -> 32 registers in alchemy.comp; the same bits.
 void alchemySample(vec2 offset, float fx, float fy, float radiusPixels, float cx, float cy, float cz, float nx,
                    float ny, float nz, float shift, float radius2, bool paper, uint centre, inout float sum) {
     const int sx = floorToInt(fx + offset.x * radiusPixels);
     const int sy = floorToInt(fy + offset.y * radiusPixels);
-    if (uint(sx) >= uint(k.width) || uint(sy) >= uint(k.height)) return;  // unseen: empty
+    const bool seen = uint(sx) < uint(k.width) && uint(sy) < uint(k.height);  // unseen: empty
     // A sky sample (+inf) becomes a point 1e18 m away: finite arithmetic, and far outside the radius.
-    const float ds = min(depth[uint(sy) * uint(k.width) + uint(sx)], 1e18);
+    const float ds = min(depth[seen ? uint(sy) * uint(k.width) + uint(sx) : centre], 1e18);
     const float vx = ((float(sx) + 0.5) * k.viewScaleX + k.viewOffsetX) * ds - cx;
     const float vy = ((float(sy) + 0.5) * k.viewScaleY + k.viewOffsetY) * ds - cy;
     const float vz = -ds - cz;
@@ -34,7 +38,7 @@ void alchemySample(vec2 offset, float fx, float fy, float radiusPixels, float cx
     const float vn = max(0.0, vx * nx + vy * ny + vz * nz + shift);
     const float term = vn / (paper ? vv + k.denominator : max(k.denominator, vv));
     // Heaviside term as a 0/1 factor, as on the CPU.
-    sum += term * float(vv < radius2);
+    if (seen) sum += term * float(vv < radius2);
 }
 
 // A pixel's samples are a run of kAlchemyUnrolledSamples, unrolled (alchemyUnrolledSamples), or a loop for any
@@ -54,7 +58,8 @@ vec2 alchemyUnrolledOffset(int offsets, int cls, int i) {
 // had been summed unless the compiler reordered them; unrolled, the 12 pairs of loads can be issued ahead. On an
 // H100 (2026-11-27, 3 rounds in one run) the estimator went to 0.972 / 0.982 of its time at 1920x1080 /
 // 3840x2160 and the fused rows (alchemy_blur_row.comp) to 0.952 / 0.942: the Alchemy target's frame from 0.0876
-// to 0.0846 ms, for one more register (28). The same operations in the same order.
+// to 0.0846 ms, for one more register (28; 32 with the branchless samples above). The same operations in
+// the same order.
 void alchemyUnrolledSamples(int offsets, int cls, float fx, float fy, float radiusPixels, float cx, float cy,
                             float cz, float nx, float ny, float nz, float shift, float radius2, bool paper,
                             uint centre, inout float sum) {

@@ -34,9 +34,10 @@ float bilateralTaps(int line, int centre, int radius, int tFirst, int tLast, flo
     // The unrolled taps: on an H100 (2026-11-27, 3 rounds in one run) the separable blur's two 13-tap
     // dispatches went to 0.93 / 0.91 of their time at 1920x1080 / 3840x2160 (0.0478 -> 0.0446 ms at
     // 1920x1080), alchemy-fused's column pass to 0.92; the same bits. Compiled into every variant, they took
-    // the 5-tap blur of gtao-half to 1.05 / 1.07 through the loop it still ran, and the rows of
-    // alchemy_blur_row.comp gained nothing (1.009): kUnrolled leaves them out of those (the host sets it where
-    // the radius is kBilateralUnrolledRadius and the normal weight is off, bilateralSpecUnrolled).
+    // the 5-tap blur of gtao-half to 1.05 / 1.07 through the loop it still ran: kUnrolled leaves them out of
+    // it (the host sets it where the radius is kBilateralUnrolledRadius and the normal weight is off,
+    // bilateralSpecUnrolled). The rows of alchemy_blur_row.comp, which set it themselves, gained nothing
+    // (1.009) while 12 of their invocations evaluated a second pixel, and 0.986 / 0.975 once none did.
     const bool unrolled = kUnrolled != 0 && kUseNormal == 0 && radius == kBilateralUnrolledRadius &&
                           tFirst == -radius && tLast == radius;
     if (unrolled && step == 1)
