@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # scripts/gpu-prepare's call script, without building: the copy in bench/gpu-candidates/README.md is what
 # `--print-waiting` writes for the patches waiting now; another folder is named everywhere in place of .gl;
-# the script is valid bash and runs gpu-waiting on parts it knows, with the folders of the patches that wait;
+# the script is valid bash and runs gpu-waiting on parts it knows, the targets' configurations among them, with
+# the folders of the patches that wait;
 # a folder outside the repository's root is refused in one line.
 # Arguments: source dir, build dir, scratch dir. Exit 77 (skipped) without python3.
 source "$(dirname "$0")/check_common.sh"
@@ -29,6 +30,10 @@ known=$(sed -n 's/.*(the parts: \(.*\))$/\1/p' "$work/parts")
 [ -n "$known" ] || fail "gpu-waiting did not list its parts: $(cat "$work/parts")"
 for part in ${parts//,/ }; do
   [[ " $known " == *" $part "* ]] || fail "waiting.sh runs part '$part', which gpu-waiting does not know ($known)"
+done
+# Every call times the tree's shaders in the targets' configurations, so that targets.txt answers all four.
+for part in grid-ab normals-ab; do
+  [[ ",$parts," == *",$part,"* ]] || fail "waiting.sh does not run $part, which the targets need"
 done
 shopt -s nullglob
 for kind in candidates probes; do

@@ -15,6 +15,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require
+#extension GL_KHR_shader_subgroup_basic : require
 
 #include "obscura/alchemy_constants.h"
 #include "layouts.h"
@@ -36,6 +37,8 @@ layout(std430, binding = kAlchemyBindingSpiral) readonly buffer Spiral { vec2 sp
 layout(std430, binding = kAlchemyBlurBindingLogSpatial) readonly buffer LogSpatial { float logSpatial[]; };
 layout(std430, binding = kAlchemyBlurBindingOutput) writeonly buffer Output { float aoOut[]; };
 
+// The unrolled samples read their spiral offsets from shared memory in this shader only (alchemy_pixel.glsl).
+#define ALCHEMY_SPIRAL_SHARED
 #include "alchemy_pixel.glsl"
 
 const int kUseNormal = 0;  // the separable blur's default (bilateral_taps.glsl)
@@ -63,6 +66,7 @@ void main() {
     const int segments = (b.width + outputs - 1) / outputs;
     for (int i = invocation; i <= 2 * b.radius; i += kRowTile)
         tileLogSpatial[i] = logSpatial[i];
+    loadSpiralShared();
     for (int s = int(gl_WorkGroupID.x); s < segments; s += int(gl_NumWorkGroups.x)) {
         // Slot i holds pixel s outputs - radius + i. Those outside the image stay unwritten: the tap loop
         // never reads them (tFirst, tLast below), as the blur skips taps outside the image.

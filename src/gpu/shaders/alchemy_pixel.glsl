@@ -1,7 +1,8 @@
 // alchemyPixel, src/ssao/alchemy.cpp's kernel for one pixel, for the shaders that evaluate it (alchemy.comp
 // and alchemy_blur_row.comp). The includer declares what it reads: the push constants `k` (an
 // AlchemyConstants), the storage buffers `depth`, `normalWords` and `spiral` of alchemy.comp's layout, and
-// kPackedNormals (normal_plane.glsl reads the normals).
+// kPackedNormals (normal_plane.glsl reads the normals); with ALCHEMY_SPIRAL_SHARED defined, it also calls
+// loadSpiralShared (below).
 
 bool isSkyDepth(float d) { return !(d < 1e30); }
 
@@ -47,10 +48,39 @@ void alchemySample(vec2 offset, float fx, float fy, float radiusPixels, float cx
 // patches then apply together, and a combination of them is their patches, not a copy of their hunks.
 const int kAlchemyUnrolledSamples = 12;
 
+#ifdef ALCHEMY_SPIRAL_SHARED
+// The spiral table's run for kAlchemyUnrolledSamples samples, every class, in shared memory, for an includer
+// that defines ALCHEMY_SPIRAL_SHARED (and enables GL_KHR_shader_subgroup_basic): the unrolled samples read
+// their offsets there instead of from the storage buffer, 12 loads per pixel that no longer take the global
+// load path beside the depth gathers. The includer calls loadSpiralShared from every invocation of the
+// workgroup, in uniform control flow, before its first alchemyPixel. The first subgroup loads the run: the
+// workgroup's size is not known here (the host may run a module whose size was changed, and gl_WorkGroupSize
+// would be the compiled one).
+// On an H100 (2026-11-27, two calls, 3 rounds in one run each) the fused rows (alchemy_blur_row.comp) went to
+// 0.980 / 0.985 and 0.987 / 0.986 of their time at 1920x1080 / 3840x2160, alchemy-fused's frame to 0.986 /
+// 0.989 and 0.992 / 0.990 (0.0805 -> 0.0799 ms at 1920x1080 in the second); but the estimator in its own pass
+// (alchemy.comp) to 1.021 / 1.011 and 1.026 / 1.017, so alchemy.comp reads the buffer. The same bits.
+shared vec2 spiralShared[kAlchemyPixelClasses * kAlchemyUnrolledSamples];
+void loadSpiralShared() {
+    // The run exists in the table when its count lies in [minSamples, samples] (the push constants, uniform).
+    if (gl_SubgroupID == 0 && k.minSamples <= kAlchemyUnrolledSamples && kAlchemyUnrolledSamples <= k.samples) {
+        const uint base = uint(alchemySpiralAt(kAlchemyUnrolledSamples, 0) / 2);
+        for (uint i = gl_SubgroupInvocationID; i < uint(kAlchemyPixelClasses * kAlchemyUnrolledSamples);
+             i += gl_SubgroupSize)
+            spiralShared[i] = spiral[base + i];
+    }
+    barrier();
+}
+#endif
+
 // The spiral offset of the unrolled run's sample i, for the pixel of class cls whose run starts at float
 // `offsets` of the table.
 vec2 alchemyUnrolledOffset(int offsets, int cls, int i) {
+#ifdef ALCHEMY_SPIRAL_SHARED
+    return spiralShared[cls * kAlchemyUnrolledSamples + i];
+#else
     return spiral[offsets / 2 + i];
+#endif
 }
 
 // The paper's 12 samples (every pixel's count with the level of detail off, the default) unrolled: the count is
