@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # scripts/gpu-verify --small --jobs 2 on this build and whatever Vulkan device there is (lavapipe in CI): every
-# case renders both ways and agrees, in the list's order; and scripts/exrdiff.py, which it relies on, reports a difference it is given
-# and refuses files it cannot compare. Exit 77 (skipped) without a Vulkan device or python3.
+# case renders both ways and agrees, in the list's order; and scripts/exrdiff.py, which it relies on, reports a
+# difference it is given and refuses files it cannot compare. Exit 77 (skipped) without a Vulkan device or python3.
 # Arguments: source dir, build dir, scratch dir.
 source "$(dirname "$0")/check_common.sh"
 check_setup gpu_verify_check "$@"

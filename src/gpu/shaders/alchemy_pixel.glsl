@@ -122,8 +122,9 @@ float alchemyPixel(int x, int y) {
     // denominator as a constant instead of both and a select per sample. On an H100 (2026-11-27, fourth call,
     // 3 rounds in one run), with the branchless samples above, the fused rows went to 0.964 / 0.967 of their time
     // at 1920x1080 / 3840x2160 and alchemy-fused's frame to 0.974 / 0.976 (0.0830 -> 0.0809 ms at 1080p); the
-    // estimator alone (alchemy.comp) did not move (0.995 / 1.001), nor the registers. Alone, before the
-    // branchless samples, it gave 0.996 / 0.994. alchemy.comp's SPIR-V grows from 26 to 40 kB. The same bits.
+    // estimator's own pass (alchemy.comp) moved within the noise (0.993 / 0.997), the registers not at all.
+    // Alone, before the branchless samples, it gave 0.996 / 0.994. alchemy.comp's SPIR-V grows from 26.4 to
+    // 39.7 kB (glslc -O, 2026-11-27). The same bits.
     if (count == kAlchemyUnrolledSamples && paper) {
         alchemyUnrolledSamples(offsets, cls, fx, fy, radiusPixels, cx, cy, cz, nx, ny, nz, shift, radius2, true, c,
                                sum);
