@@ -77,13 +77,16 @@ check_built() {
   fi
 }
 # The renders each candidate is held to the embedded shaders on; the embedded shaders' are made once, into e<i>.
+# The last is wide enough (a 300-pixel grid) for blocks of 128 grid pixels, which a change of the GTAO pass's
+# mapping of invocations to pixels may take, to be whole.
 renders=("demo --size 133x77 --ao alchemy" "demo --size 133x77 --ao gtao"
          "stairs --size 120x70 --ao alchemy --blur-radius 32"
          "stairs --size 120x70 --ao alchemy --ao-guard-band 8 --gpu-fused-blur"
          "stairs --size 97x63 --ao gtao --frames 3"
          "demo --size 133x77 --ao gtao --frames 4 --gtao-half-res --gtao-grid-history --gtao-alternating-window"
          "stairs --size 97x63 --ao gtao --frames 5 --gtao-half-res --gtao-grid-history --gtao-packed-history --gtao-alternating-window --gtao-alternating-window-size 2"
-         "demo --size 133x77 --ao gtao --frames 5 --gtao-half-res --gtao-grid-history --gtao-packed-history --gtao-alternating-window --gtao-alternating-window-size 2 --gpu-fused-temporal")
+         "demo --size 133x77 --ao gtao --frames 5 --gtao-half-res --gtao-grid-history --gtao-packed-history --gtao-alternating-window --gtao-alternating-window-size 2 --gpu-fused-temporal"
+         "cabinet --size 600x340 --ao gtao --frames 2 --gtao-half-res --gtao-grid-history --gtao-packed-history --gtao-alternating-window --gtao-alternating-window-size 2 --gtao-sampling planar-nearest")
 if [ ${#patches[@]} -gt 0 ]; then
   for i in "${!renders[@]}"; do
     # shellcheck disable=SC2086  # the list's words are separate arguments
