@@ -524,7 +524,7 @@ TEST(GtaoTemporal, GridHistorySamplingsAgainstRayTracing) {
 // The spatio-temporal target's configuration (1x3, planar-nearest, half resolution, the grid's history, 2x2
 // windows, 12 static frames) with the planar zone at 14 pixels (--gtao-mip-ratio 7, the default) and at 7 (3.5):
 // a nearer zone would take the GTAO pass's planar quads off more samples (0.92x of the pass at 3840x2160 on an
-// H100, 2026-11-25), and it costs accuracy where near samples are off the slice line, on `stairs` and the open
+// H100, 2026-11-26), and it costs accuracy where near samples are off the slice line, on `stairs` and the open
 // `plane`, at every size measured (192x108 to 768x432, docs/QUALITY.md). So the target is held at 14 pixels.
 TEST(GtaoTemporal, NearerPlanarZoneCostsAccuracyInTheTargetConfiguration) {
     for (int scale : {1, 2}) {
