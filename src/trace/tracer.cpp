@@ -8,6 +8,7 @@
 #include "trace/embree_ray.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <string>
 
@@ -65,6 +66,22 @@ RTCGeometry makeTriangles(RTCDevice device, const Mesh& mesh, const Mat4* worldF
     return g;
 }
 
+// Whether Embree can trace an instance with this transform: it carries each ray into object space through the
+// inverse, and a singular or near-singular linear part makes that ray infinite or NaN, which Embree asserts on.
+// Such an instance places only zero-area triangles; flattened into world space it costs memory, not correctness.
+bool invertibleForEmbree(const Mat4& m) {
+    const auto a = [&](int r, int c) { return double(m.m[r][c]); };
+    const double det = a(0, 0) * (a(1, 1) * a(2, 2) - a(1, 2) * a(2, 1)) -
+                       a(0, 1) * (a(1, 0) * a(2, 2) - a(1, 2) * a(2, 0)) +
+                       a(0, 2) * (a(1, 0) * a(2, 1) - a(1, 1) * a(2, 0));
+    double scale = 0;
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) scale = std::max(scale, std::abs(a(r, c)));
+    // Relative to the transform's own scale, so a uniformly tiny or huge instance still counts as invertible;
+    // 1e-9 keeps the inverse's float entries finite and its rays well-formed.
+    return std::isfinite(det) && scale > 0 && std::abs(det) > 1e-9 * scale * scale * scale;
+}
+
 } // namespace
 
 RTCRayHit makeRayHit(Vec3 o, Vec3 d, float tnear, float tfar) {
@@ -92,12 +109,15 @@ Tracer::Tracer(const Scene& scene) : impl_(std::make_unique<Impl>()), scene_(sce
     if (!s.device) fail("embree", "cannot create a device (error " + std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
     rtcSetDeviceErrorFunction(s.device, onEmbreeError, nullptr);
 
+    // Uses that become Embree instances: a singular transform is flattened instead (invertibleForEmbree), and
+    // a mesh whose triangles were all dropped as degenerate places nothing (Embree refuses empty buffers).
     std::vector<int> uses(scene.meshes.size(), 0);
-    for (const Instance& inst : scene.instances) ++uses[inst.mesh];
+    for (const Instance& inst : scene.instances)
+        if (invertibleForEmbree(inst.worldFromObject)) ++uses[inst.mesh];
 
     s.meshScenes.assign(scene.meshes.size(), nullptr);
     for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
-        if (uses[m] < 2) continue;
+        if (uses[m] < 2 || scene.meshes[m].triangleCount() == 0) continue;
         RTCScene ms = rtcNewScene(s.device);
         rtcSetSceneBuildQuality(ms, RTC_BUILD_QUALITY_HIGH);
         RTCGeometry g = makeTriangles(s.device, scene.meshes[m], nullptr);
@@ -114,8 +134,9 @@ Tracer::Tracer(const Scene& scene) : impl_(std::make_unique<Impl>()), scene_(sce
         const Instance& inst = scene.instances[i];
         s.worldFromObject.push_back(inst.worldFromObject);
         s.normalFromObject.push_back(normalMatrix(inst.worldFromObject));
+        if (scene.meshes[inst.mesh].triangleCount() == 0) continue;
         RTCGeometry g;
-        if (s.meshScenes[inst.mesh]) {
+        if (s.meshScenes[inst.mesh] && invertibleForEmbree(inst.worldFromObject)) {
             g = rtcNewGeometry(s.device, RTC_GEOMETRY_TYPE_INSTANCE);
             rtcSetGeometryInstancedScene(g, s.meshScenes[inst.mesh]);
             float xfm[12];
