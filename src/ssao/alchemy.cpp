@@ -73,12 +73,23 @@ AlchemySettings alchemyPreset(const std::string& name) {
     return s;
 }
 
+namespace {
+
+// The one message for a band that leaves no pixel, wherever the band is first applied: the estimator's
+// constants, or the crop a caller makes of its G-buffer before it (which would otherwise size an image by a
+// negative count).
+void checkGuardBand(int guardBand, int width, int height) {
+    if (guardBand < 0 || width <= 2 * guardBand || height <= 2 * guardBand)
+        fail("guard-band", std::to_string(guardBand) + " px leaves nothing of a " + std::to_string(width) + "x" +
+                               std::to_string(height) + " buffer");
+}
+
+} // namespace
+
 AlchemyConstants alchemyConstants(const AlchemySettings& s, const Camera& camera) {
     s.validate();
     camera.validate();
-    if (camera.width <= 2 * s.guardBand || camera.height <= 2 * s.guardBand)
-        fail("guard-band", std::to_string(s.guardBand) + " px leaves nothing of a " + std::to_string(camera.width) +
-                               "x" + std::to_string(camera.height) + " buffer");
+    checkGuardBand(s.guardBand, camera.width, camera.height);
     AlchemyConstants k{};
     k.width = camera.width;
     k.height = camera.height;
@@ -122,6 +133,7 @@ Camera guardBandCamera(const Camera& camera, int guardBand) {
 
 Image cropGuardBand(const Image& image, int g) {
     if (g == 0) return image;
+    checkGuardBand(g, image.width, image.height);
     Image out(image.width - 2 * g, image.height - 2 * g, image.channels);
     out.channelNames = image.channelNames;
     for (int y = 0; y < out.height; ++y)
