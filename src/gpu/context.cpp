@@ -195,6 +195,7 @@ Context::Context(const ContextSettings& settings) : impl_(std::make_unique<Impl>
     properties2.pNext = &driver;
     vkGetPhysicalDeviceProperties2(c.physical, &properties2);
     c.info.driver = std::string(driver.driverName) + (driver.driverInfo[0] ? std::string(" ") + driver.driverInfo : "");
+    c.lavapipe = driver.driverID == VK_DRIVER_ID_MESA_LLVMPIPE;
 
     // A compute queue; a family with compute and no graphics is the dedicated one, so it is preferred.
     std::uint32_t n = 0;

@@ -35,6 +35,9 @@ struct Context::Impl {
     VkQueryPool timestamps = VK_NULL_HANDLE;  // null when the queue has no timestamps
     VkPhysicalDeviceProperties properties{};
     DeviceInfo info;
+    // Mesa's lavapipe (llvmpipe): it ends a shader invocation's loops after 65535 iterations in all, with no
+    // error (checkGtaoLoopBudget).
+    bool lavapipe = false;
     bool validation = false;
     // VK_KHR_pipeline_executable_properties, when ContextSettings asked for it and the device offers it
     // (info.pipelineStatistics): pipelines are made with the capture flags and report what the driver says.

@@ -25,9 +25,39 @@ static_assert(ssao::kGtaoRotations == kGtaoRotations, "gtao.comp rotates the int
 static_assert((GTAO_MIP_WORKGROUP >> (GTAO_MAX_MIP_LEVELS - 1)) >= 1,
               "gtao_mips.comp makes every level in one workgroup's tile: the top level needs a texel of it");
 
+// gallivm (llvmpipe's shader compiler) counts the iterations of every loop of an invocation against one budget of
+// 65535 (LP_MAX_TGSI_LOOP_ITERATIONS, "shared between every loop") and breaks out of each loop once it is spent.
+// What one horizon step costs of it depends on how the driver compiled the sampling's code; measured on lavapipe
+// (Mesa 22.3.6, the demo scene at 64x48, GPU against CPU, 2026-11-27): with planar samples the result went wrong
+// from 4864 slices x steps (right at 4608), with planar-MIP ones from 4096 (right at 3072), with MIP ones from
+// 8192 (right at 6144), and nearest ones were right at 64 x 256, the most there is. The iterations a step is
+// counted for below lie above what those thresholds imply (65535 / 4864 = 13.5 for planar). The bitmask adds at
+// most 32 sector iterations a sample, two samples a step, and 32 a slice: an upper bound from the loops'
+// structure, not measured. The budget keeps a tenth in reserve for the loops outside the march.
+void checkGtaoLoopBudget(const Context::Impl& c, const ssao::GtaoConstants& k) {
+    if (!c.lavapipe) return;
+    const bool bitmask = k.thicknessMode == GTAO_THICKNESS_BITMASK;
+    const double perStep = (k.sampling == GTAO_SAMPLING_NEAREST       ? 3.0
+                            : k.sampling == GTAO_SAMPLING_MIP         ? 10.0
+                            : k.sampling == GTAO_SAMPLING_PLANAR_MIP  ? 21.0
+                                                                      : 14.0) +
+                           (bitmask ? 2.0 * GTAO_BITMASK_SECTORS : 0.0);
+    const double perSlice = 1.0 + (bitmask ? GTAO_BITMASK_SECTORS : 0.0);
+    const double budget = 0.9 * 65535.0;
+    const double iterations = double(k.sliceCount) * (double(k.stepsPerSide) * perStep + perSlice);
+    if (iterations <= budget) return;
+    const long most = long((budget / double(k.sliceCount) - perSlice) / perStep) * long(k.sliceCount);
+    fail(c.info.name, "ends a shader's loops after 65535 iterations in all, without an error, and GTAO with " +
+                          std::to_string(k.sliceCount) + " slices x " + std::to_string(k.stepsPerSide) +
+                          " steps would need about " + std::to_string(long(iterations)) +
+                          " there, so its result would be wrong: use at most " + std::to_string(std::max(most, 0L)) +
+                          " slices x steps with these samples on lavapipe, or another device");
+}
+
 void recordGtao(Context::Impl& c, VkCommandBuffer cmd, const GtaoBuffers& b, const ssao::GtaoConstants& k,
                 int gridStep, bool bentNormal, bool packedNormals) {
     assert(gridStep == 1 || gridStep == 2);
+    checkGtaoLoopBudget(c, k);
     ComputePipeline& pipeline =
         c.pipelineOfShadersSize("gtao", shaders::gtao,
                                 std::vector<BindingKind>(kGtaoBindingCount, BindingKind::StorageBuffer),

@@ -37,6 +37,12 @@ void recordGtaoDepthMips(Context::Impl& context, VkCommandBuffer cmd, const Buff
 // ssao::checkGtaoBuffers. Without bentNormal the pass writes visibility alone (kGtaoSpecBentNormal 0) and
 // does not touch buffers.bentNormal, which may be any buffer. With packedNormals buffers.normal holds one
 // octahedral word per pixel (kGtaoSpecPackedNormals 1, ssao::packOctahedral) instead of 3 floats.
+// On lavapipe, throws obscura::Error where the GTAO pixel's loops (slices x steps, and the bitmask's sectors)
+// could run past the 65535 iterations at which the driver ends every loop of an invocation without a word,
+// so that the result would be silently wrong; elsewhere does nothing. recordGtao and the fused spatio-temporal
+// pass call it.
+void checkGtaoLoopBudget(const Context::Impl& context, const ssao::GtaoConstants& k);
+
 void recordGtao(Context::Impl& context, VkCommandBuffer cmd, const GtaoBuffers& buffers, const ssao::GtaoConstants& k,
                 int gridStep = 1, bool bentNormal = true, bool packedNormals = false);
 

@@ -260,6 +260,7 @@ void GtaoTemporalPasses::recordFused(VkCommandBuffer cmd, const ssao::GtaoConsta
     vkCmdUpdateBuffer(cmd, temporalConstants_.handle(), offset, sizeof tk, &tk);
     memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+    checkGtaoLoopBudget(context_, k);
     ComputePipeline& pipeline =
         context_.pipelineOfShadersSize("gtao_temporal_fused", shaders::gtao_temporal_fused,
                                        storageBuffers(kFusedBindingCount), kGtaoPushConstantBytes,
