@@ -44,7 +44,7 @@ struct BilateralSettings {
     // Taps on each side of the centre: 2 radius + 1 taps per axis; [1, kMaxBlurRadius]. 6 gives the paper's
     // 13 taps.
     int radius = 6;
-    // sigma_d / centre depth: unitless, (0, 10]. 0.05 lets a 5% depth change through at weight 0.6 and
+    // sigma_d / centre depth: unitless, [1e-6, 10]. 0.05 lets a 5% depth change through at weight 0.6 and
     // stops a 20% step (weight 3e-4), so surfaces at a silhouette do not bleed into each other.
     float depthSigma = 0.05f;
     // Multiply each tap by max(0, N . Ni), which keeps the blur from crossing creases at equal depth. Auto:

@@ -18,8 +18,11 @@ namespace obscura::ssao {
 void BilateralSettings::validate() const {
     if (radius < 1 || radius > kMaxBlurRadius)
         fail("blur-radius", "must be in [1, " + std::to_string(kMaxBlurRadius) + "] taps, is " + std::to_string(radius));
-    if (!(depthSigma > 0.0f && depthSigma <= 10.0f))
-        fail("blur-depth-sigma", "must be in (0, 10] (relative to depth), is " + numberText(depthSigma));
+    // From 1e-6 up: a depth is a float, good to 6e-8 of itself, so a smaller tolerance admits no tap a sigma of
+    // 1e-6 would not; and from about 1e-19 down 1 / (2 sigma^2) overflows a float, which made the CPU's weights
+    // NaN (a fully occluded pixel came out 0.95) while the GPU's stayed finite.
+    if (!(depthSigma >= 1e-6f && depthSigma <= 10.0f))
+        fail("blur-depth-sigma", "must be in [1e-6, 10] (relative to depth), is " + numberText(depthSigma));
 }
 
 std::vector<float> gaussianHalfKernel(int radius) {

@@ -302,6 +302,14 @@ TEST(Bilateral, RejectsBadSettingsAndBuffers) {
     EXPECT_THROW(bilateralFilter(ao, g, s), Error);
     s.depthSigma = NAN;
     EXPECT_THROW(bilateralFilter(ao, g, s), Error);
+    // Below float's resolution of a depth: 1e-30 once overflowed 1 / (2 sigma^2) into NaN weights.
+    for (float tiny : {1e-30f, 1e-20f, 9e-7f}) {
+        s.depthSigma = tiny;
+        EXPECT_THROW(bilateralFilter(ao, g, s), Error) << tiny;
+    }
+    s.depthSigma = 1e-6f;
+    const Image smallest = bilateralFilter(ao, g, s);
+    for (float v : smallest.pixels) EXPECT_FLOAT_EQ(v, 0.5f);  // a constant stays constant
     EXPECT_THROW(bilateralFilter(Image(8, 7, 1), g, BilateralSettings{}), Error);
     EXPECT_THROW(bilateralFilter(Image(8, 8, 3), g, BilateralSettings{}), Error);
     try {

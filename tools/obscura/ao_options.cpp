@@ -26,7 +26,7 @@ void BlurFlags::add(CLI::App& app) {
     app.add_option("--blur-radius", radius, "Blur taps on each side of the centre, [1, 32] (6: 13 taps)")
         ->capture_default_str();
     app.add_option("--blur-depth-sigma", depthSigma,
-                   "Depth tolerance of the blur relative to depth, (0, 10] (0.05: 5% of the pixel's depth)")
+                   "Depth tolerance of the blur relative to depth, [1e-6, 10] (0.05: 5% of the pixel's depth)")
         ->capture_default_str();
     app.add_option("--blur-normal-weight", normalWeight, kNormalWeightHelp)
         ->check(CLI::IsMember({"auto", "on", "off"}))
