@@ -11,7 +11,11 @@ namespace obscura {
 void parallelFor(std::size_t count, const std::function<void(std::size_t begin, std::size_t end)>& body,
                  std::size_t grain = 1);
 
-// Limits the threads parallelFor uses while the object lives (0 = all hardware threads).
+// The most threads a ThreadLimit takes: more than the machines this runs on have.
+inline constexpr int kMaxThreads = 1024;
+
+// Limits the threads parallelFor uses while the object lives (0 = all hardware threads). Throws
+// obscura::Error("threads: ...") outside [0, kMaxThreads].
 class ThreadLimit {
 public:
     explicit ThreadLimit(int threads);

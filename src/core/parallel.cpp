@@ -1,6 +1,10 @@
 // parallelFor on oneTBB.
 #include "obscura/parallel.h"
 
+#include "obscura/error.h"
+
+#include <string>
+
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
 #include <tbb/info.h>
@@ -15,6 +19,10 @@ void parallelFor(std::size_t count, const std::function<void(std::size_t, std::s
 }
 
 ThreadLimit::ThreadLimit(int threads) {
+    // TBB starts as many workers as it is allowed: 2^31 - 1 once ran a command past 9 GB before any work.
+    if (threads < 0 || threads > kMaxThreads)
+        fail("threads", "must be in [0, " + std::to_string(kMaxThreads) + "] (0 = all hardware threads), is " +
+                            std::to_string(threads));
     if (threads > 0)
         control_ = new tbb::global_control(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
 }
