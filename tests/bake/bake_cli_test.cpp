@@ -98,6 +98,12 @@ TEST_F(BakeCli, GltfInputKeepsItsNodesAndGetsAttributes) {
 TEST_F(BakeCli, OcclusionToPlyAndCsv) {
     Result r = run("bake " + data("cube.obj") + " --mode occlusion --distance 2 -o " + path("cube.ply") + kFast);
     ASSERT_EQ(r.code, 0) << r.out;
+    // The summary names the distance the bake used (it once printed --distances' default, 2,300).
+    const Result said =
+        run("bake " + data("cube.obj") + " --mode occlusion --distance 2 --rays 8 --max-samples-per-face 4 -o " +
+            path("said.csv"));
+    ASSERT_EQ(said.code, 0) << said.out;
+    EXPECT_NE(said.out.find("(occlusion, d = 2 m,"), std::string::npos) << said.out;
     const std::string ply = readBytes(path("cube.ply"));
     EXPECT_NE(ply.find("property float quality"), std::string::npos);
     obscura::Scene back = obscura::loadScene(path("cube.ply"));
@@ -130,6 +136,9 @@ TEST_F(BakeCli, BadInputIsOneLineAndNoOutput) {
     expectFailure("bake " + data("cube.obj") + out + " --blend 1.5 -q", {"--blend"});
     expectFailure("bake " + data("cube.obj") + out + " --distances 2,3,4 -q", {"--distances"});
     expectFailure("bake " + data("cube.obj") + out + " --distances -1 -q", {"--distances"});
+    // --distance once fell back to --distances' default for any value not above 0, NaN included, and said nothing.
+    for (const char* bad : {"nan", "-1", "0", "-inf", "\"\""})
+        expectFailure("bake " + data("cube.obj") + out + " --distance " + bad + " -q", {"--distance", "expected a distance"});
     expectFailure("bake " + data("cube.obj") + out + " --alpha -1 -q", {"--alpha"});
     expectFailure("bake " + data("cube.obj") + out + " --mode fuzzy -q", {"--mode"});
     expectFailure("bake " + data("cube.obj") + out + " --crease-angle 200 -q", {"--crease-angle"});

@@ -25,9 +25,10 @@ namespace {
 
 struct BakeOptions {
     std::string input, output, report, mode = "obscurance", distances = "2,300", solver = "auto";
-    float distance = 0.0f;
+    std::string distance;  // --distance as given, parsed and checked where distanceGiven
     bake::BakeSettings settings;
     bake::ArtistControls controls;
+    bool distanceGiven = false;
     int threads = 0;
     std::size_t rawCheck = 0;
     bool quiet = false;
@@ -67,7 +68,8 @@ void runBake(BakeOptions& o) {
     else if (o.solver == "cholmod") s.linearSolver = bake::LinearSolver::Cholmod;
     else if (o.solver == "ldlt") s.linearSolver = bake::LinearSolver::SimplicialLDLT;
     else fail("--linear-solver", "expected auto, cholmod or ldlt, got \"" + o.solver + "\"");
-    s.distances = o.distance > 0.0f ? std::vector<float>{o.distance} : parseDistances(o.distances);
+    // --distance was once a float whose non-positive (and NaN) values fell back to --distances' default unsaid.
+    s.distances = o.distanceGiven ? std::vector<float>{parseRadius("--distance", o.distance)} : parseDistances(o.distances);
     s.validate();
     o.controls.validate();
     if (o.threads < 0) fail("--threads", "must be >= 0");
@@ -161,8 +163,10 @@ void runBake(BakeOptions& o) {
         });
     }
     if (o.quiet) return;
+    std::string distances;  // what the bake used, --distance or --distances
+    for (float d : s.distances) distances += (distances.empty() ? "" : ",") + numberText(d);
     std::printf("obscura bake: %s -> %s (%s, d = %s m, %d rays/sample, alpha %g, %d threads)\n", o.input.c_str(),
-                o.output.c_str(), o.mode.c_str(), o.distances.c_str(), s.rays, double(s.alpha), threads);
+                o.output.c_str(), o.mode.c_str(), distances.c_str(), s.rays, double(s.alpha), threads);
     if (r.droppedTriangles)
         std::printf("dropped %zu triangle%s made degenerate by welding\n", r.droppedTriangles, r.droppedTriangles == 1 ? "" : "s");
     std::printf("\n%-58s %10s\n", "Description", "Time (s)");
@@ -201,7 +205,8 @@ void addBakeCommand(CLI::App& app) {
     cmd->add_option("-o,--output", o->output, "Output .glb, .gltf, .ply (quality) or .csv")->required();
     cmd->add_option("--mode", o->mode, "obscurance (exponential kernel) or occlusion (binary within d)")->capture_default_str();
     cmd->add_option("--distances", o->distances, "Half distances d in m, \"short,long\" or one value")->capture_default_str();
-    cmd->add_option("--distance", o->distance, "One distance d in m (same as --distances d)");
+    cmd->add_option("--distance", o->distance, "One distance d in m (same as --distances d)")
+        ->each([o](const std::string&) { o->distanceGiven = true; });
     cmd->add_option("--rays", o->settings.rays, "Rays per sample, [1, 65536]")->capture_default_str();
     cmd->add_option("--alpha", o->settings.alpha, "Regulariser weight, unitless, [0, 1e6]")->capture_default_str();
     cmd->add_option("--max-samples-per-face", o->settings.maxSamplesPerFace, "Sample cap per face, [1, 4096]")->capture_default_str();
