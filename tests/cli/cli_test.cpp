@@ -114,3 +114,28 @@ TEST_F(Cli, HelpExplains) {
                              "--env", "--aov-dir"})
         EXPECT_NE(r.out.find(flag), std::string::npos) << flag;
 }
+
+// An output path that names one of the command's inputs is refused before any work, and the input keeps its
+// bytes: ao and render once replaced their depth buffer or environment map with their result and exited 0
+// (bake already refused its input). The same file under another spelling (./name) counts.
+TEST_F(Cli, OutputIsNeverAnInput) {
+    const auto bytes = [](const std::string& file) {
+        std::ifstream in(file, std::ios::binary);
+        return std::string(std::istreambuf_iterator<char>(in), {});
+    };
+    ASSERT_EQ(run("gbuffer corner --size 24x16 -q -o " + path("g")).code, 0);
+    const std::string depth = path("g/depth.exr"), camera = path("g/camera.json");
+    const std::string before = bytes(depth);
+    ASSERT_FALSE(before.empty());
+    expectFailure("ao --depth " + depth + " --camera " + camera + " -o " + depth, {"depth.exr", "is the input file"});
+    expectFailure("ao --depth " + depth + " --normal " + path("g/normal.exr") + " --camera " + camera + " -o " +
+                      path("g/./normal.exr"),
+                  {"normal.exr", "is the input file"});
+    expectFailure("render corner --env " + depth + kFast + "-o " + depth, {"depth.exr", "is the input file"});
+    EXPECT_EQ(bytes(depth), before);
+    {
+        std::ofstream copy(path("quad.gltf"), std::ios::binary);
+        copy << bytes(data("quad.gltf"));
+    }
+    expectFailure("bake " + path("quad.gltf") + " -q -o " + path("quad.gltf"), {"quad.gltf", "is the input file"});
+}

@@ -125,7 +125,8 @@ void warnIgnored(const std::vector<const CLI::Option*>& options, const std::stri
             std::fprintf(stderr, "obscura: warning: %s: %s; ignored\n", option->get_name().c_str(), why.c_str());
 }
 
-void checkOutputPath(const std::string& flag, const std::string& path, const std::vector<std::string>& extensions) {
+void checkOutputPath(const std::string& flag, const std::string& path, const std::vector<std::string>& extensions,
+                     const std::vector<std::string>& inputs) {
     if (path.empty()) fail(flag, "output path is empty");
     std::string ext = fileExtension(path);
     bool ok = false;
@@ -137,6 +138,10 @@ void checkOutputPath(const std::string& flag, const std::string& path, const std
     if (!ok) fail(path, "unsupported output format '" + ext + "' (expected " + list + ")");
     fs::path parent = fs::path(path).parent_path();
     if (!parent.empty() && !fs::is_directory(parent)) fail(path, "directory " + parent.string() + " does not exist");
+    std::error_code ec;
+    for (const std::string& input : inputs)
+        if (!input.empty() && fs::exists(path, ec) && fs::exists(input, ec) && fs::equivalent(path, input, ec))
+            fail(path, "is the input file " + input + "; the input is never overwritten, choose another output");
 }
 
 void checkOutputDirectory(const std::string& flag, const std::string& dir, bool create) {

@@ -95,7 +95,7 @@ void checkUnitNormals(const GBuffer& g, const std::string& path) {
 
 void run(const AoOptions& o) {
     auto start = std::chrono::steady_clock::now();
-    checkOutputPath("-o", o.output, {".exr"});
+    checkOutputPath("-o", o.output, {".exr"}, {o.depth, o.normal, o.camera});
     const eval::AoMethod& method = eval::findAoMethod(o.method);
     const ssao::BilateralSettings blur = o.blur.settings();
     ssao::AlchemySettings alchemy = o.alchemy.settings("");

@@ -73,11 +73,8 @@ void runBake(BakeOptions& o) {
     s.validate();
     o.controls.validate();
     if (o.threads < 0) fail("--threads", "must be >= 0");
-    checkOutputPath("--output", o.output, {".glb", ".gltf", ".ply", ".csv"});
-    if (!o.report.empty()) checkOutputPath("--report", o.report, {".json"});
-    std::error_code ec;
-    if (fs::exists(o.output) && fs::exists(o.input) && fs::equivalent(o.output, o.input, ec))
-        fail(o.output, "is the input file; the input is never overwritten, choose another output");
+    checkOutputPath("--output", o.output, {".glb", ".gltf", ".ply", ".csv"}, {o.input});
+    if (!o.report.empty()) checkOutputPath("--report", o.report, {".json"}, {o.input});
 
     ThreadLimit limit(o.threads);
     const int threads = o.threads > 0 ? o.threads : hardwareThreads();

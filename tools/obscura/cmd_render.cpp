@@ -63,7 +63,7 @@ const std::map<std::string, render::Tonemap> kTonemaps = {
 void run(const RenderOptions& o) {
     auto start = std::chrono::steady_clock::now();
     // Everything that can be checked before the work is checked first.
-    checkOutputPath("-o", o.output, {".png", ".exr"});
+    checkOutputPath("-o", o.output, {".png", ".exr"}, {o.env, o.scene});
     if (!o.aovDir.empty()) checkOutputDirectory("--aov-dir", o.aovDir, true);
     const std::string notThis = ", not --ao " + o.ao;
     if (o.ao != "raytraced") warnIgnored(o.raytracedFlags, "applies to --ao raytraced" + notThis);
