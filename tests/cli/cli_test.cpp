@@ -139,3 +139,14 @@ TEST_F(Cli, OutputIsNeverAnInput) {
     }
     expectFailure("bake " + path("quad.gltf") + " -q -o " + path("quad.gltf"), {"quad.gltf", "is the input file"});
 }
+
+// A render that fails on its flags or its output path leaves nothing behind: --aov-dir's directory was made
+// before the flags were checked, and an output path naming a directory failed only after the AOVs had been
+// written.
+TEST_F(Cli, FailedRenderLeavesNoAovs) {
+    expectFailure("render corner" + kFast + "--aov-dir " + path("new/a/b") + " --exposure 99 -o " + path("f.png"),
+                  {"--exposure"});
+    std::filesystem::create_directory(path("f.png"));
+    expectFailure("render corner" + kFast + "--aov-dir " + path("aov") + " -o " + path("f.png"),
+                  {"f.png", "is a directory"});
+}

@@ -139,6 +139,7 @@ void checkOutputPath(const std::string& flag, const std::string& path, const std
     fs::path parent = fs::path(path).parent_path();
     if (!parent.empty() && !fs::is_directory(parent)) fail(path, "directory " + parent.string() + " does not exist");
     std::error_code ec;
+    if (fs::is_directory(path, ec)) fail(path, "is a directory");
     for (const std::string& input : inputs)
         if (!input.empty() && fs::exists(path, ec) && fs::exists(input, ec) && fs::equivalent(path, input, ec))
             fail(path, "is the input file " + input + "; the input is never overwritten, choose another output");

@@ -50,8 +50,9 @@ std::vector<const CLI::Option*> optionsAddedBy(CLI::App& app, const std::functio
 // value unchecked. A warning, not an error, so that a script passing one set of flags to every method runs on.
 void warnIgnored(const std::vector<const CLI::Option*>& options, const std::string& why);
 
-// Fails early, before any work, if the output cannot be written: wrong extension or missing directory, or it is
-// one of the command's input files (empty names are skipped), which the output would replace.
+// Fails early, before any work, if the output cannot be written: wrong extension, missing directory or a
+// directory of that name, or it is one of the command's input files (empty names are skipped), which the
+// output would replace.
 void checkOutputPath(const std::string& flag, const std::string& path, const std::vector<std::string>& extensions,
                      const std::vector<std::string>& inputs = {});
 void checkOutputDirectory(const std::string& flag, const std::string& dir, bool create);

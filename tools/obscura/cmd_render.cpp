@@ -64,7 +64,6 @@ void run(const RenderOptions& o) {
     auto start = std::chrono::steady_clock::now();
     // Everything that can be checked before the work is checked first.
     checkOutputPath("-o", o.output, {".png", ".exr"}, {o.env, o.scene});
-    if (!o.aovDir.empty()) checkOutputDirectory("--aov-dir", o.aovDir, true);
     const std::string notThis = ", not --ao " + o.ao;
     if (o.ao != "raytraced") warnIgnored(o.raytracedFlags, "applies to --ao raytraced" + notThis);
     if (o.ao != "alchemy") warnIgnored(o.alchemyFlags, "applies to --ao alchemy" + notThis);
@@ -113,6 +112,9 @@ void run(const RenderOptions& o) {
         fail("--gpu-tiled-blur", "needs --gpu, --ao alchemy and the separable blur (--blur separable) with "
                                  "--blur-radius up to " + std::to_string(gpu::kTiledBlurMaxRadius));
     if (o.tiledBlur && o.fusedBlur) fail("--gpu-tiled-blur", "and --gpu-fused-blur are two ways to run the blur: give one");
+
+    // Made once every flag has passed, so that a bad one leaves no directory behind.
+    if (!o.aovDir.empty()) checkOutputDirectory("--aov-dir", o.aovDir, true);
 
     ThreadLimit limit(o.threads);
     const std::unique_ptr<gpu::Context> context = o.gpu.open();
