@@ -150,3 +150,16 @@ TEST_F(Cli, FailedRenderLeavesNoAovs) {
     expectFailure("render corner" + kFast + "--aov-dir " + path("aov") + " -o " + path("f.png"),
                   {"f.png", "is a directory"});
 }
+
+// A scene file that float cannot frame by default (a triangle 1e-30 m across) is named with what went wrong;
+// the error once blamed "camera flags" that were never given. Given flags that fail are still theirs.
+TEST_F(Cli, UnframableSceneIsNamed) {
+    {
+        std::ofstream obj(path("tiny.obj"));
+        obj << "v 0 0 0\nv 1e-30 0 0\nv 0 1e-30 0\nf 1 2 3\n";
+    }
+    expectFailure("gbuffer " + path("tiny.obj") + " --size 16x12 -q -o " + path("g.exr"),
+                  {"tiny.obj: cannot be framed by the default camera", "--camera-from"});
+    expectFailure("gbuffer corner --size 16x12 --camera-from 1,1,1 --camera-to 1,1,1 -q -o " + path("g.exr"),
+                  {"camera flags: position and target coincide"});
+}

@@ -92,7 +92,8 @@ void CameraOptions::add(CLI::App& app) {
     app.add_option("--far", farZ, "Far plane distance in meters (default: the scene's)");
 }
 
-Camera CameraOptions::apply(Camera c) const {
+Camera CameraOptions::apply(const LoadedScene& scene) const {
+    Camera c = scene.camera;
     parseSize("--size", size, c.width, c.height);
     if (!from.empty()) c.position = parseVec3("--camera-from", from);
     if (!to.empty()) c.target = parseVec3("--camera-to", to);
@@ -106,7 +107,12 @@ Camera CameraOptions::apply(Camera c) const {
     try {
         c.validate();
     } catch (const Error& e) {
-        fail("camera flags", std::string(e.what()).substr(8));  // drop the "camera: " prefix
+        const std::string problem = std::string(e.what()).substr(8);  // drop the "camera: " prefix
+        if (from.empty() && to.empty() && up.empty() && fov == 0.0f && nearZ == 0.0f && farZ == 0.0f)
+            fail(scene.name, "cannot be framed by the default camera (its bounds span " +
+                                 numberText(length(scene.scene.bounds().size())) + " m; " + problem +
+                                 "): give --camera-from, --camera-to, --near and --far");
+        fail("camera flags", problem);
     }
     return c;
 }

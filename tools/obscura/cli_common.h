@@ -39,7 +39,9 @@ struct CameraOptions {
     float fov = 0.0f;  // 0: the scene's
     float nearZ = 0.0f, farZ = 0.0f;
     void add(CLI::App& app);
-    Camera apply(Camera base) const;
+    // The scene's camera with the flags given on top. A camera that fails Camera::validate is blamed on the flags
+    // when one was given, else on the scene (a file too large or too small for float to frame by default).
+    Camera apply(const LoadedScene& scene) const;
 };
 
 // The options that add() put on app: those app has after it that it did not have before, so that a command can

@@ -122,7 +122,7 @@ void run(const CompareOptions& o) {
 
     ThreadLimit limit(o.threads);
     LoadedScene loaded = loadSceneArgument(o.scene);
-    const Camera camera = o.camera.apply(loaded.camera);
+    const Camera camera = o.camera.apply(loaded);
     trace::Tracer tracer(loaded.scene);
     const bool showProgress = progressWanted(o.quiet || o.json);
     GBuffer g;

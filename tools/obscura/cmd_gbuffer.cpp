@@ -52,7 +52,7 @@ void run(const GBufferOptions& o) {
         checkOutputPath("-o", o.output, {".exr"});
     ThreadLimit limit(o.threads);
     LoadedScene loaded = loadSceneArgument(o.scene);
-    Camera camera = o.camera.apply(loaded.camera);
+    Camera camera = o.camera.apply(loaded);
     trace::Tracer tracer(loaded.scene);
     Progress p("primary rays", progressWanted(o.quiet));
     trace::GBufferSettings gs;

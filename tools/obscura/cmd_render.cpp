@@ -119,7 +119,7 @@ void run(const RenderOptions& o) {
     ThreadLimit limit(o.threads);
     const std::unique_ptr<gpu::Context> context = o.gpu.open();
     LoadedScene loaded = loadSceneArgument(o.scene);
-    Camera camera = o.camera.apply(loaded.camera);
+    Camera camera = o.camera.apply(loaded);
 
     Image environment = o.env.empty() ? render::proceduralSky() : readImage(o.env);
     if (environment.channels < 3) fail(o.env, "environment needs 3 colour channels, has " + std::to_string(environment.channels));
