@@ -43,7 +43,8 @@ struct AoMethod {
 const std::vector<AoMethod>& aoMethods();
 // Their names in order, comma-separated: "alchemy, alchemy-chapter, gtao, ...".
 std::string aoMethodNames();
-const AoMethod& findAoMethod(const std::string& name);
+// `flag` names the option the name came from in the error (ao's --method, compare's --methods).
+const AoMethod& findAoMethod(const std::string& name, const std::string& flag = "--methods");
 // "alchemy,gtao" -> the methods, in order, without duplicates.
 std::vector<const AoMethod*> parseMethodList(const std::string& commaSeparated);
 

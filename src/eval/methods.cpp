@@ -139,10 +139,10 @@ std::string aoMethodNames() {
     return names;
 }
 
-const AoMethod& findAoMethod(const std::string& name) {
+const AoMethod& findAoMethod(const std::string& name, const std::string& flag) {
     for (const AoMethod& m : aoMethods())
         if (m.name == name) return m;
-    fail("--methods", "unknown AO method '" + name + "' (known: " + aoMethodNames() + ")");
+    fail(flag, "unknown AO method '" + name + "' (known: " + aoMethodNames() + ")");
 }
 
 std::vector<const AoMethod*> parseMethodList(const std::string& list) {

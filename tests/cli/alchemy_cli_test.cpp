@@ -137,6 +137,9 @@ TEST_F(AlchemyCli, AoRejectsBadBuffers) {
     { std::ofstream(path("bad.json")) << "{\"width\": 24,"; }
     expectFailure("ao --depth " + path("g/depth.exr") + " --camera " + path("bad.json") + " -o " + path("ao.exr"), {"bad.json"});
     expectFailure("ao --depth " + path("g/depth.exr") + cam + " --ao-samples 0 -o " + path("ao.exr"), {"--ao-samples"});
+    // ao's flag is --method (compare's is --methods, which the message named)
+    expectFailure("ao --depth " + path("g/depth.exr") + cam + " --method bogus -o " + path("ao.exr"),
+                  {"error: --method: unknown AO method 'bogus'"});
     expectFailure("ao --depth " + path("g/depth.exr") + cam + " --blur-radius 40 -o " + path("ao.exr"), {"--blur-radius"});
     expectFailure("ao --depth " + path("g/depth.exr") + cam + " --ao-radius 0 -o " + path("ao.exr"), {"--ao-radius"});
     expectFailure("ao --depth " + path("g/depth.exr") + cam + " --ao-guard-band 12 -o " + path("ao.exr"), {"guard-band"});

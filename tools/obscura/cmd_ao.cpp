@@ -96,7 +96,7 @@ void checkUnitNormals(const GBuffer& g, const std::string& path) {
 void run(const AoOptions& o) {
     auto start = std::chrono::steady_clock::now();
     checkOutputPath("-o", o.output, {".exr"}, {o.depth, o.normal, o.camera});
-    const eval::AoMethod& method = eval::findAoMethod(o.method);
+    const eval::AoMethod& method = eval::findAoMethod(o.method, "--method");
     const ssao::BilateralSettings blur = o.blur.settings();
     ssao::AlchemySettings alchemy = o.alchemy.settings("");
     if (o.method == "alchemy-chapter") alchemy.formulation = ssao::AlchemyFormulation::Chapter;
