@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -41,6 +42,22 @@ T readNumber(const nlohmann::json& j, const char* key, const std::string& what, 
     return j.at(key).get<T>();
 }
 
+// Camera::validate's limit, checked here as well so that the message names the field.
+constexpr double kMaxPixels = 32768;
+
+// get<int>() wraps an integer beyond int (4294967360 became 64), truncates a fraction (64.9 became 64) and is
+// undefined for a double beyond int (1e30), so the value is checked as a double first.
+int readPixelCount(const nlohmann::json& j, const char* key, const std::string& what) {
+    if (!j.contains(key)) fail(what, std::string("missing \"") + key + "\"");
+    const auto& v = j.at(key);
+    if (!v.is_number()) fail(what, std::string("\"") + key + "\" must be a number");
+    const double d = v.get<double>();
+    if (!(d >= 1 && d <= kMaxPixels && d == std::floor(d)))
+        fail(what, std::string("\"") + key + "\" must be a whole number from 1 to " + numberText(kMaxPixels) +
+                       ", got " + numberText(d));
+    return static_cast<int>(d);
+}
+
 } // namespace
 
 std::string cameraToJson(const Camera& c) {
@@ -68,8 +85,8 @@ Camera cameraFromJson(const std::string& text, const std::string& what) {
     c.fovY = readNumber<float>(j, "fovY", what, c.fovY, true);
     c.nearZ = readNumber<float>(j, "near", what, c.nearZ, false);
     c.farZ = readNumber<float>(j, "far", what, c.farZ, false);
-    c.width = readNumber<int>(j, "width", what, 0, true);
-    c.height = readNumber<int>(j, "height", what, 0, true);
+    c.width = readPixelCount(j, "width", what);
+    c.height = readPixelCount(j, "height", what);
     try {
         c.validate();
     } catch (const Error& e) {

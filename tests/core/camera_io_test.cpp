@@ -43,7 +43,7 @@ TEST(CameraIo, ErrorsNameTheFileAndProblem) {
     for (Case c : {Case{"{not json", "not a JSON object"},
                    Case{R"({"target":[0,0,0],"fovY":60,"width":4,"height":4})", "missing \"position\""},
                    Case{R"({"position":[0,1],"target":[0,0,0],"fovY":60,"width":4,"height":4})", "array of 3 numbers"},
-                   Case{R"({"position":[0,1,2],"target":[0,0,0],"fovY":60,"width":0,"height":4})", "image size"},
+                   Case{R"({"position":[0,1,2],"target":[0,0,0],"fovY":60,"width":0,"height":4})", "\"width\" must be"},
                    Case{R"({"position":[0,1,2],"target":[0,0,0],"fovY":"wide","width":4,"height":4})", "must be a number"}}) {
         try {
             cameraFromJson(c.text, "cam.json");
@@ -56,4 +56,28 @@ TEST(CameraIo, ErrorsNameTheFileAndProblem) {
         }
     }
     EXPECT_THROW(readCameraJson("/nonexistent/cam.json"), Error);
+}
+
+// Sizes were read with get<int>(): 4294967360 wrapped to 64, 64.9 was cut to 64 and 1e30 was undefined.
+TEST(CameraIo, SizesMustBeWholeNumbersInRange) {
+    const std::string start = R"({"position":[0,1,2],"target":[0,0,0],"fovY":60,)";
+    for (const char* key : {"width", "height"}) {
+        const char* other = std::string(key) == "width" ? "height" : "width";
+        for (const char* value : {"4294967360", "64.9", "1e30", "-1", "0", "32769", "-2147483648"}) {
+            const std::string text = start + "\"" + other + "\":48,\"" + key + "\":" + value + "}";
+            try {
+                cameraFromJson(text, "cam.json");
+                FAIL() << "accepted: " << text;
+            } catch (const Error& e) {
+                const std::string expected = std::string("cam.json: \"") + key +
+                                             "\" must be a whole number from 1 to 32768, got " +
+                                             (std::string(value) == "1e30" ? "1e+30" : value);
+                EXPECT_EQ(std::string(e.what()), expected);
+            }
+        }
+        for (const auto& [value, expected] : {std::pair{"1", 1}, std::pair{"64.0", 64}, std::pair{"32768", 32768}}) {
+            const Camera c = cameraFromJson(start + "\"" + other + "\":48,\"" + key + "\":" + value + "}", "cam.json");
+            EXPECT_EQ(std::string(key) == "width" ? c.width : c.height, expected) << value;
+        }
+    }
 }
