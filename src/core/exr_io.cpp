@@ -7,6 +7,8 @@
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfStdIO.h>
+#include <OpenEXR/ImfVersion.h>
 
 #include <algorithm>
 #include <cassert>
@@ -24,6 +26,8 @@ namespace {
 // A corrupt header can claim any data window; refusing absurd sizes up front keeps a bad file from
 // turning into a multi-gigabyte allocation (8 GiB of floats is far beyond any image Obscura makes).
 constexpr std::int64_t kMaxValues = std::int64_t(1) << 31;
+// Camera::validate's limit: Obscura makes no image wider or taller, so no file it reads needs to be.
+constexpr std::int64_t kMaxSide = 32768;
 constexpr int kBandRows = 256;
 
 // OpenEXR messages can run to several lines, and most repeat the path we already put in front
@@ -48,6 +52,96 @@ void requireRegularFile(const std::string& path) {
     if (std::filesystem::is_directory(status)) fail(path, "is a directory, not an image file");
 }
 
+void checkDataWindow(const std::string& path, const Imath::Box2i& window, std::size_t channelCount) {
+    const std::int64_t width = std::int64_t(window.max.x) - window.min.x + 1;
+    const std::int64_t height = std::int64_t(window.max.y) - window.min.y + 1;
+    const std::string size = std::to_string(width) + "x" + std::to_string(height);
+    if (width <= 0 || height <= 0) fail(path, "has an empty data window");
+    if (width > kMaxSide || height > kMaxSide)
+        fail(path, "data window " + size + " is too large (at most " + std::to_string(kMaxSide) + "x" +
+                       std::to_string(kMaxSide) + ")");
+    if (width * height > kMaxValues / std::int64_t(std::max<std::size_t>(channelCount, 1)))
+        fail(path, "data window " + size + " with " + std::to_string(channelCount) + " channels is too large (at most " +
+                       std::to_string(kMaxValues) + " values)");
+}
+
+// OpenEXR sizes its line buffers from the header as soon as a file is opened (gigabytes for a forged data
+// window), so the header is read once on its own first. One that does not parse is left to InputFile, whose
+// message says what is wrong with it.
+void checkDataWindowBeforeOpening(const std::string& path) {
+    Imf::Header header;
+    try {
+        Imf::StdIFStream stream(path.c_str());
+        char start[8] = {};
+        stream.read(start, sizeof start);
+        if (!Imf::isImfMagic(start)) return;
+        int version = 0;
+        for (int i = 7; i >= 4; --i) version = version << 8 | int(static_cast<unsigned char>(start[i]));
+        header.readFrom(stream, version);
+    } catch (const std::exception&) {
+        return;
+    }
+    std::size_t channelCount = 0;
+    for (auto it = header.channels().begin(); it != header.channels().end(); ++it) ++channelCount;
+    checkDataWindow(path, header.dataWindow(), channelCount);
+}
+
+int linesPerChunk(Imf::Compression compression) {
+    switch (compression) {
+    case Imf::NO_COMPRESSION:
+    case Imf::RLE_COMPRESSION:
+    case Imf::ZIPS_COMPRESSION: return 1;
+    case Imf::ZIP_COMPRESSION:
+    case Imf::PXR24_COMPRESSION: return 16;
+    case Imf::PIZ_COMPRESSION:
+    case Imf::B44_COMPRESSION:
+    case Imf::B44A_COMPRESSION:
+    case Imf::DWAA_COMPRESSION: return 32;
+    default: return 256; // DWAB; the largest, so a buffer of this many lines holds any chunk
+    }
+}
+
+// OpenEXR 3.1 decodes a chunk with no data as zeros, so a file whose chunks were emptied reads as a black
+// image (or a depth of 0) without a word. No writer stores an empty chunk, nor an uncompressed one of any
+// size but its pixels', so those are refused before the band is decoded. Tiled files have no such check.
+class ChunkCheck {
+public:
+    ChunkCheck(const std::string& path, const Imf::Header& header, std::int64_t width)
+        : path_(path), compression_(header.compression()), lines_(linesPerChunk(compression_)),
+          maxY_(header.dataWindow().max.y) {
+        for (auto it = header.channels().begin(); it != header.channels().end(); ++it)
+            rowBytes_ += std::size_t(width) * (it.channel().type == Imf::HALF ? 2u : 4u);
+        if (!header.hasTileDescription()) buffer_.resize(rowBytes_ * std::size_t(lines_));
+    }
+
+    // Band rows start on a chunk boundary: kBandRows is a multiple of every chunk height.
+    void check(Imf::InputFile& file, int firstY, int lastY) {
+        if (buffer_.empty()) return;
+        for (std::int64_t y = firstY; y <= lastY; y += lines_) {
+            int size = int(buffer_.size());
+            try {
+                file.rawPixelDataToBuffer(int(y), buffer_.data(), size);
+            } catch (const std::exception&) {
+                return; // a chunk that cannot be read at all is readPixels' to report, in its usual words
+            }
+            const std::size_t expected = rowBytes_ * std::size_t(std::min<std::int64_t>(lines_, maxY_ - y + 1));
+            const bool uncompressed = compression_ == Imf::NO_COMPRESSION;
+            if (size <= 0 || (uncompressed && std::size_t(size) != expected))
+                fail(path_, "chunk at scanline " + std::to_string(y) + " holds " + std::to_string(size) +
+                                " bytes of pixel data, expected " +
+                                (uncompressed ? std::to_string(expected) : std::string("at least 1")));
+        }
+    }
+
+private:
+    const std::string& path_;
+    Imf::Compression compression_;
+    int lines_;
+    std::int64_t maxY_;
+    std::size_t rowBytes_ = 0;
+    std::vector<char> buffer_;
+};
+
 std::vector<std::string> exrChannelNames(const std::string& path, const Image& image) {
     if (image.channelNames.size() == std::size_t(image.channels)) {
         std::set<std::string> seen;
@@ -71,6 +165,7 @@ std::vector<std::string> exrChannelNames(const std::string& path, const Image& i
 Image readExr(const std::string& path) {
     requireRegularFile(path);
     try {
+        checkDataWindowBeforeOpening(path);
         Imf::InputFile file(path.c_str());
         const Imf::Header& header = file.header();
         const Imath::Box2i window = header.dataWindow();
@@ -85,9 +180,8 @@ Image readExr(const std::string& path) {
             names.emplace_back(it.name());
         }
         if (names.empty()) fail(path, "has no channels");
-        if (width <= 0 || height <= 0) fail(path, "has an empty data window");
-        if (width * height > kMaxValues / std::int64_t(names.size()))
-            fail(path, "data window " + std::to_string(width) + "x" + std::to_string(height) + " is too large");
+        checkDataWindow(path, window, names.size());
+        ChunkCheck chunks(path, header, width);
 
         // Decoding a band at a time means memory grows only with data that actually decodes: a corrupt
         // header claiming a huge window fails on its first band instead of zero-filling gigabytes.
@@ -101,6 +195,7 @@ Image readExr(const std::string& path) {
         for (int y = window.min.y; y <= window.max.y;) {
             // A multiple of every compression's chunk height (1, 16, 32, 256), so no chunk decodes twice.
             const int rows = int(std::min<std::int64_t>(kBandRows, std::int64_t(window.max.y) - y + 1));
+            chunks.check(file, y, y + rows - 1);
             const std::size_t done = image.pixels.size();
             image.pixels.resize(done + rowValues * std::size_t(rows));
             Imf::FrameBuffer frameBuffer;

@@ -104,6 +104,13 @@ public:
         if (width <= 0 || height <= 0 || width > (1 << 20) || height > (1 << 20) ||
             std::size_t(width) * std::size_t(height) > (std::size_t(1) << 28))
             fail(path_, "Radiance HDR size " + std::to_string(width) + "x" + std::to_string(height) + " is not plausible");
+        // A short header can claim gigabytes of pixels; the least the claim takes on disk is checked before
+        // the image is allocated, so a cut-off or forged file costs no more memory than it could describe.
+        const std::size_t needed = std::size_t(height) * minScanlineBytes(width);
+        if (bytes_.size() - pos_ < needed)
+            fail(path_, "truncated Radiance HDR pixel data (" + std::to_string(width) + "x" + std::to_string(height) +
+                            " needs at least " + std::to_string(needed) + " bytes, the file has " +
+                            std::to_string(bytes_.size() - pos_) + ")");
 
         Image image(width, height, 3);
         std::vector<unsigned char> scanline(std::size_t(width) * 4);
@@ -131,13 +138,22 @@ private:
         }
     }
 
+    static bool runLengthWidth(int width) { return width >= 8 && width < 32768; }
+
+    // Flat scanlines take 4 bytes a pixel; run-length ones at least their 4-byte tag and, for each of the four
+    // components, one 2-byte run per 127 pixels.
+    static std::size_t minScanlineBytes(int width) {
+        const std::size_t w = std::size_t(width);
+        return runLengthWidth(width) ? 4 + 4 * 2 * ((w + 126) / 127) : 4 * w;
+    }
+
     unsigned char byte(int y) {
         if (pos_ >= bytes_.size()) fail(path_, "truncated Radiance HDR pixel data at scanline " + std::to_string(y));
         return bytes_[pos_++];
     }
 
     void readScanline(std::vector<unsigned char>& scanline, int width, int y) {
-        const bool runLength = width >= 8 && width < 32768 && pos_ + 4 <= bytes_.size() && bytes_[pos_] == 2 &&
+        const bool runLength = runLengthWidth(width) && pos_ + 4 <= bytes_.size() && bytes_[pos_] == 2 &&
                                bytes_[pos_ + 1] == 2 && (bytes_[pos_ + 2] & 0x80) == 0;
         if (!runLength) {
             for (auto& b : scanline) b = byte(y);

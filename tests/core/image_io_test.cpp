@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -313,6 +314,66 @@ TEST_F(ImageIoTest, ExrReadsHalfAndUintChannelsAndHonoursDataWindow) {
     EXPECT_TRUE(std::signbit(image.at(2, 0, 1))); // -0 survives
 }
 
+// A header-only file claiming a data window of 8388608x256 (2^31 floats, 8 GiB) once had a whole band sized
+// before any pixel was decoded; the camera's 32768 a side now bounds it before OpenEXR opens the file.
+TEST_F(ImageIoTest, ExrHugeDataWindowIsRefusedBeforeAllocating) {
+    const std::string huge = file("huge.exr");
+    writeBytes(huge, handMadeExr(0, 0, 8388608, 256, {{"Z", 2, ""}}));
+    EXPECT_LT(fs::file_size(huge), 8192u);
+    expectMessage(thrownMessage([&] { obscura::readExr(huge); }), huge,
+                  "data window 8388608x256 is too large (at most 32768x32768)");
+
+    // One row made, then its data window stretched to 32769 rows: the header alone must stop it.
+    std::string tallBytes = handMadeExr(0, -5, 1, 1, {{"Z", 2, ""}});
+    std::string window = std::string("dataWindow\0box2i\0", 17);
+    appendRaw(window, std::int32_t(16));
+    const std::size_t at = tallBytes.find(window);
+    ASSERT_NE(at, std::string::npos);
+    const std::int32_t maxY = -5 + 32769 - 1;
+    std::memcpy(tallBytes.data() + at + window.size() + 12, &maxY, sizeof maxY);
+    const std::string tall = file("tall.exr");
+    writeBytes(tall, tallBytes);
+    expectMessage(thrownMessage([&] { obscura::readImage(tall); }), tall,
+                  "data window 1x32769 is too large (at most 32768x32768)");
+
+    // The limit itself is readable.
+    Image widest(32768, 1, 1);
+    widest.pixels.back() = 7.0f;
+    obscura::writeExr(file("widest.exr"), widest);
+    const Image back = obscura::readExr(file("widest.exr"));
+    EXPECT_EQ(back.width, 32768);
+    EXPECT_EQ(back.pixels.back(), 7.0f);
+}
+
+// OpenEXR 3.1 decodes a chunk without data as zeros; a depth or environment map emptied that way must not
+// read as a valid all-zero image.
+TEST_F(ImageIoTest, ExrChunkWithoutItsPixelDataIsAnError) {
+    const std::string rows = std::string(reinterpret_cast<const char*>(std::array<float, 6>{1, 2, 3, 4, 5, 6}.data()),
+                                         6 * sizeof(float));
+    writeBytes(file("good.exr"), handMadeExr(0, 20, 3, 2, {{"Y", 2, rows}}));
+    EXPECT_EQ(obscura::readExr(file("good.exr")).pixels, (std::vector<float>{1, 2, 3, 4, 5, 6}));
+
+    const std::string empty = file("empty.exr");
+    writeBytes(empty, handMadeExr(0, 20, 3, 2, {{"Y", 2, ""}}));
+    expectMessage(thrownMessage([&] { obscura::readExr(empty); }), empty,
+                  "chunk at scanline 20 holds 0 bytes of pixel data, expected 12");
+
+    const std::string shortRows = file("short.exr");
+    writeBytes(shortRows, handMadeExr(0, 20, 3, 2, {{"Y", 2, rows.substr(0, 16)}}));
+    expectMessage(thrownMessage([&] { obscura::readExr(shortRows); }), shortRows,
+                  "chunk at scanline 20 holds 8 bytes of pixel data, expected 12");
+
+    // The same emptied file marked RLE-compressed: no compressor writes an empty chunk either.
+    std::string rle = handMadeExr(0, 20, 3, 2, {{"Y", 2, ""}});
+    const std::string compression = std::string("compression\0compression\0", 24) + std::string("\1\0\0\0", 4);
+    const std::size_t at = rle.find(compression);
+    ASSERT_NE(at, std::string::npos);
+    rle[at + compression.size()] = '\1'; // RLE_COMPRESSION
+    writeBytes(file("rle.exr"), rle);
+    expectMessage(thrownMessage([&] { obscura::readExr(file("rle.exr")); }), file("rle.exr"),
+                  "chunk at scanline 20 holds 0 bytes of pixel data, expected at least 1");
+}
+
 // ---- PNG and HDR --------------------------------------------------------------------------------
 
 TEST_F(ImageIoTest, PngRoundTripIsExactForEightBitValues) {
@@ -404,6 +465,41 @@ TEST_F(ImageIoTest, TruncatedHdrIsAnErrorAtEveryLength) {
             EXPECT_EQ(message.rfind(path, 0), 0u) << "width " << width << ", " << size << " bytes: " << message;
         }
     }
+}
+
+// A 2 KB file whose header claims 16384x16384 once had 3 GiB allocated before the data ran out.
+TEST_F(ImageIoTest, HdrClaimingMorePixelsThanItHoldsIsRefusedBeforeAllocating) {
+    const std::string path = file("claims.hdr");
+    std::string bytes = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 16384 +X 16384\n";
+    while (bytes.size() < 2048) bytes += std::string("\x02\x02\x40\x00\xff\x01", 6);
+    bytes.resize(2048);
+    writeBytes(path, bytes);
+    // 16384 rows of at least 4 + 4 * 2 * ceil(16384 / 127) = 1044 bytes, after a 53-byte header.
+    expectMessage(thrownMessage([&] { obscura::readHdr(path); }), path,
+                  "truncated Radiance HDR pixel data (16384x16384 needs at least 17104896 bytes, the file has 1995)");
+}
+
+// The bound is the least a scanline can take, not more: stb writes a constant 254-pixel row as two 127-pixel
+// runs per component, 4 + 4 * 2 * 2 = 20 bytes, and such a file still reads.
+TEST_F(ImageIoTest, HdrAtTheSmallestRunLengthSizeIsRead) {
+    constexpr int width = 254, height = 3;
+    const std::vector<float> rgb(std::size_t(width) * height * 3, 0.5f);
+    const std::string path = file("flat.hdr");
+    ASSERT_NE(stbi_write_hdr(path.c_str(), width, height, 3, rgb.data()), 0);
+    const std::string bytes = readBytes(path);
+    const std::string resolution = "-Y 3 +X 254\n";
+    ASSERT_NE(bytes.find(resolution), std::string::npos);
+    EXPECT_EQ(bytes.size() - (bytes.find(resolution) + resolution.size()), std::size_t(height) * 20);
+
+    const Image image = obscura::readHdr(path);
+    ASSERT_EQ(image.width, width);
+    ASSERT_EQ(image.height, height);
+    EXPECT_EQ(image.pixels.front(), 0.5f);
+    EXPECT_EQ(image.pixels.back(), 0.5f);
+
+    writeBytes(path, bytes.substr(0, bytes.size() - 1));
+    expectMessage(thrownMessage([&] { obscura::readHdr(path); }), path,
+                  "truncated Radiance HDR pixel data (254x3 needs at least 60 bytes, the file has 59)");
 }
 
 TEST_F(ImageIoTest, ExtensionDispatchIsCaseInsensitive) {
