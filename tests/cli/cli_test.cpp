@@ -105,6 +105,11 @@ TEST_F(Cli, ScenesListsEveryBuiltin) {
     for (const char* name : {"plane", "corner", "well", "stairs", "spheres", "cabinet", "ceiling", "demo"})
         EXPECT_NE(("\n" + r.out).find(std::string("\n") + name + " "), std::string::npos) << name << " missing in\n" << r.out;
     EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 8);
+    // -o without --generate was ignored (the list printed, nothing written); --triangles -1 was reported as
+    // 18446744073709551615.
+    expectFailure("scenes -o " + path("x.glb"), {"--output", "give --generate level"});
+    expectFailure("scenes --generate level --triangles -1 -o " + path("x.glb"),
+                  {"--triangles: must be in [4000, 200000000], got -1"});
 }
 
 TEST_F(Cli, HelpExplains) {

@@ -17,7 +17,7 @@ namespace {
 
 struct GenerateOptions {
     std::string kind, output;
-    std::size_t triangles = 1000000;
+    long long triangles = 1000000;  // signed, so that -1 is refused as -1 (an unsigned took it as 2^64 - 1)
     std::uint32_t seed = 1;
 };
 
@@ -27,7 +27,7 @@ void generate(const GenerateOptions& o) {
     if (o.triangles < 4000 || o.triangles > 200000000)
         fail("--triangles", "must be in [4000, 200000000], got " + std::to_string(o.triangles));
     checkOutputPath("--output", o.output, {".glb", ".gltf"});
-    Scene scene = generateLevel(o.triangles, o.seed);
+    Scene scene = generateLevel(std::size_t(o.triangles), o.seed);
     writeGltf(scene, o.output);
     std::printf("%s: level with %zu triangles (%zu meshes, %zu instances), seed %u\n", o.output.c_str(),
                 scene.triangleCount(), scene.meshes.size(), scene.instances.size(), o.seed);
@@ -42,12 +42,14 @@ void addScenesCommand(CLI::App& app) {
     cmd->add_option("--generate", o->kind, "Write a generated scene instead of listing: level (terrain, buildings, props)");
     cmd->add_option("--triangles", o->triangles, "Triangle budget of the generated scene, [4000, 2e8]")->capture_default_str();
     cmd->add_option("--seed", o->seed, "Seed of the generated scene (same seed, same file)")->capture_default_str();
-    cmd->add_option("-o,--output", o->output, "Output .glb or .gltf for --generate");
-    cmd->callback([o] {
+    CLI::Option* output = cmd->add_option("-o,--output", o->output, "Output .glb or .gltf for --generate");
+    cmd->callback([o, output] {
         if (!o->kind.empty()) {
             generate(*o);
             return;
         }
+        // Listing writes nothing: an output path without --generate was once ignored without a word.
+        if (output->count() > 0) fail("--output", "writes a generated scene: give --generate level");
         for (const std::string& name : builtinSceneNames()) {
             BuiltinScene s = makeBuiltinScene(name);
             std::printf("%-9s %s (%zu triangles)\n", name.c_str(), s.description.c_str(), s.scene.triangleCount());
