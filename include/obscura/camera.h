@@ -9,6 +9,10 @@
 
 namespace obscura {
 
+// The widest and tallest image Obscura makes or reads, pixels: Camera::validate, the size flags, camera files
+// and the image readers all hold to it.
+inline constexpr int kMaxImageSide = 32768;
+
 struct Camera {
     Vec3 position{0, 1, 5};   // world, m
     Vec3 target{0, 0, 0};     // world point the camera looks at, m

@@ -28,8 +28,9 @@ void Camera::validate() const {
         fail("camera", "near/far must satisfy 0 < near < far");
     if (width < 1 || height < 1)
         fail("camera", "image size must be at least 1x1, got " + std::to_string(width) + "x" + std::to_string(height));
-    if (width > 32768 || height > 32768)
-        fail("camera", "image size " + std::to_string(width) + "x" + std::to_string(height) + " exceeds 32768");
+    if (width > kMaxImageSide || height > kMaxImageSide)
+        fail("camera", "image size " + std::to_string(width) + "x" + std::to_string(height) + " exceeds " +
+                           std::to_string(kMaxImageSide));
 }
 
 float Camera::tanHalfFovY() const { return std::tan(0.5f * fovY * kPi / 180.0f); }

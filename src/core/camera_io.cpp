@@ -42,18 +42,13 @@ T readNumber(const nlohmann::json& j, const char* key, const std::string& what, 
     return j.at(key).get<T>();
 }
 
-// Camera::validate's limit, checked here as well so that the message names the field.
-constexpr double kMaxPixels = 32768;
-
 // get<int>() wraps an integer beyond int (4294967360 became 64), truncates a fraction (64.9 became 64) and is
-// undefined for a double beyond int (1e30), so the value is checked as a double first.
+// undefined for a double beyond int (1e30), so the value is read as a double and checked first; the range is
+// Camera::validate's, checked here too so that the message names the field.
 int readPixelCount(const nlohmann::json& j, const char* key, const std::string& what) {
-    if (!j.contains(key)) fail(what, std::string("missing \"") + key + "\"");
-    const auto& v = j.at(key);
-    if (!v.is_number()) fail(what, std::string("\"") + key + "\" must be a number");
-    const double d = v.get<double>();
-    if (!(d >= 1 && d <= kMaxPixels && d == std::floor(d)))
-        fail(what, std::string("\"") + key + "\" must be a whole number from 1 to " + numberText(kMaxPixels) +
+    const double d = readNumber<double>(j, key, what, 0.0, true);
+    if (!(d >= 1 && d <= kMaxImageSide && d == std::floor(d)))
+        fail(what, std::string("\"") + key + "\" must be a whole number from 1 to " + std::to_string(kMaxImageSide) +
                        ", got " + numberText(d));
     return static_cast<int>(d);
 }

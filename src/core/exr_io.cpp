@@ -1,4 +1,5 @@
 // OpenEXR reading (any channel type, as float) and writing (32-bit float, ZIP), through OpenEXR 3.
+#include "obscura/camera.h"
 #include "obscura/error.h"
 #include "obscura/image_io.h"
 
@@ -26,8 +27,6 @@ namespace {
 // A corrupt header can claim any data window; refusing absurd sizes up front keeps a bad file from
 // turning into a multi-gigabyte allocation (8 GiB of floats is far beyond any image Obscura makes).
 constexpr std::int64_t kMaxValues = std::int64_t(1) << 31;
-// Camera::validate's limit: Obscura makes no image wider or taller, so no file it reads needs to be.
-constexpr std::int64_t kMaxSide = 32768;
 constexpr int kBandRows = 256;
 
 // OpenEXR messages can run to several lines, and most repeat the path we already put in front
@@ -57,9 +56,10 @@ void checkDataWindow(const std::string& path, const Imath::Box2i& window, std::s
     const std::int64_t height = std::int64_t(window.max.y) - window.min.y + 1;
     const std::string size = std::to_string(width) + "x" + std::to_string(height);
     if (width <= 0 || height <= 0) fail(path, "has an empty data window");
-    if (width > kMaxSide || height > kMaxSide)
-        fail(path, "data window " + size + " is too large (at most " + std::to_string(kMaxSide) + "x" +
-                       std::to_string(kMaxSide) + ")");
+    // Obscura makes no image wider or taller (kMaxImageSide), so no file it reads needs to be.
+    if (width > kMaxImageSide || height > kMaxImageSide)
+        fail(path, "data window " + size + " is too large (at most " + std::to_string(kMaxImageSide) + "x" +
+                       std::to_string(kMaxImageSide) + ")");
     if (width * height > kMaxValues / std::int64_t(std::max<std::size_t>(channelCount, 1)))
         fail(path, "data window " + size + " with " + std::to_string(channelCount) + " channels is too large (at most " +
                        std::to_string(kMaxValues) + " values)");

@@ -68,7 +68,8 @@ void parseSize(const std::string& flag, const std::string& text, int& width, int
     if (!(in >> w >> x >> h) || (x != 'x' && x != 'X') || !(in >> std::ws).eof())
         fail(flag, "expected WIDTHxHEIGHT, e.g. 1920x1080, got \"" + text + "\"");
     if (w < 1 || h < 1) fail(flag, "image size must be at least 1x1, got " + text);
-    if (w > 32768 || h > 32768) fail(flag, "image size " + text + " exceeds 32768 on a side");
+    if (w > kMaxImageSide || h > kMaxImageSide)
+        fail(flag, "image size " + text + " exceeds " + std::to_string(kMaxImageSide) + " on a side");
     width = int(w);
     height = int(h);
 }
