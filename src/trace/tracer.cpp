@@ -111,9 +111,12 @@ Tracer::Tracer(const Scene& scene) : impl_(std::make_unique<Impl>()), scene_(sce
 
     // Uses that become Embree instances: a singular transform is flattened instead (invertibleForEmbree), and
     // a mesh whose triangles were all dropped as degenerate places nothing (Embree refuses empty buffers).
+    std::vector<char> instanceable(scene.instances.size());
     std::vector<int> uses(scene.meshes.size(), 0);
-    for (const Instance& inst : scene.instances)
-        if (invertibleForEmbree(inst.worldFromObject)) ++uses[inst.mesh];
+    for (std::size_t i = 0; i < scene.instances.size(); ++i) {
+        instanceable[i] = invertibleForEmbree(scene.instances[i].worldFromObject);
+        if (instanceable[i]) ++uses[scene.instances[i].mesh];
+    }
 
     s.meshScenes.assign(scene.meshes.size(), nullptr);
     for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
@@ -136,7 +139,7 @@ Tracer::Tracer(const Scene& scene) : impl_(std::make_unique<Impl>()), scene_(sce
         s.normalFromObject.push_back(normalMatrix(inst.worldFromObject));
         if (scene.meshes[inst.mesh].triangleCount() == 0) continue;
         RTCGeometry g;
-        if (s.meshScenes[inst.mesh] && invertibleForEmbree(inst.worldFromObject)) {
+        if (s.meshScenes[inst.mesh] && instanceable[i]) {
             g = rtcNewGeometry(s.device, RTC_GEOMETRY_TYPE_INSTANCE);
             rtcSetGeometryInstancedScene(g, s.meshScenes[inst.mesh]);
             float xfm[12];

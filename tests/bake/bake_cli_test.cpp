@@ -140,6 +140,7 @@ TEST_F(BakeCli, BadInputIsOneLineAndNoOutput) {
     for (const char* bad : {"nan", "-1", "0", "-inf", "\"\""})
         expectFailure("bake " + data("cube.obj") + out + " --distance " + bad + " -q", {"--distance", "expected a distance"});
     expectFailure("bake " + data("cube.obj") + out + " --alpha -1 -q", {"--alpha"});
+    expectFailure("bake " + data("cube.obj") + out + " --threads -1 -q", {"threads: must be in [0, 1024]"});
     expectFailure("bake " + data("cube.obj") + out + " --mode fuzzy -q", {"--mode"});
     expectFailure("bake " + data("cube.obj") + out + " --crease-angle 200 -q", {"--crease-angle"});
     expectFailure("bake " + data("cube.obj") + out + " --linear-solver qr -q", {"--linear-solver"});

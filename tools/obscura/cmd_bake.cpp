@@ -25,10 +25,10 @@ namespace {
 
 struct BakeOptions {
     std::string input, output, report, mode = "obscurance", distances = "2,300", solver = "auto";
-    std::string distance;  // --distance as given, parsed and checked where distanceGiven
+    std::string distance;  // --distance as given, parsed and checked where it was given
+    CLI::Option* distanceOption = nullptr;
     bake::BakeSettings settings;
     bake::ArtistControls controls;
-    bool distanceGiven = false;
     int threads = 0;
     std::size_t rawCheck = 0;
     bool quiet = false;
@@ -69,10 +69,10 @@ void runBake(BakeOptions& o) {
     else if (o.solver == "ldlt") s.linearSolver = bake::LinearSolver::SimplicialLDLT;
     else fail("--linear-solver", "expected auto, cholmod or ldlt, got \"" + o.solver + "\"");
     // --distance was once a float whose non-positive (and NaN) values fell back to --distances' default unsaid.
-    s.distances = o.distanceGiven ? std::vector<float>{parseRadius("--distance", o.distance)} : parseDistances(o.distances);
+    s.distances = o.distanceOption->count() > 0 ? std::vector<float>{parseRadius("--distance", o.distance)}
+                                                : parseDistances(o.distances);
     s.validate();
     o.controls.validate();
-    if (o.threads < 0) fail("--threads", "must be >= 0");
     checkOutputPath("--output", o.output, {".glb", ".gltf", ".ply", ".csv"}, {o.input});
     if (!o.report.empty()) checkOutputPath("--report", o.report, {".json"}, {o.input});
 
@@ -202,8 +202,7 @@ void addBakeCommand(CLI::App& app) {
     cmd->add_option("-o,--output", o->output, "Output .glb, .gltf, .ply (quality) or .csv")->required();
     cmd->add_option("--mode", o->mode, "obscurance (exponential kernel) or occlusion (binary within d)")->capture_default_str();
     cmd->add_option("--distances", o->distances, "Half distances d in m, \"short,long\" or one value")->capture_default_str();
-    cmd->add_option("--distance", o->distance, "One distance d in m (same as --distances d)")
-        ->each([o](const std::string&) { o->distanceGiven = true; });
+    o->distanceOption = cmd->add_option("--distance", o->distance, "One distance d in m (same as --distances d)");
     cmd->add_option("--rays", o->settings.rays, "Rays per sample, [1, 65536]")->capture_default_str();
     cmd->add_option("--alpha", o->settings.alpha, "Regulariser weight, unitless, [0, 1e6]")->capture_default_str();
     cmd->add_option("--max-samples-per-face", o->settings.maxSamplesPerFace, "Sample cap per face, [1, 4096]")->capture_default_str();
