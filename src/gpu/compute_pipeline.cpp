@@ -50,6 +50,13 @@ ComputePipeline::ComputePipeline(Context::Impl& context, const Spirv& code, cons
         if (std::size_t(b) >= layout_.kinds.size() || layout_.kinds[std::size_t(b)] != kinds[std::size_t(b)])
             fail(what, "binding " + std::to_string(b) + " is not " + kindName(kinds[std::size_t(b)]) +
                            " as the host binds it");
+    // A size given by specialization constants is dispatched by their defaults (reflect): a variant of the
+    // host's (constant_id i is specialization[i]) must not be one of them.
+    for (const std::uint32_t id : layout_.sizeSpecIds)
+        if (id < specialization.size())
+            fail(what, "takes its workgroup size from constant_id " + std::to_string(id) +
+                           ", which the host sets as one of its " + std::to_string(specialization.size()) +
+                           " variant constants");
     if (layout_.specConstants != int(specialization.size()))
         fail(what, "declares " + std::to_string(layout_.specConstants) + " specialization constants, the host sets " +
                        std::to_string(specialization.size()));

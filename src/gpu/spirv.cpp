@@ -31,6 +31,8 @@ SpirvLayout reflect(const Spirv& code) {
     std::map<std::uint32_t, std::uint32_t> bound;  // variable id -> binding
     std::map<std::uint32_t, std::uint32_t> variableTypes;  // variable id -> its pointer type
     std::set<std::uint32_t> specIds;
+    // A specialization constant's result id -> its constant_id, and -> its default value.
+    std::map<std::uint32_t, std::uint32_t> specIdOf, specDefaults;
     std::uint32_t pushType = 0;
     // The constant decorated BuiltIn WorkgroupSize, which glslang emits beside the LocalSize execution mode and
     // which wins over it where the two differ (SPIR-V 1.5, section 3.21 "BuiltIn": WorkgroupSize).
@@ -60,6 +62,9 @@ SpirvLayout reflect(const Spirv& code) {
         case OpConstant:
             if (words >= 4) constants[a[1]] = a[2];
             break;
+        case OpSpecConstant:
+            if (words >= 4) specDefaults[a[1]] = a[2];
+            break;
         case OpConstantComposite:
         case OpSpecConstantComposite:
             if (words >= 3) composites[a[1]].assign(a + 2, a + words - 1);
@@ -71,7 +76,10 @@ SpirvLayout reflect(const Spirv& code) {
             break;
         case OpDecorate:
             if (words >= 4 && a[1] == DecorationBinding) bound[a[0]] = a[2];
-            if (words >= 4 && a[1] == DecorationSpecId) specIds.insert(a[2]);
+            if (words >= 4 && a[1] == DecorationSpecId) {
+                specIds.insert(a[2]);
+                specIdOf[a[0]] = a[2];
+            }
             if (words >= 4 && a[1] == DecorationArrayStride) strides[a[0]] = a[2];
             if (words >= 4 && a[1] == DecorationBuiltIn && a[2] == BuiltInWorkgroupSize) workgroupSizeId = a[0];
             break;
@@ -83,19 +91,30 @@ SpirvLayout reflect(const Spirv& code) {
         i += words;
     }
     if (workgroupSizeId != 0) {
-        // A size the host could only know after specialization: the host dispatches by the declared size, so
-        // such a module is refused rather than run with the wrong grid.
-        if (specComposites.count(workgroupSizeId)) malformed("workgroup size given by specialization constants");
         const auto size = composites.find(workgroupSizeId);
         if (size == composites.end() || size->second.size() != 3)
             malformed("WorkgroupSize is not a constant 3-component vector");
+        // A component of a specialization composite may be a specialization constant (local_size_x_id): the
+        // device runs its default, since the host sets only its variants' constant_ids (ComputePipeline).
+        const bool specialized = specComposites.count(workgroupSizeId) != 0;
         for (int c = 0; c < 3; ++c) {
-            const auto value = constants.find(size->second[std::size_t(c)]);
-            if (value == constants.end()) malformed("WorkgroupSize has a component that is not a constant");
-            layout.localSize[c] = value->second;
+            const std::uint32_t id = size->second[std::size_t(c)];
+            const auto value = constants.find(id);
+            const auto byDefault = specDefaults.find(id);
+            if (value != constants.end()) {
+                layout.localSize[c] = value->second;
+            } else if (specialized && byDefault != specDefaults.end() && specIdOf.count(id)) {
+                layout.localSize[c] = byDefault->second;
+                layout.sizeSpecIds.push_back(specIdOf[id]);
+            } else {
+                malformed("WorkgroupSize has a component that is neither a constant nor a specialization constant's "
+                          "default");
+            }
         }
     }
     layout.bindings = int(bound.size());
+    for (const std::uint32_t id : std::set<std::uint32_t>(layout.sizeSpecIds.begin(), layout.sizeSpecIds.end()))
+        specIds.erase(id);
     layout.specConstants = int(specIds.size());
     // A binding is a combined image sampler when its variable points to an OpTypeSampledImage (the
     // variable's pointer type is OpTypePointer storage-class pointee).

@@ -24,6 +24,7 @@ enum : std::uint32_t {
     OpTypePointer = 32,
     OpConstant = 43,
     OpConstantComposite = 44,
+    OpSpecConstant = 50,
     OpSpecConstantComposite = 51,
     OpVariable = 59,
     OpDecorate = 71,
@@ -76,10 +77,14 @@ inline std::vector<BindingKind> storageBuffers(int count) {
 struct SpirvLayout {
     int bindings = 0;                    // descriptor bindings (all in set 0 here)
     std::vector<BindingKind> kinds;      // kinds[b]: the type of binding b (b < bindings when they are 0..n-1)
-    int specConstants = 0;               // specialization constants (constant_id decorations)
+    int specConstants = 0;               // specialization constants the host sets (constant_id decorations,
+                                         // less those of the workgroup size below)
     std::uint32_t pushConstantBytes = 0; // size of the push-constant block, 0 if none
-    // The BuiltIn WorkgroupSize constant where the module declares one (it wins), else the LocalSize mode.
+    // The BuiltIn WorkgroupSize constant where the module declares one (it wins), else the LocalSize mode. A
+    // size given by specialization constants (local_size_x_id) is their defaults, which the host leaves as they
+    // are: their constant_ids are sizeSpecIds, and a host that would set one is refused (ComputePipeline).
     std::uint32_t localSize[3] = {0, 0, 0};
+    std::vector<std::uint32_t> sizeSpecIds;
 };
 // Reads the layout from the module's decorations and types. Throws obscura::Error for a malformed module or
 // a type it cannot size (only scalars, vectors, arrays with strides and structs occur in push constants).

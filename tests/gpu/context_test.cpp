@@ -60,7 +60,8 @@ TEST(GpuShaders, ReflectionReadsTheLayouts) {
 // The workgroup size a module declares: glslang writes it twice, as the LocalSize execution mode and as a
 // constant decorated BuiltIn WorkgroupSize, and where the two differ the built-in is what a device runs
 // (SPIR-V 1.5, "BuiltIn"), so the reflection reads it; a module rewritten in both places reads as rewritten.
-// A size left to specialization constants is refused: the host dispatches by the size it reads.
+// A size given by specialization constants (gtao.comp's, local_size_x_id) reads as their defaults, which the
+// host leaves alone, and their constant_ids are not among those the host sets.
 TEST(GpuShaders, ReflectionReadsTheWorkgroupSizeADeviceRuns) {
     const std::vector<std::uint32_t> embedded(shaders::alchemy.words, shaders::alchemy.words + shaders::alchemy.count);
     const auto size = [](const std::vector<std::uint32_t>& words) {
@@ -70,18 +71,35 @@ TEST(GpuShaders, ReflectionReadsTheWorkgroupSizeADeviceRuns) {
     const std::vector<std::uint32_t> declared = {std::uint32_t(ssao::kAlchemyWorkgroupX),
                                                  std::uint32_t(ssao::kAlchemyWorkgroupY), 1u};
     EXPECT_EQ(size(embedded), declared);
+    EXPECT_TRUE(reflect(shaders::alchemy).sizeSpecIds.empty());
     // Only the built-in rewritten: it wins over the execution mode, which still says the embedded size.
     const std::vector<std::uint32_t> builtinOnly = testing::withWorkgroupSize(embedded, 24, 3, false);
     ASSERT_NE(builtinOnly, embedded) << "the module has no WorkgroupSize built-in to rewrite";
     EXPECT_EQ(size(builtinOnly), (std::vector<std::uint32_t>{24, 3, 1}));
     EXPECT_EQ(size(testing::withWorkgroupSize(embedded, 32, 2)), (std::vector<std::uint32_t>{32, 2, 1}));
-    // The built-in's composite made a specialization constant.
+    // The built-in's composite made a specialization composite of those constants: the same size, fixed.
     std::vector<std::uint32_t> spec = builtinOnly;
     const std::size_t composite = testing::workgroupSizeComposite(spec);
     ASSERT_NE(composite, 0u);
     spec[composite] = (spec[composite] & 0xffff0000u) | spirv::OpSpecConstantComposite;
-    EXPECT_NE(testing::errorMessage([&] { reflect({spec.data(), spec.size()}); }).find("specialization"),
+    EXPECT_EQ(size(spec), (std::vector<std::uint32_t>{24, 3, 1}));
+    EXPECT_TRUE(reflect({spec.data(), spec.size()}).sizeSpecIds.empty());
+    // A component that is no constant at all (the composite's own id) is refused.
+    spec[composite + 3] = spec[composite + 2];
+    EXPECT_NE(testing::errorMessage([&] { reflect({spec.data(), spec.size()}); }).find("WorkgroupSize has a component"),
               std::string::npos);
+
+    // gtao.comp's size: two specialization constants, whose defaults are layouts.h's size.
+    const SpirvLayout gtao = reflect(shaders::gtao);
+    EXPECT_EQ(std::vector<std::uint32_t>(gtao.localSize, gtao.localSize + 3),
+              (std::vector<std::uint32_t>{std::uint32_t(kGtaoWorkgroupX), std::uint32_t(kGtaoWorkgroupY), 1u}));
+    EXPECT_EQ(gtao.sizeSpecIds,
+              (std::vector<std::uint32_t>{std::uint32_t(kSpecWorkgroupSizeX), std::uint32_t(kSpecWorkgroupSizeY)}));
+    EXPECT_EQ(gtao.specConstants, kGtaoSpecPackedNormals + 1);  // the variants' constant_ids 0..6, not the size's
+    // Rewritten, it reads as rewritten through the constants' defaults; the execution mode alone does not count.
+    const std::vector<std::uint32_t> gtaoWords(shaders::gtao.words, shaders::gtao.words + shaders::gtao.count);
+    EXPECT_EQ(size(testing::withWorkgroupSize(gtaoWords, 24, 3, false)), (std::vector<std::uint32_t>{24, 3, 1}));
+    EXPECT_EQ(size(testing::withWorkgroupSize(gtaoWords, 24, 3)), (std::vector<std::uint32_t>{24, 3, 1}));
 }
 
 TEST(GpuContext, DeviceInfo) {

@@ -7,6 +7,7 @@
 #include "gpu/buffer.h"
 #include "gpu/context.h"
 #include "gpu/gtao_pass.h"
+#include "gpu/shaders/layouts.h"
 #include "gpu/spirv.h"
 
 #include "obscura/error.h"
@@ -270,6 +271,23 @@ TEST(GpuGtao, AnotherWorkgroupSizeGivesTheSameResult) {
     const std::string refused = testing::errorMessage(
         [&] { computeGtao(huge.context(), testing::render("plane", 16, 8), preset(ssao::GtaoQuality::High)); });
     EXPECT_NE(refused.find("65536x1x1, beyond the device's limits"), std::string::npos) << refused;
+    // The size's specialization constants keep their defaults because the host sets only its variants'
+    // constant_ids: a module whose size takes one of those (here the beyond-radius mode's) is refused, naming it.
+    std::vector<std::uint32_t> clash = words;
+    bool renumbered = false;
+    for (std::size_t i = 5; i < clash.size() && (clash[i] >> 16) != 0; i += clash[i] >> 16)
+        if ((clash[i] & 0xffffu) == spirv::OpDecorate && (clash[i] >> 16) == 4 &&
+            clash[i + 2] == spirv::DecorationSpecId && clash[i + 3] == std::uint32_t(kSpecWorkgroupSizeX)) {
+            clash[i + 3] = std::uint32_t(kGtaoSpecBeyondRadius);
+            renumbered = true;
+        }
+    ASSERT_TRUE(renumbered) << "gtao.comp's size is not specialization constant " << kSpecWorkgroupSizeX;
+    testing::ContextWithModule clashing("gtao", clash);
+    const std::string clashed = testing::errorMessage(
+        [&] { computeGtao(clashing.context(), testing::render("plane", 16, 8), preset(ssao::GtaoQuality::High)); });
+    EXPECT_NE(clashed.find("takes its workgroup size from constant_id " + std::to_string(kGtaoSpecBeyondRadius)),
+              std::string::npos)
+        << clashed;
     EXPECT_EQ(testing::validationReport(context), "");
 }
 

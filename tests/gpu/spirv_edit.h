@@ -20,8 +20,8 @@
 
 namespace obscura::gpu::testing {
 
-// The word index of the OpConstantComposite decorated BuiltIn WorkgroupSize, which glslang emits beside the
-// LocalSize execution mode; 0 where the module has none.
+// The word index of the (specialization) constant composite decorated BuiltIn WorkgroupSize, which glslang
+// emits beside the LocalSize execution mode; 0 where the module has none.
 inline std::size_t workgroupSizeComposite(const std::vector<std::uint32_t>& words) {
     std::uint32_t builtin = 0;
     for (std::size_t i = 5; i < words.size() && (words[i] >> 16) != 0; i += words[i] >> 16) {
@@ -29,14 +29,25 @@ inline std::size_t workgroupSizeComposite(const std::vector<std::uint32_t>& word
         if (op == spirv::OpDecorate && length >= 4 && words[i + 2] == spirv::DecorationBuiltIn &&
             words[i + 3] == spirv::BuiltInWorkgroupSize)
             builtin = words[i + 1];
-        if (op == spirv::OpConstantComposite && length == 6 && words[i + 2] == builtin && builtin != 0) return i;
+        if ((op == spirv::OpConstantComposite || op == spirv::OpSpecConstantComposite) && length == 6 &&
+            words[i + 2] == builtin && builtin != 0)
+            return i;
     }
     return 0;
 }
 
+// The word index of the instruction that defines result id `id` with opcode `op`; 0 where none does.
+inline std::size_t definition(const std::vector<std::uint32_t>& words, std::uint32_t op, std::uint32_t id) {
+    for (std::size_t i = 5; i < words.size() && (words[i] >> 16) != 0; i += words[i] >> 16)
+        if ((words[i] & 0xffffu) == op && (words[i] >> 16) >= 4 && words[i + 2] == id) return i;
+    return 0;
+}
+
 // The module `words` with its workgroup x by y by 1: the LocalSize execution mode rewritten (where
-// `executionMode`), and the WorkgroupSize composite pointed at two new constants inserted before it (the old
-// ones may have other uses). Returns the words unchanged where the module has neither.
+// `executionMode`), and the WorkgroupSize composite given the new size: where its x and y are specialization
+// constants (local_size_x_id), their defaults rewritten, as a module compiled with that size would hold them;
+// else the composite pointed at two new constants inserted before it (the old ones may have other uses).
+// Returns the words unchanged where the module has neither.
 inline std::vector<std::uint32_t> withWorkgroupSize(std::vector<std::uint32_t> words, std::uint32_t x,
                                                     std::uint32_t y, bool executionMode = true) {
     // The execution mode precedes the constants, so rewriting it leaves the composite's index as it was.
@@ -48,11 +59,17 @@ inline std::vector<std::uint32_t> withWorkgroupSize(std::vector<std::uint32_t> w
         }
     const std::size_t i = workgroupSizeComposite(words);
     if (i == 0) return words;
+    const std::size_t specX = definition(words, spirv::OpSpecConstant, words[i + 3]),
+                      specY = definition(words, spirv::OpSpecConstant, words[i + 4]);
+    if (specX != 0 && specY != 0) {
+        words[specX + 3] = x;
+        words[specY + 3] = y;
+        return words;
+    }
     // The scalar type of the old constituents: that of the OpConstant defining the first.
-    std::uint32_t scalarType = 0;
-    for (std::size_t j = 5; j < i; j += words[j] >> 16)
-        if ((words[j] & 0xffffu) == spirv::OpConstant && words[j + 2] == words[i + 3]) scalarType = words[j + 1];
-    if (scalarType == 0) return words;
+    const std::size_t first = definition(words, spirv::OpConstant, words[i + 3]);
+    if (first == 0 || first > i) return words;
+    const std::uint32_t scalarType = words[first + 1];
     const std::uint32_t idX = words[3], idY = words[3] + 1;
     words[3] += 2;  // the id bound
     words[i + 3] = idX;

@@ -42,7 +42,10 @@
 #include "layouts.h"
 #include "temporal_layouts.h"
 
-layout(local_size_x = kGtaoWorkgroupX, local_size_y = kGtaoWorkgroupY, local_size_z = 1) in;
+// The size as specialization constants of those defaults (layouts.h, kSpecWorkgroupSizeX): gl_WorkGroupSize is
+// then the size a module rewritten to another runs with, not one glslang folded into the code.
+layout(local_size_x = kGtaoWorkgroupX, local_size_y = kGtaoWorkgroupY, local_size_z = 1,
+       local_size_x_id = kSpecWorkgroupSizeX, local_size_y_id = kSpecWorkgroupSizeY) in;
 
 layout(constant_id = kGtaoSpecGridStep) const int kGridStep = 1;
 layout(constant_id = kGtaoSpecBentNormal) const int kBentNormal = 1;

@@ -13,6 +13,14 @@ namespace obscura::gpu {
 #define OBSCURA_CONST const
 #endif
 
+// constant_ids of a workgroup size given by specialization constants (local_size_x_id, local_size_y_id),
+// whose defaults are the size. Code that reads gl_WorkGroupSize then reads the size the module runs with:
+// glslang folds a literal size into the code, so a module rewritten to another size (tests/gpu/spirv_edit.h)
+// would run the old size's arithmetic. The host never sets them: its variants take constant_ids from 0
+// (ComputePipeline refuses a module whose size is one of those) and it dispatches by their defaults (reflect).
+OBSCURA_CONST int kSpecWorkgroupSizeX = 100;
+OBSCURA_CONST int kSpecWorkgroupSizeY = 101;
+
 // ---- alchemy.comp (src/gpu/alchemy_pass.cpp) ----
 // Storage buffers of set 0 (float arrays, std430).
 OBSCURA_CONST int kAlchemyBindingDepth = 0;   // width * height linear depths, +inf for sky
@@ -139,7 +147,8 @@ OBSCURA_CONST int kGtaoPushConstantBytes = 104;
 // with planar-nearest samples, and there 32x2 took 0.930 of 16x4's time (gtao-half, 1920x1080), 0.915
 // (3840x2160) and 0.932 on the spatio-temporal grid (2026-11-26, 3 rounds in one run); the plain pass, no
 // target's, lost 2.0% and 1.2%. The host dispatches the size the compiled shader declares, so a shader
-// swapped in through OBSCURA_SHADER_DIR may try another (bench/gpu-candidates).
+// swapped in through OBSCURA_SHADER_DIR may try another (bench/gpu-candidates). gtao.comp declares it through
+// kSpecWorkgroupSizeX and Y, so that a mapping of invocations to pixels may read it from gl_WorkGroupSize.
 OBSCURA_CONST int kGtaoWorkgroupX = 32;
 OBSCURA_CONST int kGtaoWorkgroupY = 2;
 OBSCURA_CONST int kGtaoRotations = 6;  // ssao::kGtaoRotations, which GLSL cannot include
