@@ -137,8 +137,9 @@ TEST_F(BakeCli, BadInputIsOneLineAndNoOutput) {
     expectFailure("bake " + data("cube.obj") + out + " --distances 2,3,4 -q", {"--distances"});
     expectFailure("bake " + data("cube.obj") + out + " --distances -1 -q", {"--distances"});
     // --distance once fell back to --distances' default for any value not above 0, NaN included, and said nothing.
-    for (const char* bad : {"nan", "-1", "0", "-inf", "\"\""})
+    for (const char* bad : {"nan", "-1", "0", "-inf"})
         expectFailure("bake " + data("cube.obj") + out + " --distance " + bad + " -q", {"--distance", "expected a distance"});
+    expectFailure("bake " + data("cube.obj") + out + " --distance \"\" -q", {"--distance: empty value"}, 2);
     expectFailure("bake " + data("cube.obj") + out + " --alpha -1 -q", {"--alpha"});
     expectFailure("bake " + data("cube.obj") + out + " --threads -1 -q", {"threads: must be in [0, 1024]"});
     expectFailure("bake " + data("cube.obj") + out + " --mode fuzzy -q", {"--mode"});

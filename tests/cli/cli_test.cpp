@@ -70,6 +70,22 @@ TEST_F(Cli, BadFlagValues) {
     expectFailure("render nosuchscene" + kFast + "-o " + path("f.png"), {"nosuchscene"});
 }
 
+// An empty value ("--threads $UNSET") is a command-line error in every command, not 0 for a number or "not given"
+// for a path or a vector: the command would run on a setting nobody chose.
+TEST_F(Cli, EmptyValuesAreRefused) {
+    const std::string out = " -o " + path("f.png");
+    for (const char* flag : {"--threads", "--ao-radius", "--camera-from", "--aov-dir", "--env", "--size"})
+        expectFailure("render plane" + kFast + flag + " \"\"" + out, {std::string(flag) + ": empty value"}, 2);
+    expectFailure("gbuffer \"\" -q -o " + path("g.exr"), {"scene: empty value"}, 2);
+    expectFailure("ao --depth \"\" --camera c.json -o " + path("a.exr"), {"--depth: empty value"}, 2);
+    expectFailure("bench --gpu --sizes \"\"", {"--sizes: empty value"}, 2);
+    EXPECT_FALSE(fs::exists(path("f.png")));
+    EXPECT_FALSE(fs::exists(path("g.exr")));
+    // Flags that take no value are untouched, and the defaults of options not given are not values.
+    const Result ok = run("render plane" + kFast + out);
+    EXPECT_EQ(ok.code, 0) << ok.out;
+}
+
 TEST_F(Cli, RenderWritesFrameAndAovs) {
     Result r = run("render demo" + kFast + "-o " + path("f.png") + " --aov-dir " + path("aov"));
     ASSERT_EQ(r.code, 0) << r.out;

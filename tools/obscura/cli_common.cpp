@@ -126,6 +126,14 @@ std::vector<const CLI::Option*> optionsAddedBy(CLI::App& app, const std::functio
     return {all.begin() + std::ptrdiff_t(before), all.end()};
 }
 
+void refuseEmptyValues(CLI::App& app) {
+    // No description, so --help shows nothing of it; CLI11 prefixes the option's name to the message.
+    const CLI::Validator nonEmpty([](const std::string& value) { return value.empty() ? "empty value" : ""; }, "");
+    for (CLI::Option* option : app.get_options())
+        if (option->get_type_size() != 0) option->check(nonEmpty);
+    for (CLI::App* sub : app.get_subcommands({})) refuseEmptyValues(*sub);
+}
+
 void warnIgnored(const std::vector<const CLI::Option*>& options, const std::string& why) {
     for (const CLI::Option* option : options)
         if (option->count() > 0)

@@ -52,6 +52,11 @@ std::vector<const CLI::Option*> optionsAddedBy(CLI::App& app, const std::functio
 // value unchecked. A warning, not an error, so that a script passing one set of flags to every method runs on.
 void warnIgnored(const std::vector<const CLI::Option*>& options, const std::string& why);
 
+// Makes every option of app and its subcommands that takes a value refuse an empty one ("--threads ''" from an
+// unset shell variable), which CLI11 would read as 0 for a number and as "not given" for a path or a camera
+// vector: the command would run on a setting the user never chose.
+void refuseEmptyValues(CLI::App& app);
+
 // Fails early, before any work, if the output cannot be written: wrong extension, missing directory or a
 // directory of that name, or it is one of the command's input files (empty names are skipped), which the
 // output would replace.

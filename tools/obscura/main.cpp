@@ -1,5 +1,6 @@
 // obscura: the command-line tool over libobscura. Errors print one line and exit non-zero:
 // 1 for a bad input or failed operation, 2 for a bad command line.
+#include "cli_common.h"
 #include "commands.h"
 
 #include "obscura/error.h"
@@ -23,6 +24,7 @@ int main(int argc, char** argv) {
     obscura::cli::addAoCommand(app);
     obscura::cli::addCompareCommand(app);
     obscura::cli::addBakeCommand(app);
+    obscura::cli::refuseEmptyValues(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
