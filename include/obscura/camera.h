@@ -12,12 +12,16 @@ namespace obscura {
 // The widest and tallest image Obscura makes or reads, pixels: Camera::validate, the size flags, camera files
 // and the image readers all hold to it.
 inline constexpr int kMaxImageSide = 32768;
+// The narrowest vertical field of view, degrees. Far below any lens (a 2400 mm telephoto sees about 0.6 degrees),
+// it keeps tan(fovY / 2) and its reciprocal well inside float's range: at 1e-45 degrees the tangent was 0 and
+// every projection divided by it.
+inline constexpr float kMinFovDegrees = 1e-3f;
 
 struct Camera {
     Vec3 position{0, 1, 5};   // world, m
     Vec3 target{0, 0, 0};     // world point the camera looks at, m
     Vec3 up{0, 1, 0};         // world up hint, need not be orthogonal to the view direction
-    float fovY = 60.0f;       // vertical field of view, degrees, (0, 180)
+    float fovY = 60.0f;       // vertical field of view, degrees, [kMinFovDegrees, 180)
     float nearZ = 0.01f;      // near plane distance, m, > 0 (primary rays start here)
     float farZ = 1.0e4f;      // far plane distance, m, > nearZ (primary rays end here)
     int width = 1280;         // image size, pixels, >= 1

@@ -23,7 +23,8 @@ void Camera::validate() const {
     if (!(length(target - position) > 0)) fail("camera", "position and target coincide");
     if (!isFinite(up) || !(length(cross(normalize(target - position), normalize(up))) > 1e-6f))
         fail("camera", "up is zero or parallel to the view direction");
-    if (!(fovY > 0.0f && fovY < 180.0f)) fail("camera", "fov must be in (0, 180) degrees, got " + numberText(fovY));
+    if (!(fovY >= kMinFovDegrees && fovY < 180.0f))
+        fail("camera", "fov must be in [" + numberText(kMinFovDegrees) + ", 180) degrees, got " + numberText(fovY));
     if (!(nearZ > 0.0f) || !(farZ > nearZ) || !std::isfinite(nearZ))
         fail("camera", "near/far must satisfy 0 < near < far");
     if (width < 1 || height < 1)

@@ -82,6 +82,25 @@ TEST(Camera, ValidateNamesTheProblem) {
     c = testCamera();
     c.fovY = 180;
     EXPECT_THROW(c.validate(), Error);
+    // The narrowest field of view is taken, and projects a pixel there and back; one below it is refused by name.
+    c = testCamera();
+    c.fovY = kMinFovDegrees;
+    c.validate();
+    const Vec3 view = c.viewFromPixel(3.5f, 2.5f, 2.0f);
+    float depth = 0.0f;
+    const Vec2 pixel = c.pixelFromView(view, &depth);
+    EXPECT_NEAR(pixel.x, 3.5f, 1e-2f);
+    EXPECT_NEAR(pixel.y, 2.5f, 1e-2f);
+    EXPECT_NEAR(depth, 2.0f, 1e-6f);
+    for (const float tooNarrow : {0.5f * kMinFovDegrees, 1e-45f}) {
+        c.fovY = tooNarrow;
+        try {
+            c.validate();
+            ADD_FAILURE() << "fov " << tooNarrow << " taken";
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find("fov must be in [0.001, 180)"), std::string::npos) << e.what();
+        }
+    }
     c = testCamera();
     c.target = c.position;
     EXPECT_THROW(c.validate(), Error);

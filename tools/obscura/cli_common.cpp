@@ -88,7 +88,7 @@ void CameraOptions::add(CLI::App& app) {
     app.add_option("--camera-from", from, "Camera position \"x,y,z\" in world meters (default: the scene's)");
     app.add_option("--camera-to", to, "Point the camera looks at, \"x,y,z\" (default: the scene's)");
     app.add_option("--camera-up", up, "Up direction \"x,y,z\" (default 0,1,0)");
-    app.add_option("--fov", fov, "Vertical field of view in degrees, (0, 180) (default: the scene's, usually 60)");
+    app.add_option("--fov", fov, "Vertical field of view in degrees, [0.001, 180) (default: the scene's, usually 60)");
     app.add_option("--near", nearZ, "Near plane distance in meters (default: the scene's)");
     app.add_option("--far", farZ, "Far plane distance in meters (default: the scene's)");
 }
@@ -100,7 +100,8 @@ Camera CameraOptions::apply(const LoadedScene& scene) const {
     if (!to.empty()) c.target = parseVec3("--camera-to", to);
     if (!up.empty()) c.up = parseVec3("--camera-up", up);
     if (fov != 0.0f) {
-        if (!(fov > 0.0f && fov < 180.0f)) fail("--fov", "must be in (0, 180) degrees, got " + numberText(fov));
+        if (!(fov >= kMinFovDegrees && fov < 180.0f))
+            fail("--fov", "must be in [" + numberText(kMinFovDegrees) + ", 180) degrees, got " + numberText(fov));
         c.fovY = fov;
     }
     if (nearZ != 0.0f) c.nearZ = nearZ;
