@@ -141,6 +141,9 @@ TEST_F(BakeCli, BadInputIsOneLineAndNoOutput) {
         expectFailure("bake " + data("cube.obj") + out + " --distance " + bad + " -q", {"--distance", "expected a distance"});
     expectFailure("bake " + data("cube.obj") + out + " --distance \"\" -q", {"--distance: empty value"}, 2);
     expectFailure("bake " + data("cube.obj") + out + " --alpha -1 -q", {"--alpha"});
+    // A size_t once took -1 as 2^64 - 1.
+    expectFailure("bake " + data("cube.obj") + out + " --raw-embree-check -1 -q", {"--raw-embree-check: must be in [0, 1000000000], got -1"});
+    expectFailure("bake " + data("cube.obj") + out + " --raw-embree-check 1000000001 -q", {"--raw-embree-check"});
     expectFailure("bake " + data("cube.obj") + out + " --threads -1 -q", {"threads: must be in [0, 1024]"});
     expectFailure("bake " + data("cube.obj") + out + " --mode fuzzy -q", {"--mode"});
     expectFailure("bake " + data("cube.obj") + out + " --crease-angle 200 -q", {"--crease-angle"});

@@ -23,6 +23,9 @@ namespace obscura::cli {
 
 namespace {
 
+// --raw-embree-check's largest stride: every billionth sample, which checks the first sample of any bake.
+constexpr long long kMaxRawCheckStride = 1000000000;
+
 struct BakeOptions {
     std::string input, output, report, mode = "obscurance", distances = "2,300", solver = "auto";
     std::string distance;  // --distance as given, parsed and checked where it was given
@@ -30,7 +33,7 @@ struct BakeOptions {
     bake::BakeSettings settings;
     bake::ArtistControls controls;
     int threads = 0;
-    std::size_t rawCheck = 0;
+    long long rawCheck = 0;  // signed, so that -1 is refused as -1, not taken as 2^64 - 1
     bool quiet = false;
 };
 
@@ -73,6 +76,9 @@ void runBake(BakeOptions& o) {
                                                 : parseDistances(o.distances);
     s.validate();
     o.controls.validate();
+    if (o.rawCheck < 0 || o.rawCheck > kMaxRawCheckStride)
+        fail("--raw-embree-check", "must be in [0, " + std::to_string(kMaxRawCheckStride) + "], got " +
+                                       std::to_string(o.rawCheck));
     checkOutputPath("--output", o.output, {".glb", ".gltf", ".ply", ".csv"}, {o.input});
     if (!o.report.empty()) checkOutputPath("--report", o.report, {".json"}, {o.input});
 
@@ -97,7 +103,7 @@ void runBake(BakeOptions& o) {
         }
         (*bar)(f);
     };
-    bake::BakeResult r = bake::bakeScene(loaded.scene, s, progress, o.rawCheck);
+    bake::BakeResult r = bake::bakeScene(loaded.scene, s, progress, std::size_t(o.rawCheck));
     progress("write", 0.0);
     auto tw = std::chrono::steady_clock::now();
     bake::writeBakeOutput(o.input, loaded.scene, r, o.controls, o.output);
@@ -225,7 +231,7 @@ void addBakeCommand(CLI::App& app) {
     cmd->add_option("--remap-max", o->controls.high, "Remapped value of no obscurance, [0, 1]")->capture_default_str();
     cmd->add_option("--report", o->report, "Write a JSON report (counts, Mrays/s, stage times)");
     cmd->add_option("--raw-embree-check", o->rawCheck,
-                    "Also trace every N-th sample's rays with bare Embree and report the bake's fraction of that (0 = off)");
+                    "Also trace every N-th sample's rays with bare Embree and report the bake's fraction of that, [0, 1e9] (0 = off)");
     cmd->add_option("--threads", o->threads, "Worker threads (0 = all cores)")->capture_default_str();
     cmd->add_flag("-q,--quiet", o->quiet, "No progress and no table");
     cmd->callback([o] { runBake(*o); });
