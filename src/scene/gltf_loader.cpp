@@ -1,6 +1,7 @@
 // glTF 2.0 loader (.gltf, .glb) on tinygltf: node hierarchy to instances, triangle primitives to meshes.
 #include "obscura/error.h"
 #include "obscura/scene_io.h"
+#include "scene/gltf_json_check.h"
 #include "scene/loader_common.h"
 
 #include <tiny_gltf.h>
@@ -297,6 +298,8 @@ Scene loadGltf(const std::string& path, LoadInfo* info) {
                             : gltf.LoadASCIIFromFile(&model, &err, &warn, path);
     // tinygltf can fill err and still succeed (a misaligned chunk), so only the return value decides.
     if (!ok) fail(path, err.empty() ? "not a valid glTF file" : loader::firstLine(err));
+    // tinygltf keeps the default of a property of the wrong type (an offset of 1e10 read as 0) unsaid.
+    loader::checkGltfJson(path, ext == ".glb");
 
     loader::InfoSink out(info);
     Scene scene = GltfReader(model, path, *out).read();

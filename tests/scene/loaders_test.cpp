@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -163,6 +164,17 @@ TEST(LoaderGltf, LyingFilesGiveErrors) {
          "must be float VEC3"},
         {R"("extensionsUsed": ["KHR_draco_mesh_compression"], "extensionsRequired": ["KHR_draco_mesh_compression"],)",
          node, acc + "}", view, "requires extension KHR_draco_mesh_compression, which is not supported"},
+        // Values of the wrong type, which tinygltf replaced by the default (an offset of 0, no translation).
+        {"", node, acc + "}", R"({"buffer": 0, "byteOffset": 1e10, "byteLength": 36})",
+         "bufferViews[0].byteOffset must be a non-negative integer, got 10000000000.0"},
+        {"", node, acc + R"(, "byteOffset": 0.5})", view, "accessors[0].byteOffset must be a non-negative integer, got 0.5"},
+        {"", node, R"({"bufferView": 0, "componentType": 5126, "count": "3", "type": "VEC3"})", view,
+         "'count' property is not a positive integer"},  // a required property: tinygltf's own check
+        {"", R"({"mesh": 0, "translation": "abc"})", acc + "}", view,
+         R"(nodes[0].translation must be an array of 3 numbers, got "abc")"},
+        {"", R"({"mesh": 0, "rotation": [0, 0, 0, "1"]})", acc + "}", view, "nodes[0].rotation must be an array of 4 numbers"},
+        {"", R"({"mesh": -1})", acc + "}", view, "nodes[0].mesh must be a non-negative integer, got -1"},
+        {R"("scenes": [{"nodes": [0.0]}],)", node, acc + "}", view, "scenes[0].nodes must hold non-negative integers"},
     };
     TempDir dir;
     for (const Case& c : cases) {
@@ -177,6 +189,48 @@ TEST(LoaderGltf, LyingFilesGiveErrors) {
         EXPECT_NE(msg.find(path + ": "), std::string::npos) << msg;
         EXPECT_NE(msg.find(c.expected), std::string::npos) << msg;
     }
+}
+
+// The type check leaves the contents of data: URIs out of what it parses by following the JSON's strings: names
+// with escaped quotes, escaped backslashes and "data:" in them load as they are, and the check still reaches
+// the properties after them.
+TEST(LoaderGltf, EscapedQuotesInNamesDoNotConfuseTheTypeCheck) {
+    TempDir dir;
+    const std::string json =
+        R"({"asset": {"version": "2.0"}, "nodes": [{"mesh": 0, "name": "a \"data:x\" b \\", "translation": [1, 2, 3]}],)"
+        R"( "meshes": [{"name": "\\\"data:", "primitives": [{"attributes": {"POSITION": 0}}]}],)"
+        R"( "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"}],)"
+        R"( "bufferViews": [{"buffer": 0, "byteLength": 36}], "buffers": [{"byteLength": 36, "uri": )"
+        R"("data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}]})";
+    const Scene s = loadScene(dir.write("names.gltf", json));
+    ASSERT_EQ(s.instances.size(), 1u);
+    expectNear(world(s, 0, 0), {1, 2, 3});
+    // The same document with a translation of the wrong type after the names: the check still reaches it.
+    std::string wrong = json;
+    wrong.replace(wrong.find("[1, 2, 3]"), 9, R"("1, 2, 3")");
+    const std::string path = dir.write("names_wrong.gltf", wrong);
+    EXPECT_NE(loadError(path).find(path + ": nodes[0].translation must be an array of 3 numbers"), std::string::npos)
+        << loadError(path);
+}
+
+// A .glb's JSON chunk is checked too: quad.glb with its second accessor's byteOffset 12 written as -2.
+TEST(LoaderGltf, GlbJsonChunkIsTypeChecked) {
+    std::string bytes = readBytes(data("quad.glb"));
+    ASSERT_GE(bytes.size(), 20u);
+    const auto u32 = [&](std::size_t at) {
+        return std::uint32_t(std::uint8_t(bytes[at])) | std::uint32_t(std::uint8_t(bytes[at + 1])) << 8 |
+               std::uint32_t(std::uint8_t(bytes[at + 2])) << 16 | std::uint32_t(std::uint8_t(bytes[at + 3])) << 24;
+    };
+    std::string json = bytes.substr(20, u32(12));
+    const std::size_t at = json.find("\"byteOffset\":12");
+    ASSERT_NE(at, std::string::npos) << json;
+    json.replace(at, 15, "\"byteOffset\":-2");  // the same length, so the chunk's header still holds
+    bytes.replace(20, json.size(), json);
+    TempDir dir;
+    const std::string path = dir.write("negative.glb", bytes);
+    const std::string msg = loadError(path);
+    EXPECT_NE(msg.find(path + ": "), std::string::npos) << msg;
+    EXPECT_NE(msg.find("accessors[1].byteOffset must be a non-negative integer, got -2"), std::string::npos) << msg;
 }
 
 // ---- OBJ --------------------------------------------------------------------------------------------
