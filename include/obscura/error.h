@@ -12,7 +12,10 @@ namespace obscura {
 
 class Error : public std::runtime_error {
 public:
-    explicit Error(const std::string& message) : std::runtime_error(message) {}
+    // The message as given, but for the bytes a terminal or a log would mangle: control characters (a newline
+    // among them, which would break the one line) and bytes that are not UTF-8 (a corrupt file's token quoted
+    // in the message) are written as \xNN. UTF-8 text, a file name's included, is kept.
+    explicit Error(const std::string& message);
 };
 
 // Throws Error("<what>: <problem>"), the form every message takes (what = a file path or a flag name).
