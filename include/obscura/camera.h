@@ -16,6 +16,10 @@ inline constexpr int kMaxImageSide = 32768;
 // it keeps tan(fovY / 2) and its reciprocal well inside float's range: at 1e-45 degrees the tangent was 0 and
 // every projection divided by it.
 inline constexpr float kMinFovDegrees = 1e-3f;
+// The farthest a camera's position or target may lie from the origin, m: ten times kMaxSceneCoordinate
+// (scene.h), so that a default camera framing the largest scene fits, and its rays stay far inside the origins
+// Embree takes.
+inline constexpr float kMaxCameraCoordinate = 1e13f;
 
 struct Camera {
     Vec3 position{0, 1, 5};   // world, m

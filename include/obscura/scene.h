@@ -9,6 +9,13 @@
 
 namespace obscura {
 
+// The farthest a scene's geometry may lie from the origin, in object and in world space, m. Embree asserts on a
+// ray whose origin lies beyond about 1.8e18 (its FLT_LARGE), in world space or carried into an instance's
+// object space: a corrupt glTF's translation of 9.2e18 aborted the process. 1e12 m is beyond any scene (the
+// Earth is 1.5e11 m from the Sun) and leaves a factor of 1e6 for cameras placed away from it
+// (kMaxCameraCoordinate, camera.h) and for rays carried into scaled-down instances.
+inline constexpr float kMaxSceneCoordinate = 1e12f;
+
 struct Bounds {
     Vec3 lo{1e30f, 1e30f, 1e30f};
     Vec3 hi{-1e30f, -1e30f, -1e30f};
@@ -53,7 +60,8 @@ void computeSmoothNormals(Mesh& mesh);
 std::size_t removeDegenerateTriangles(Mesh& mesh);
 
 // The checks every loader and builder ends with: at least one triangle over all meshes, indices in range,
-// finite positions and normals, instances pointing at existing meshes. Degenerate triangles are dropped
+// finite positions and normals, every position within kMaxSceneCoordinate of the origin in its mesh's space
+// and in the world, instances pointing at existing meshes. Degenerate triangles are dropped
 // and counted in *dropped. Throws obscura::Error("<what>: <problem>").
 void sanitizeScene(Scene& scene, const std::string& what, std::size_t* dropped = nullptr);
 

@@ -3,8 +3,10 @@
 
 #include "obscura/error.h"
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <limits>
 #include <string>
 
 namespace obscura {
@@ -105,6 +107,9 @@ std::size_t removeDegenerateTriangles(Mesh& mesh) {
 
 namespace {
 
+// The largest coordinate's magnitude: the box norm, which bounds how far Embree's ray origins reach.
+float distanceFromOrigin(Vec3 p) { return std::max(std::abs(p.x), std::max(std::abs(p.y), std::abs(p.z))); }
+
 void checkMesh(const Mesh& mesh, const std::string& what) {
     const std::size_t n = mesh.positions.size();
     if (mesh.indices.size() % 3 != 0)
@@ -112,8 +117,13 @@ void checkMesh(const Mesh& mesh, const std::string& what) {
                        " indices, not a multiple of 3");
     for (std::uint32_t i : mesh.indices)
         if (i >= n) fail(what, "index " + std::to_string(i) + " out of range (" + std::to_string(n) + " vertices)");
-    for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t i = 0; i < n; ++i) {
         if (!isFinite(mesh.positions[i])) fail(what, "vertex " + std::to_string(i) + " has a non-finite position");
+        if (distanceFromOrigin(mesh.positions[i]) > kMaxSceneCoordinate)
+            fail(what, "vertex " + std::to_string(i) + " of mesh '" + mesh.name + "' lies " +
+                           numberText(distanceFromOrigin(mesh.positions[i])) + " m from the origin, beyond " +
+                           numberText(kMaxSceneCoordinate) + " m");
+    }
     if (!mesh.normals.empty() && mesh.normals.size() != n)
         fail(what, "mesh '" + mesh.name + "' has " + std::to_string(mesh.normals.size()) + " normals for " +
                        std::to_string(n) + " vertices");
@@ -140,6 +150,22 @@ void sanitizeScene(Scene& scene, const std::string& what, std::size_t* dropped) 
     }
     // Every check before the removal: removeDegenerateTriangles may assume valid indices.
     for (const Mesh& mesh : scene.meshes) checkMesh(mesh, what);
+    // In the world too: a finite transform may still carry finite positions far out (or past float's range).
+    for (std::size_t i = 0; i < scene.instances.size(); ++i) {
+        const Instance& inst = scene.instances[i];
+        const Bounds b = scene.meshes[inst.mesh].bounds();
+        if (b.empty()) continue;
+        float reach = 0.0f;
+        for (int c = 0; c < 8; ++c) {
+            const Vec3 corner{(c & 1) ? b.hi.x : b.lo.x, (c & 2) ? b.hi.y : b.lo.y, (c & 4) ? b.hi.z : b.lo.z};
+            const float d = distanceFromOrigin(transformPoint(inst.worldFromObject, corner));
+            reach = std::isnan(d) ? std::numeric_limits<float>::infinity() : std::max(reach, d);
+        }
+        if (reach > kMaxSceneCoordinate)
+            fail(what, "instance " + std::to_string(i) + (inst.name.empty() ? "" : " ('" + inst.name + "')") +
+                           " places geometry " + numberText(reach) + " m from the origin, beyond " +
+                           numberText(kMaxSceneCoordinate) + " m");
+    }
     std::size_t removed = 0;
     for (Mesh& mesh : scene.meshes) removed += removeDegenerateTriangles(mesh);
     if (dropped) *dropped = removed;

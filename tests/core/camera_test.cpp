@@ -104,6 +104,20 @@ TEST(Camera, ValidateNamesTheProblem) {
     c = testCamera();
     c.target = c.position;
     EXPECT_THROW(c.validate(), Error);
+    // Position and target within kMaxCameraCoordinate of the origin, where Embree's rays stay valid.
+    c = testCamera();
+    c.position = {0, 0, kMaxCameraCoordinate};
+    c.validate();
+    c.position = {0, 0, 2 * kMaxCameraCoordinate};
+    try {
+        c.validate();
+        ADD_FAILURE() << "a camera 2e13 m out taken";
+    } catch (const Error& e) {
+        EXPECT_STREQ(e.what(), "camera: position lies beyond 1e+13 m of the origin");
+    }
+    c = testCamera();
+    c.target = {-3e13f, 0, 0};
+    EXPECT_THROW(c.validate(), Error);
 }
 
 // A quarter turn about the vertical through the target, worked by hand: the offset from the target

@@ -181,6 +181,37 @@ TEST(SceneSanitize, NoTriangles) {
     EXPECT_EQ(messageOf(unplaced, "scene.ply"), "scene.ply: no triangles");
 }
 
+// Embree aborts on rays whose origins lie beyond about 1.8e18, and a corrupt file's translation of 9.2e18 did
+// that: geometry beyond kMaxSceneCoordinate, in its mesh's space or placed there by an instance, is refused.
+TEST(SceneSanitize, GeometryStaysWithinReachOfTheOrigin) {
+    Scene far;
+    Mesh m = quadXY();
+    m.positions[1].x = 2e12f;
+    far.add(m);
+    EXPECT_EQ(messageOf(far, "x.obj"), "x.obj: vertex 1 of mesh 'quad' lies 2e+12 m from the origin, beyond 1e+12 m");
+    Scene moved;
+    moved.add(quadXY(), Mat4::translation({0, -9.2e18f, 0}));
+    moved.instances[0].name = "left";
+    EXPECT_EQ(messageOf(moved, "x.gltf"),
+              "x.gltf: instance 0 ('left') places geometry 9.2e+18 m from the origin, beyond 1e+12 m");
+    // A finite scale whose products overflow float: infinitely far.
+    Mat4 huge = Mat4::identity();
+    huge.m[0][0] = 1e30f;
+    huge.m[0][1] = 1e30f;
+    Scene overflowing;
+    Mesh big = quadXY();
+    for (Vec3& p : big.positions) p = p * 1e10f;
+    overflowing.add(big, huge);
+    EXPECT_EQ(messageOf(overflowing, "x.gltf"),
+              "x.gltf: instance 0 ('quad') places geometry inf m from the origin, beyond 1e+12 m");
+    // At the limit itself, in both spaces, the scene is taken.
+    Scene edge;
+    Mesh e = quadXY();
+    for (Vec3& p : e.positions) p = p * kMaxSceneCoordinate;
+    edge.add(e, Mat4::translation({0, 0, -kMaxSceneCoordinate}));
+    EXPECT_NO_THROW(sanitizeScene(edge, "edge.obj"));
+}
+
 TEST(SceneSanitize, IndexOutOfRange) {
     Scene s;
     Mesh m;
