@@ -5,6 +5,7 @@
 // and stored row-major: m[row][col], applied to column vectors, so (aFromB * bFromC) is aFromC.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 
@@ -50,6 +51,8 @@ inline Vec3 normalize(Vec3 a) {
 inline Vec3 min(Vec3 a, Vec3 b) { return {std::fmin(a.x, b.x), std::fmin(a.y, b.y), std::fmin(a.z, b.z)}; }
 inline Vec3 max(Vec3 a, Vec3 b) { return {std::fmax(a.x, b.x), std::fmax(a.y, b.y), std::fmax(a.z, b.z)}; }
 inline bool isFinite(Vec3 a) { return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z); }
+// The largest coordinate's magnitude (the box norm): how far from the origin the scene and camera limits measure.
+inline float maxAbsComponent(Vec3 a) { return std::max(std::abs(a.x), std::max(std::abs(a.y), std::abs(a.z))); }
 
 // Builds an orthonormal basis (t, b, n) around unit n without branches that flip (Duff et al. 2017).
 inline void orthonormalBasis(Vec3 n, Vec3& t, Vec3& b) {

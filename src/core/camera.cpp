@@ -3,7 +3,6 @@
 
 #include "obscura/error.h"
 
-#include <algorithm>
 #include <array>
 #include <cmath>
 #include <string>
@@ -24,7 +23,7 @@ void Camera::validate() const {
     if (!isFinite(position)) fail("camera", "position is not finite");
     if (!isFinite(target)) fail("camera", "target is not finite");
     for (const auto& [name, p] : {std::pair<const char*, Vec3>{"position", position}, {"target", target}})
-        if (std::max(std::abs(p.x), std::max(std::abs(p.y), std::abs(p.z))) > kMaxCameraCoordinate)
+        if (maxAbsComponent(p) > kMaxCameraCoordinate)
             fail("camera", std::string(name) + " lies beyond " + numberText(kMaxCameraCoordinate) + " m of the origin");
     if (!(length(target - position) > 0)) fail("camera", "position and target coincide");
     if (!isFinite(up) || !(length(cross(normalize(target - position), normalize(up))) > 1e-6f))

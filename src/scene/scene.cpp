@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <vector>
 
 namespace obscura {
 
@@ -25,17 +26,34 @@ std::uint32_t Scene::add(Mesh mesh, const Mat4& worldFromObject) {
     return index;
 }
 
+namespace {
+
+// Each mesh's bounds, once: a mesh placed by many instances is not walked once per instance.
+std::vector<Bounds> meshBounds(const Scene& scene) {
+    std::vector<Bounds> out;
+    out.reserve(scene.meshes.size());
+    for (const Mesh& m : scene.meshes) out.push_back(m.bounds());
+    return out;
+}
+
+// f(corner) for the 8 corners of `b` carried into the world, not the transformed centre and size: rotations and
+// shears move any corner outward.
+template <class F> void forEachWorldCorner(const Bounds& b, const Mat4& worldFromObject, const F& f) {
+    for (int c = 0; c < 8; ++c) {
+        const Vec3 corner{(c & 1) ? b.hi.x : b.lo.x, (c & 2) ? b.hi.y : b.lo.y, (c & 4) ? b.hi.z : b.lo.z};
+        f(transformPoint(worldFromObject, corner));
+    }
+}
+
+} // namespace
+
 Bounds Scene::bounds() const {
+    const std::vector<Bounds> local = meshBounds(*this);
     Bounds world;
     for (const Instance& inst : instances) {
         if (inst.mesh >= meshes.size()) continue;  // sanitizeScene reports these; bounds just skips them
-        Bounds b = meshes[inst.mesh].bounds();
-        if (b.empty()) continue;
-        // The 8 corners, not the transformed centre and size: rotations and shears move any corner outward.
-        for (int c = 0; c < 8; ++c) {
-            Vec3 corner{(c & 1) ? b.hi.x : b.lo.x, (c & 2) ? b.hi.y : b.lo.y, (c & 4) ? b.hi.z : b.lo.z};
-            world.extend(transformPoint(inst.worldFromObject, corner));
-        }
+        if (local[inst.mesh].empty()) continue;
+        forEachWorldCorner(local[inst.mesh], inst.worldFromObject, [&](Vec3 p) { world.extend(p); });
     }
     return world;
 }
@@ -107,9 +125,6 @@ std::size_t removeDegenerateTriangles(Mesh& mesh) {
 
 namespace {
 
-// The largest coordinate's magnitude: the box norm, which bounds how far Embree's ray origins reach.
-float distanceFromOrigin(Vec3 p) { return std::max(std::abs(p.x), std::max(std::abs(p.y), std::abs(p.z))); }
-
 void checkMesh(const Mesh& mesh, const std::string& what) {
     const std::size_t n = mesh.positions.size();
     if (mesh.indices.size() % 3 != 0)
@@ -119,9 +134,9 @@ void checkMesh(const Mesh& mesh, const std::string& what) {
         if (i >= n) fail(what, "index " + std::to_string(i) + " out of range (" + std::to_string(n) + " vertices)");
     for (std::size_t i = 0; i < n; ++i) {
         if (!isFinite(mesh.positions[i])) fail(what, "vertex " + std::to_string(i) + " has a non-finite position");
-        if (distanceFromOrigin(mesh.positions[i]) > kMaxSceneCoordinate)
+        if (maxAbsComponent(mesh.positions[i]) > kMaxSceneCoordinate)
             fail(what, "vertex " + std::to_string(i) + " of mesh '" + mesh.name + "' lies " +
-                           numberText(distanceFromOrigin(mesh.positions[i])) + " m from the origin, beyond " +
+                           numberText(maxAbsComponent(mesh.positions[i])) + " m from the origin, beyond " +
                            numberText(kMaxSceneCoordinate) + " m");
     }
     if (!mesh.normals.empty() && mesh.normals.size() != n)
@@ -151,16 +166,15 @@ void sanitizeScene(Scene& scene, const std::string& what, std::size_t* dropped) 
     // Every check before the removal: removeDegenerateTriangles may assume valid indices.
     for (const Mesh& mesh : scene.meshes) checkMesh(mesh, what);
     // In the world too: a finite transform may still carry finite positions far out (or past float's range).
+    const std::vector<Bounds> local = meshBounds(scene);
     for (std::size_t i = 0; i < scene.instances.size(); ++i) {
         const Instance& inst = scene.instances[i];
-        const Bounds b = scene.meshes[inst.mesh].bounds();
-        if (b.empty()) continue;
+        if (local[inst.mesh].empty()) continue;
         float reach = 0.0f;
-        for (int c = 0; c < 8; ++c) {
-            const Vec3 corner{(c & 1) ? b.hi.x : b.lo.x, (c & 2) ? b.hi.y : b.lo.y, (c & 4) ? b.hi.z : b.lo.z};
-            const float d = distanceFromOrigin(transformPoint(inst.worldFromObject, corner));
+        forEachWorldCorner(local[inst.mesh], inst.worldFromObject, [&](Vec3 p) {
+            const float d = maxAbsComponent(p);
             reach = std::isnan(d) ? std::numeric_limits<float>::infinity() : std::max(reach, d);
-        }
+        });
         if (reach > kMaxSceneCoordinate)
             fail(what, "instance " + std::to_string(i) + (inst.name.empty() ? "" : " ('" + inst.name + "')") +
                            " places geometry " + numberText(reach) + " m from the origin, beyond " +
