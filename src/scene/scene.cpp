@@ -127,6 +127,13 @@ namespace {
 
 void checkMesh(const Mesh& mesh, const std::string& what) {
     const std::size_t n = mesh.positions.size();
+    // Albedo is the fraction of light a surface reflects: above 1 the multi-bounce fit and the composite would
+    // add light, below 0 (or NaN) darken past black. glTF bounds baseColorFactor to [0, 1]; OBJ's Kd and PLY's
+    // float colours are read in the same range.
+    const Vec3 c = mesh.baseColor;
+    if (!(c.x >= 0 && c.x <= 1 && c.y >= 0 && c.y <= 1 && c.z >= 0 && c.z <= 1))
+        fail(what, "mesh '" + mesh.name + "' has base colour (" + numberText(c.x) + ", " + numberText(c.y) + ", " +
+                       numberText(c.z) + "), outside [0, 1]");
     if (mesh.indices.size() % 3 != 0)
         fail(what, "mesh '" + mesh.name + "' has " + std::to_string(mesh.indices.size()) +
                        " indices, not a multiple of 3");

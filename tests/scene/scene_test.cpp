@@ -212,6 +212,31 @@ TEST(SceneSanitize, GeometryStaysWithinReachOfTheOrigin) {
     EXPECT_NO_THROW(sanitizeScene(edge, "edge.obj"));
 }
 
+TEST(SceneSanitize, BaseColourIsAReflectedFraction) {
+    for (const Vec3 colour : {Vec3{1.2f, 0.5f, 0.5f}, Vec3{0.5f, -0.25f, 0.5f}, Vec3{0.5f, 0.5f, std::nanf("")}}) {
+        Scene s;
+        Mesh m = quadXY();
+        m.baseColor = colour;
+        s.add(m);
+        const std::string text = messageOf(s, "m.gltf");
+        EXPECT_EQ(text.rfind("m.gltf: mesh 'quad' has base colour (", 0), 0u) << text;
+        EXPECT_NE(text.find("), outside [0, 1]"), std::string::npos) << text;
+    }
+    Scene s;
+    Mesh m = quadXY();
+    m.baseColor = {1.2f, 0.5f, 0.5f};
+    s.add(m);
+    EXPECT_EQ(messageOf(s, "m.gltf"), "m.gltf: mesh 'quad' has base colour (1.2, 0.5, 0.5), outside [0, 1]");
+    // Both ends of the range are albedos.
+    for (const Vec3 colour : {Vec3{0, 0, 0}, Vec3{1, 1, 1}}) {
+        Scene edge;
+        Mesh e = quadXY();
+        e.baseColor = colour;
+        edge.add(e);
+        EXPECT_NO_THROW(sanitizeScene(edge, "edge.obj"));
+    }
+}
+
 TEST(SceneSanitize, IndexOutOfRange) {
     Scene s;
     Mesh m;
