@@ -97,15 +97,19 @@ SH9 projectEnvironment(const Image& equirect) {
 
     // One partial sum per row, added in row order afterwards, so any thread split gives the same bits.
     std::vector<std::array<double, 27>> rows(static_cast<std::size_t>(h));
-    std::vector<char> rowFinite(std::size_t(h), 1);
+    // The first texel of each row that is not a radiance (non-finite or negative), -1 where all are. A negative
+    // texel would subtract light in every direction its lobes reach; an HDR edited by hand or a difference image
+    // can hold one, and the composite would then show it as darkening nowhere near where it is.
+    std::vector<int> rowBad(std::size_t(h), -1);
     parallelFor(std::size_t(h), [&](std::size_t begin, std::size_t end) {
         for (std::size_t j = begin; j < end; ++j) {
             Polar t = polar(pi * double(j) / h, pi * double(j + 1) / h);
             std::array<double, 27> sum{};
             const float* texel = &equirect.pixels[j * std::size_t(w) * std::size_t(ch)];
             for (int i = 0; i < w; ++i, texel += ch) {
-                if (!std::isfinite(texel[0]) || !std::isfinite(texel[1]) || !std::isfinite(texel[2]))
-                    rowFinite[j] = 0;
+                const bool radiance = texel[0] >= 0 && texel[1] >= 0 && texel[2] >= 0 && std::isfinite(texel[0]) &&
+                                      std::isfinite(texel[1]) && std::isfinite(texel[2]);
+                if (!radiance && rowBad[j] < 0) rowBad[j] = i;
                 std::array<double, 9> wgt = texelWeights(t, columns[std::size_t(i)]);
                 for (int k = 0; k < 9; ++k)
                     for (int c = 0; c < 3; ++c) sum[std::size_t(k * 3 + c)] += wgt[std::size_t(k)] * double(texel[c]);
@@ -116,8 +120,12 @@ SH9 projectEnvironment(const Image& equirect) {
 
     std::array<double, 27> total{};
     for (int j = 0; j < h; ++j) {
-        if (!rowFinite[std::size_t(j)])
-            fail("environment", "non-finite radiance in row " + std::to_string(j));
+        if (const int i = rowBad[std::size_t(j)]; i >= 0) {
+            const float* texel = &equirect.pixels[(std::size_t(j) * std::size_t(w) + std::size_t(i)) * std::size_t(ch)];
+            fail("environment", "radiance at pixel (" + std::to_string(i) + ", " + std::to_string(j) + ") is (" +
+                                    numberText(texel[0]) + ", " + numberText(texel[1]) + ", " + numberText(texel[2]) +
+                                    "): must be finite and non-negative");
+        }
         for (std::size_t k = 0; k < 27; ++k) total[k] += rows[std::size_t(j)][k];
     }
     SH9 sh;

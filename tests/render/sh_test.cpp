@@ -190,6 +190,19 @@ TEST(ShProjection, RejectsFewChannelsAndNonFiniteValues) {
     }
     bad.at(3, 2, 1) = INFINITY;
     EXPECT_THROW(projectEnvironment(bad), Error);
+    // Negative radiance is refused too, naming the first such texel in row order.
+    bad.at(3, 2, 1) = 1.0f;
+    bad.at(5, 3, 2) = -0.5f;
+    bad.at(6, 3, 0) = -1.0f;
+    try {
+        projectEnvironment(bad);
+        FAIL() << "negative radiance accepted";
+    } catch (const Error& e) {
+        EXPECT_STREQ(e.what(), "environment: radiance at pixel (5, 3) is (1, 1, -0.5): must be finite and non-negative");
+    }
+    bad.at(5, 3, 2) = 0.0f;
+    bad.at(6, 3, 0) = 0.0f;
+    EXPECT_NO_THROW(projectEnvironment(bad));  // zero is a radiance
     // A fourth channel (alpha) is ignored, not rejected.
     Image rgba(8, 4, 4, 1.0f);
     rgba.at(0, 0, 3) = std::nanf("");
