@@ -27,6 +27,10 @@ namespace {
 // A corrupt header can claim any data window; refusing absurd sizes up front keeps a bad file from
 // turning into a multi-gigabyte allocation (8 GiB of floats is far beyond any image Obscura makes).
 constexpr std::int64_t kMaxValues = std::int64_t(1) << 31;
+// The most values one chunk of a file (a tile, or a compression's band of scanlines) may hold, and so the most one
+// band of decoding takes beyond a chunk's rows: 256 MiB of floats. A 32768-pixel row of 8 channels in DWAB's
+// 256-line chunks is this size.
+constexpr std::int64_t kMaxChunkValues = std::int64_t(1) << 26;
 constexpr int kBandRows = 256;
 
 // OpenEXR messages can run to several lines, and most repeat the path we already put in front
@@ -51,7 +55,33 @@ void requireRegularFile(const std::string& path) {
     if (std::filesystem::is_directory(status)) fail(path, "is a directory, not an image file");
 }
 
-void checkDataWindow(const std::string& path, const Imath::Box2i& window, std::size_t channelCount) {
+int linesPerChunk(Imf::Compression compression) {
+    switch (compression) {
+    case Imf::NO_COMPRESSION:
+    case Imf::RLE_COMPRESSION:
+    case Imf::ZIPS_COMPRESSION: return 1;
+    case Imf::ZIP_COMPRESSION:
+    case Imf::PXR24_COMPRESSION: return 16;
+    case Imf::PIZ_COMPRESSION:
+    case Imf::B44_COMPRESSION:
+    case Imf::B44A_COMPRESSION:
+    case Imf::DWAA_COMPRESSION: return 32;
+    default: return 256; // DWAB; the largest, so a buffer of this many lines holds any chunk
+    }
+}
+
+// Scanlines a band of decoding should hold a multiple of, so that no chunk is decoded twice: the compression's
+// lines per chunk, or a tile's height (a tile row is cached whole, so a taller tile needs no alignment).
+std::int64_t bandAlignment(const Imf::Header& header) {
+    if (!header.hasTileDescription()) return linesPerChunk(header.compression());
+    const unsigned tileHeight = header.tileDescription().ySize;
+    return tileHeight <= unsigned(kBandRows) ? std::int64_t(std::max(tileHeight, 1u)) : 1;
+}
+
+void checkDataWindow(const std::string& path, const Imf::Header& header) {
+    std::size_t channelCount = 0;
+    for (auto it = header.channels().begin(); it != header.channels().end(); ++it) ++channelCount;
+    const Imath::Box2i& window = header.dataWindow();
     const std::int64_t width = std::int64_t(window.max.x) - window.min.x + 1;
     const std::int64_t height = std::int64_t(window.max.y) - window.min.y + 1;
     const std::string size = std::to_string(width) + "x" + std::to_string(height);
@@ -60,9 +90,28 @@ void checkDataWindow(const std::string& path, const Imath::Box2i& window, std::s
     if (width > kMaxImageSide || height > kMaxImageSide)
         fail(path, "data window " + size + " is too large (at most " + std::to_string(kMaxImageSide) + "x" +
                        std::to_string(kMaxImageSide) + ")");
-    if (width * height > kMaxValues / std::int64_t(std::max<std::size_t>(channelCount, 1)))
+    const std::int64_t channels = std::int64_t(std::max<std::size_t>(channelCount, 1));
+    if (width * height > kMaxValues / channels)
         fail(path, "data window " + size + " with " + std::to_string(channelCount) + " channels is too large (at most " +
                        std::to_string(kMaxValues) + " values)");
+    // A chunk is decoded whole, and a band of decoding holds at least one (bandAlignment's rows), so their size is
+    // allocated before any of their data is read: 32768 pixels by 65536 channels is 8 GiB of floats from a header
+    // of 1.5 MB. A tile is decoded as far as it overlaps the data window (a tile taller than the image costs
+    // nothing). Each product is at most 256 times kMaxValues, checked above.
+    const bool tiled = header.hasTileDescription();
+    std::int64_t atATime = std::min<std::int64_t>(bandAlignment(header), height) * width * channels;
+    if (tiled)
+        atATime = std::max(atATime, std::min<std::int64_t>(header.tileDescription().xSize, width) *
+                                        std::min<std::int64_t>(header.tileDescription().ySize, height) * channels);
+    if (atATime > kMaxChunkValues) {
+        const std::int64_t lines = linesPerChunk(header.compression());
+        fail(path, (tiled ? "tiles of " + std::to_string(header.tileDescription().xSize) + "x" +
+                                std::to_string(header.tileDescription().ySize) + " pixels"
+                          : "chunks of " + std::to_string(lines) + (lines == 1 ? " scanline" : " scanlines")) +
+                       " with " + std::to_string(channelCount) + (channelCount == 1 ? " channel" : " channels") +
+                       " in a data window of " + size + " take " + std::to_string(atATime) +
+                       " values at a time, more than " + std::to_string(kMaxChunkValues));
+    }
 }
 
 // OpenEXR sizes its line buffers from the header as soon as a file is opened (gigabytes for a forged data
@@ -81,29 +130,13 @@ void checkDataWindowBeforeOpening(const std::string& path) {
     } catch (const std::exception&) {
         return;
     }
-    std::size_t channelCount = 0;
-    for (auto it = header.channels().begin(); it != header.channels().end(); ++it) ++channelCount;
-    checkDataWindow(path, header.dataWindow(), channelCount);
-}
-
-int linesPerChunk(Imf::Compression compression) {
-    switch (compression) {
-    case Imf::NO_COMPRESSION:
-    case Imf::RLE_COMPRESSION:
-    case Imf::ZIPS_COMPRESSION: return 1;
-    case Imf::ZIP_COMPRESSION:
-    case Imf::PXR24_COMPRESSION: return 16;
-    case Imf::PIZ_COMPRESSION:
-    case Imf::B44_COMPRESSION:
-    case Imf::B44A_COMPRESSION:
-    case Imf::DWAA_COMPRESSION: return 32;
-    default: return 256; // DWAB; the largest, so a buffer of this many lines holds any chunk
-    }
+    checkDataWindow(path, header);
 }
 
 // OpenEXR 3.1 decodes a chunk with no data as zeros, so a file whose chunks were emptied reads as a black
 // image (or a depth of 0) without a word. No writer stores an empty chunk, nor an uncompressed one of any
-// size but its pixels', so those are refused before the band is decoded. Tiled files have no such check.
+// size but its pixels', so those are refused before the band is decoded. Tiled files have no such check (their
+// tiles' size is bounded by checkDataWindow, not their contents).
 class ChunkCheck {
 public:
     ChunkCheck(const std::string& path, const Imf::Header& header, std::int64_t width)
@@ -180,7 +213,7 @@ Image readExr(const std::string& path) {
             names.emplace_back(it.name());
         }
         if (names.empty()) fail(path, "has no channels");
-        checkDataWindow(path, window, names.size());
+        checkDataWindow(path, header);
         ChunkCheck chunks(path, header, width);
 
         // Decoding a band at a time means memory grows only with data that actually decodes: a corrupt
@@ -192,9 +225,14 @@ Image readExr(const std::string& path) {
         image.channelNames = names;
         const std::size_t xStride = sizeof(float) * names.size();
         const std::size_t rowValues = std::size_t(width) * names.size();
+        // Up to kBandRows, fewer where rows are wide, but whole chunks: a band starts on a chunk boundary.
+        const std::int64_t chunk = bandAlignment(header);
+        const std::int64_t bandRows =
+            std::max<std::int64_t>(chunk, std::min<std::int64_t>(kBandRows, kMaxChunkValues / std::int64_t(rowValues)) /
+                                              chunk * chunk);
         for (int y = window.min.y; y <= window.max.y;) {
             // A multiple of every compression's chunk height (1, 16, 32, 256), so no chunk decodes twice.
-            const int rows = int(std::min<std::int64_t>(kBandRows, std::int64_t(window.max.y) - y + 1));
+            const int rows = int(std::min<std::int64_t>(bandRows, std::int64_t(window.max.y) - y + 1));
             chunks.check(file, y, y + rows - 1);
             const std::size_t done = image.pixels.size();
             image.pixels.resize(done + rowValues * std::size_t(rows));

@@ -2,6 +2,11 @@
 #include "obscura/error.h"
 #include "obscura/image_io.h"
 
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfTileDescription.h>
+#include <OpenEXR/ImfTiledOutputFile.h>
 #include <gtest/gtest.h>
 
 // The test target gets neither stb's nor Imath's include path, so stb comes in by its full name and
@@ -15,6 +20,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -343,6 +349,79 @@ TEST_F(ImageIoTest, ExrHugeDataWindowIsRefusedBeforeAllocating) {
     const Image back = obscura::readExr(file("widest.exr"));
     EXPECT_EQ(back.width, 32768);
     EXPECT_EQ(back.pixels.back(), 7.0f);
+}
+
+// The whole window within 2^31 values, but one row of it 2^27: a chunk of that size was allocated (twice: the
+// chunk check's buffer and the band) before its missing data was noticed. 4096 channels make a header of 100 kB.
+TEST_F(ImageIoTest, ExrChunkOfTooManyValuesIsRefusedBeforeAllocating) {
+    std::vector<HandChannel> many;
+    for (int c = 0; c < 4096; ++c) {
+        char name[8];
+        std::snprintf(name, sizeof name, "c%04d", c);  // alphabetical, as the helper needs
+        many.push_back({name, 1, ""});
+    }
+    const std::string wide = file("wide.exr");
+    writeBytes(wide, handMadeExr(0, 0, 32768, 1, many));
+    EXPECT_LT(fs::file_size(wide), 200000u);
+    expectMessage(thrownMessage([&] { obscura::readExr(wide); }), wide,
+                  "chunks of 1 scanline with 4096 channels in a data window of 32768x1 take 134217728 values at a "
+                  "time, more than 67108864");
+
+    // Half as many channels is the limit itself: refused only for its missing pixels.
+    many.resize(2048);
+    writeBytes(wide, handMadeExr(0, 0, 32768, 1, many));
+    expectMessage(thrownMessage([&] { obscura::readExr(wide); }), wide,
+                  "chunk at scanline 0 holds 0 bytes of pixel data, expected 134217728");
+}
+
+// Obscura writes scanline files, but other tools write tiles, and a tiled file is read a row of tiles at a time:
+// the bands follow the tiles' height, and a tile's size is bounded like a chunk's.
+TEST_F(ImageIoTest, ExrTiledFilesAreReadAndTheirTileSizeBounded) {
+    auto writeTiled = [&](const std::string& path, int width, int height, int tileWidth, int tileHeight) {
+        Imf::Header header(width, height);
+        header.channels().insert("Y", Imf::Channel(Imf::FLOAT));
+        header.setTileDescription(Imf::TileDescription(unsigned(tileWidth), unsigned(tileHeight), Imf::ONE_LEVEL));
+        std::vector<float> values(std::size_t(width) * std::size_t(height));
+        for (std::size_t i = 0; i < values.size(); ++i) values[i] = float(i);
+        Imf::TiledOutputFile out(path.c_str(), header);
+        Imf::FrameBuffer frameBuffer;
+        frameBuffer.insert("Y", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(values.data()), sizeof(float),
+                                           sizeof(float) * std::size_t(width)));
+        out.setFrameBuffer(frameBuffer);
+        out.writeTiles(0, out.numXTiles() - 1, 0, out.numYTiles() - 1);
+    };
+    // 517 rows: the last band a partial row of tiles; then one tile taller than the image.
+    for (const auto& [tileWidth, tileHeight] : {std::pair{64, 64}, std::pair{300, 700}}) {
+        const std::string path = file("tiled.exr");
+        writeTiled(path, 300, 517, tileWidth, tileHeight);
+        const Image image = obscura::readExr(path);
+        ASSERT_EQ(image.width, 300);
+        ASSERT_EQ(image.height, 517);
+        ASSERT_EQ(image.channels, 1);
+        for (std::size_t i = 0; i < image.pixels.size(); ++i)
+            ASSERT_EQ(image.pixels[i], float(i)) << "tiles " << tileWidth << "x" << tileHeight << ", value " << i;
+    }
+    // An 8x8 image in one 8192x16384 tile: decoded as far as the image reaches, so it is read.
+    writeTiled(file("big-tile.exr"), 8, 8, 8192, 16384);
+    EXPECT_EQ(obscura::readExr(file("big-tile.exr")).pixels.back(), 63.0f);
+
+    // A header whose tile rows are 2^30 values (the file as OpenEXR leaves it when no tile is written): refused
+    // from the header alone.
+    const std::string wide = file("wide-tiles.exr");
+    {
+        Imf::Header header(32768, 8);
+        for (int c = 0; c < 4096; ++c) {
+            char name[8];
+            std::snprintf(name, sizeof name, "c%04d", c);
+            header.channels().insert(name, Imf::Channel(Imf::HALF));
+        }
+        header.setTileDescription(Imf::TileDescription(64, 64, Imf::ONE_LEVEL));
+        Imf::TiledOutputFile out(wide.c_str(), header);
+    }
+    EXPECT_LT(fs::file_size(wide), 1000000u);
+    expectMessage(thrownMessage([&] { obscura::readExr(wide); }), wide,
+                  "tiles of 64x64 pixels with 4096 channels in a data window of 32768x8 take 1073741824 values at a "
+                  "time, more than 67108864");
 }
 
 // OpenEXR 3.1 decodes a chunk without data as zeros; a depth or environment map emptied that way must not
