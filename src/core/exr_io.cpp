@@ -12,13 +12,16 @@
 #include <OpenEXR/ImfVersion.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cassert>
 #include <cstdint>
 #include <exception>
 #include <filesystem>
 #include <new>
 #include <set>
+#include <string>
 #include <system_error>
+#include <vector>
 
 namespace obscura {
 
@@ -175,6 +178,34 @@ private:
     std::vector<char> buffer_;
 };
 
+// A component's place in its layer: R G B A, then X Y Z, then the rest (by name).
+int componentRank(const std::string& name) {
+    const std::size_t dot = name.rfind('.');
+    const std::string component = dot == std::string::npos ? name : name.substr(dot + 1);
+    static const char* const kOrder[] = {"R", "G", "B", "A", "X", "Y", "Z"};
+    for (int i = 0; i < 7; ++i)
+        if (component.size() == 1 && std::toupper(static_cast<unsigned char>(component[0])) == kOrder[i][0]) return i;
+    return 7;
+}
+
+std::string layerOf(const std::string& name) {
+    const std::size_t dot = name.rfind('.');
+    return dot == std::string::npos ? std::string() : name.substr(0, dot);
+}
+
+// OpenEXR keeps a file's channels sorted by name, whatever order they were written in, so R, G, B come back as
+// B, G, R: an environment map lit the scene in swapped colours, and normals named R, G, B swapped x and z. So
+// the layers (a name up to its last '.') keep their name order, the base layer first, and within a layer the
+// components take their usual order, as OpenEXR's own RGBA interface reads them: R G B A, then X Y Z, then the
+// rest by name. What writeExr wrote in that order (every file Obscura writes) reads back in it.
+void sortChannelsConventionally(std::vector<std::string>& names) {
+    std::stable_sort(names.begin(), names.end(), [](const std::string& a, const std::string& b) {
+        const std::string layerA = layerOf(a), layerB = layerOf(b);
+        if (layerA != layerB) return layerA < layerB;
+        return componentRank(a) < componentRank(b);
+    });
+}
+
 std::vector<std::string> exrChannelNames(const std::string& path, const Image& image) {
     if (image.channelNames.size() == std::size_t(image.channels)) {
         std::set<std::string> seen;
@@ -213,6 +244,7 @@ Image readExr(const std::string& path) {
             names.emplace_back(it.name());
         }
         if (names.empty()) fail(path, "has no channels");
+        sortChannelsConventionally(names);
         checkDataWindow(path, header);
         ChunkCheck chunks(path, header, width);
 

@@ -20,6 +20,7 @@
 #include <fstream>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace fs = std::filesystem;
 
@@ -49,6 +50,22 @@ TEST_F(AlchemyCli, RenderAndAoAgreeBitForBit) {
         for (float v : a.pixels) mean += double(v);
         EXPECT_LT(mean / double(a.pixels.size()), 0.99);  // the room has occlusion
     }
+}
+
+// Normals from another tool are often stored under R, G, B, which an EXR keeps as B, G, R: read in that order,
+// x and z swapped and the AO changed. Under either names the AO is the render's own.
+TEST_F(AlchemyCli, NormalsNamedRgbAreReadAsXyz) {
+    Result r = run("render demo --size 64x36 -q --ao alchemy --ao-samples 16 --blur none -o " + path("f.png") +
+                   " --aov-dir " + path("aov"));
+    ASSERT_EQ(r.code, 0) << r.out;
+    obscura::Image normal = obscura::readExr(path("aov/normal.exr"));
+    ASSERT_EQ(normal.channelNames, (std::vector<std::string>{"X", "Y", "Z"}));
+    normal.channelNames = {"R", "G", "B"};
+    obscura::writeExr(path("rgb-normal.exr"), normal);
+    r = run("ao --depth " + path("aov/depth.exr") + " --normal " + path("rgb-normal.exr") + " --camera " +
+            path("aov/camera.json") + " --ao-samples 16 --blur none -o " + path("ao.exr"));
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_EQ(obscura::readExr(path("ao.exr")).pixels, obscura::readExr(path("aov/ao.exr")).pixels);
 }
 
 // --blur-normal-weight: auto is off for the separable blur and on for the 2-D one, so "on" changes the

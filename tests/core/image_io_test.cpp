@@ -229,8 +229,8 @@ TEST_F(ImageIoTest, ExrRoundTripThreeChannelsIsExactAndKeepsNames) {
     obscura::writeExr(path, image);
 
     const Image back = obscura::readExr(path);
-    // The file's order is OpenEXR's: alphabetical, whatever order they were written in.
-    EXPECT_EQ(back.channelNames, (std::vector<std::string>{"B", "G", "R"}));
+    // The file keeps them alphabetically (B, G, R); they come back in their usual order.
+    EXPECT_EQ(back.channelNames, (std::vector<std::string>{"R", "G", "B"}));
     expectSameByName(image, back);
 }
 
@@ -269,7 +269,33 @@ TEST_F(ImageIoTest, ExrDefaultChannelNames) {
     Image rgba(2, 2, 4, 0.5f);
     rgba.channelNames = {"only", "two"}; // not one per channel, so the defaults apply
     obscura::writeExr(file("rgba.exr"), rgba);
-    EXPECT_EQ(obscura::readExr(file("rgba.exr")).channelNames, (std::vector<std::string>{"A", "B", "G", "R"}));
+    EXPECT_EQ(obscura::readExr(file("rgba.exr")).channelNames, (std::vector<std::string>{"R", "G", "B", "A"}));
+}
+
+// The file keeps its channels alphabetically; they are read layer by layer in their usual order, so that the
+// first three of an RGB file are R, G, B (an environment map) and of an XYZ one X, Y, Z (a normal buffer).
+TEST_F(ImageIoTest, ExrChannelsComeBackInTheirUsualOrder) {
+    const std::vector<std::pair<std::vector<std::string>, std::vector<std::string>>> cases = {
+        // written as, read as
+        {{"B", "G", "R"}, {"R", "G", "B"}},
+        {{"Z", "A", "b", "g", "r"}, {"r", "g", "b", "A", "Z"}},
+        {{"Z", "Y", "X"}, {"X", "Y", "Z"}},
+        // The combined G-buffer: the base layer, then N, then albedo, each in component order.
+        {{"albedo.B", "N.Z", "Z", "albedo.R", "N.X", "albedo.G", "N.Y"},
+         {"Z", "N.X", "N.Y", "N.Z", "albedo.R", "albedo.G", "albedo.B"}},
+        // Components without a usual order follow, by name; a layer's own name may hold dots.
+        {{"view.diffuse.G", "id", "view.diffuse.R", "mask", "Y"}, {"Y", "id", "mask", "view.diffuse.R", "view.diffuse.G"}},
+        {{"V", "U"}, {"U", "V"}},
+    };
+    for (const auto& [written, read] : cases) {
+        Image image(3, 2, int(written.size()));
+        image.channelNames = written;
+        for (std::size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] = float(i);
+        obscura::writeExr(file("order.exr"), image);
+        const Image back = obscura::readExr(file("order.exr"));
+        EXPECT_EQ(back.channelNames, read);
+        expectSameByName(image, back);
+    }
 }
 
 TEST_F(ImageIoTest, ExrIsWrittenAsZipCompressedFloat) {
@@ -309,15 +335,15 @@ TEST_F(ImageIoTest, ExrReadsHalfAndUintChannelsAndHonoursDataWindow) {
     const Image image = obscura::readExr(path);
     ASSERT_EQ(image.width, width);
     ASSERT_EQ(image.height, height);
-    ASSERT_EQ(image.channelNames, (std::vector<std::string>{"G", "R", "id"}));
+    ASSERT_EQ(image.channelNames, (std::vector<std::string>{"R", "G", "id"}));
     for (int y = 0; y < height; ++y) {
         for (int x = 0; x < width; ++x) {
-            EXPECT_EQ(image.at(x, y, 0), gValues[y][x]) << x << "," << y;
-            EXPECT_EQ(image.at(x, y, 1), rValues[y][x]) << x << "," << y;
+            EXPECT_EQ(image.at(x, y, 1), gValues[y][x]) << x << "," << y;
+            EXPECT_EQ(image.at(x, y, 0), rValues[y][x]) << x << "," << y;
             EXPECT_EQ(image.at(x, y, 2), float(idValues[y][x])) << x << "," << y;
         }
     }
-    EXPECT_TRUE(std::signbit(image.at(2, 0, 1))); // -0 survives
+    EXPECT_TRUE(std::signbit(image.at(2, 0, 0))); // -0 survives
 }
 
 // A header-only file claiming a data window of 8388608x256 (2^31 floats, 8 GiB) once had a whole band sized

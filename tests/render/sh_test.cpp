@@ -1,11 +1,15 @@
 // Tests for the equirect mapping, SH projection and irradiance (Ramamoorthi and Hanrahan 2001) and the
 // procedural sky, against closed forms derived in the comments.
 #include "obscura/error.h"
+#include "obscura/image_io.h"
 #include "obscura/render.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <string>
+#include <unistd.h>
 #include <vector>
 
 namespace obscura::render {
@@ -207,6 +211,21 @@ TEST(ShProjection, RejectsFewChannelsAndNonFiniteValues) {
     Image rgba(8, 4, 4, 1.0f);
     rgba.at(0, 0, 3) = std::nanf("");
     EXPECT_NO_THROW(projectEnvironment(rgba));
+}
+
+// An EXR keeps its channels as B, G, R; a red sky read from one once lit the scene blue.
+TEST(ShProjection, RedExrEnvironmentLightsRed) {
+    const std::string path =
+        (std::filesystem::temp_directory_path() / ("obscura_red_sky_" + std::to_string(getpid()) + ".exr")).string();
+    Image red = constantImage(16, 8, Vec3{1.0f, 0.0f, 0.0f});
+    red.channelNames = {"R", "G", "B"};
+    writeExr(path, red);
+    const SH9 sh = projectEnvironment(readImage(path));
+    std::filesystem::remove(path);
+    // A constant radiance L projects to L * sqrt(4 pi) on the first coefficient.
+    EXPECT_NEAR(sh.coefficients[0][0], std::sqrt(4.0f * kPi), 1e-4f);
+    EXPECT_EQ(sh.coefficients[0][1], 0.0f);
+    EXPECT_EQ(sh.coefficients[0][2], 0.0f);
 }
 
 // Negative lobes: a single bright texel rings to negative values opposite; the result is clamped to 0.
