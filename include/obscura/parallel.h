@@ -29,4 +29,8 @@ private:
 
 int hardwareThreads();
 
+// The threads parallelFor may use now: the innermost live ThreadLimit's, else hardwareThreads(). Libraries with
+// thread pools of their own (OpenEXR's) are sized by it, so --threads bounds them too.
+int allowedThreads();
+
 } // namespace obscura

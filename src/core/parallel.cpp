@@ -31,4 +31,8 @@ ThreadLimit::~ThreadLimit() { delete static_cast<tbb::global_control*>(control_)
 
 int hardwareThreads() { return tbb::info::default_concurrency(); }
 
+int allowedThreads() {
+    return int(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
+}
+
 } // namespace obscura

@@ -1,6 +1,7 @@
 // Tests for image_io.h: EXR/PNG/HDR round trips, files written by other writers, errors and atomic writes.
 #include "obscura/error.h"
 #include "obscura/image_io.h"
+#include "obscura/parallel.h"
 
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
@@ -259,6 +260,23 @@ TEST_F(ImageIoTest, ExrRoundTripTallImageAcrossReadBands) {
     const std::string path = file("tall.exr");
     obscura::writeExr(path, image);
     expectSameByName(image, obscura::readExr(path));
+}
+
+// OpenEXR's thread pool follows ThreadLimit: one thread and two write the same bytes and read the same values.
+TEST_F(ImageIoTest, ExrFilesAreTheSameWhateverTheThreads) {
+    Image image(301, 517, 3);  // 33 ZIP chunks of 16 lines, the last short; 3 bands of 256 lines
+    image.channelNames = {"R", "G", "B"};
+    for (std::size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] = std::sin(float(i) * 0.01f) * float(i % 97);
+    std::string bytes[2];
+    for (int threads : {1, 2}) {
+        const obscura::ThreadLimit limit(threads);
+        EXPECT_EQ(obscura::allowedThreads(), threads);
+        const std::string path = file("threads" + std::to_string(threads) + ".exr");
+        obscura::writeExr(path, image);
+        bytes[threads - 1] = readBytes(path);
+        EXPECT_EQ(obscura::readExr(path).pixels, image.pixels) << threads << " threads";
+    }
+    EXPECT_EQ(bytes[0], bytes[1]);
 }
 
 TEST_F(ImageIoTest, ExrDefaultChannelNames) {
