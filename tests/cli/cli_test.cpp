@@ -51,6 +51,11 @@ TEST_F(Cli, CorruptEnvironmentImages) {
     write("sky.hdr", std::string("#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 4 +X 4\n\x02\x02"));
     expectFailure("render plane --env " + path("sky.hdr") + kFast + "-o " + path("f.png"), {"sky.hdr"});
     expectFailure("render plane --env " + path("missing.hdr") + kFast + "-o " + path("f.png"), {"missing.hdr"});
+    // A PNG is display values, not radiance; it was read as radiance before.
+    ASSERT_EQ(run("render plane --size 32x18 -q -o " + path("sky.png")).code, 0);
+    expectFailure("render plane --env " + path("sky.png") + kFast + "-o " + path("f.png"),
+                  {"--env", "sky.png", "linear radiance in a .hdr or .exr file, not an 8-bit .png"});
+    EXPECT_FALSE(fs::exists(path("f.png")));
 }
 
 TEST_F(Cli, ZeroImageSize) {
