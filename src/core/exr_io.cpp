@@ -11,6 +11,7 @@
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfStdIO.h>
 #include <OpenEXR/ImfThreading.h>
+#include <OpenEXR/ImfTiledInputFile.h>
 #include <OpenEXR/ImfVersion.h>
 
 #include <algorithm>
@@ -154,8 +155,7 @@ void checkDataWindowBeforeOpening(const std::string& path) {
 
 // OpenEXR 3.1 decodes a chunk with no data as zeros, so a file whose chunks were emptied reads as a black
 // image (or a depth of 0) without a word. No writer stores an empty chunk, nor an uncompressed one of any
-// size but its pixels', so those are refused before the band is decoded. Tiled files have no such check (their
-// tiles' size is bounded by checkDataWindow, not their contents).
+// size but its pixels', so those are refused before the band is decoded. Tiled files: checkTiles.
 class ChunkCheck {
 public:
     ChunkCheck(const std::string& path, const Imf::Header& header, std::int64_t width)
@@ -193,6 +193,39 @@ private:
     std::size_t rowBytes_ = 0;
     std::vector<char> buffer_;
 };
+
+// An emptied tile is worse than an emptied scanline chunk: OpenEXR 3.1 leaves its pixels as whatever its buffer
+// held (an 8x8 file read 1.0327e+35 where a tile had been emptied). So every tile of the full-resolution level is
+// held to the scanline chunks' rule before any is decoded: some bytes, and exactly its pixels' if uncompressed.
+// rawTileData reads the tiles in file order without decompressing them, on a second handle of the file; a tile
+// it cannot read at all is left to readPixels, which says so in OpenEXR's words.
+void checkTiles(const std::string& path, const Imf::Header& header) {
+    std::size_t pixelBytes = 0;
+    for (auto it = header.channels().begin(); it != header.channels().end(); ++it)
+        pixelBytes += it.channel().type == Imf::HALF ? 2u : 4u;
+    const bool uncompressed = header.compression() == Imf::NO_COMPRESSION;
+    Imf::TiledInputFile tiles(path.c_str(), 0);
+    std::int64_t count = 0;
+    for (int lx = 0; lx < tiles.numXLevels(); ++lx)
+        for (int ly = 0; ly < tiles.numYLevels(); ++ly)
+            if (tiles.isValidLevel(lx, ly)) count += std::int64_t(tiles.numXTiles(lx)) * tiles.numYTiles(ly);
+    for (std::int64_t t = 0; t < count; ++t) {
+        int dx = 0, dy = 0, lx = 0, ly = 0, size = 0;
+        const char* data = nullptr;
+        try {
+            tiles.rawTileData(dx, dy, lx, ly, data, size);
+        } catch (const std::exception&) {
+            return;
+        }
+        if (lx != 0 || ly != 0) continue;  // the reduced levels are not read
+        const Imath::Box2i box = tiles.dataWindowForTile(dx, dy, 0, 0);
+        const std::size_t expected = std::size_t(box.max.x - box.min.x + 1) * std::size_t(box.max.y - box.min.y + 1) * pixelBytes;
+        if (size <= 0 || (uncompressed && std::size_t(size) != expected))
+            fail(path, "tile (" + std::to_string(dx) + ", " + std::to_string(dy) + ") holds " + std::to_string(size) +
+                           " bytes of pixel data, expected " +
+                           (uncompressed ? std::to_string(expected) : std::string("at least 1")));
+    }
+}
 
 // A component's place in its layer: R G B A, then X Y Z, then the rest (by name).
 int componentRank(const std::string& name) {
@@ -263,6 +296,7 @@ Image readExr(const std::string& path) {
         sortChannelsConventionally(names);
         checkDataWindow(path, header);
         ChunkCheck chunks(path, header, width);
+        if (header.hasTileDescription()) checkTiles(path, header);
 
         // Decoding a band at a time means memory grows only with data that actually decodes: a corrupt
         // header claiming a huge window fails on its first band instead of zero-filling gigabytes.

@@ -420,19 +420,30 @@ TEST_F(ImageIoTest, ExrChunkOfTooManyValuesIsRefusedBeforeAllocating) {
 
 // Obscura writes scanline files, but other tools write tiles, and a tiled file is read a row of tiles at a time:
 // the bands follow the tiles' height, and a tile's size is bounded like a chunk's.
+// A tiled file of `width` x `height` single-channel pixels holding 0, 1, 2, ... in row order, as other tools
+// write them (Obscura writes scanlines). With MIPMAP_LEVELS the reduced levels hold copies of the first pixels.
+void writeTiledExr(const std::string& path, int width, int height, int tileWidth, int tileHeight,
+                   Imf::Compression compression = Imf::ZIP_COMPRESSION, Imf::LevelMode levels = Imf::ONE_LEVEL) {
+    Imf::Header header(width, height);
+    header.compression() = compression;
+    header.channels().insert("Y", Imf::Channel(Imf::FLOAT));
+    header.setTileDescription(Imf::TileDescription(unsigned(tileWidth), unsigned(tileHeight), levels));
+    std::vector<float> values(std::size_t(width) * std::size_t(height));
+    for (std::size_t i = 0; i < values.size(); ++i) values[i] = float(i);
+    Imf::TiledOutputFile out(path.c_str(), header);
+    Imf::FrameBuffer frameBuffer;
+    frameBuffer.insert("Y", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(values.data()), sizeof(float),
+                                       sizeof(float) * std::size_t(width)));
+    out.setFrameBuffer(frameBuffer);
+    for (int level = 0; level < out.numLevels(); ++level)
+        out.writeTiles(0, out.numXTiles(level) - 1, 0, out.numYTiles(level) - 1, level);
+}
+
+// Obscura writes scanline files, but other tools write tiles, and a tiled file is read a row of tiles at a time:
+// the bands follow the tiles' height, and a tile's size is bounded like a chunk's.
 TEST_F(ImageIoTest, ExrTiledFilesAreReadAndTheirTileSizeBounded) {
-    auto writeTiled = [&](const std::string& path, int width, int height, int tileWidth, int tileHeight) {
-        Imf::Header header(width, height);
-        header.channels().insert("Y", Imf::Channel(Imf::FLOAT));
-        header.setTileDescription(Imf::TileDescription(unsigned(tileWidth), unsigned(tileHeight), Imf::ONE_LEVEL));
-        std::vector<float> values(std::size_t(width) * std::size_t(height));
-        for (std::size_t i = 0; i < values.size(); ++i) values[i] = float(i);
-        Imf::TiledOutputFile out(path.c_str(), header);
-        Imf::FrameBuffer frameBuffer;
-        frameBuffer.insert("Y", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(values.data()), sizeof(float),
-                                           sizeof(float) * std::size_t(width)));
-        out.setFrameBuffer(frameBuffer);
-        out.writeTiles(0, out.numXTiles() - 1, 0, out.numYTiles() - 1);
+    auto writeTiled = [](const std::string& path, int width, int height, int tileWidth, int tileHeight) {
+        writeTiledExr(path, width, height, tileWidth, tileHeight);
     };
     // 517 rows: the last band a partial row of tiles; then one tile taller than the image.
     for (const auto& [tileWidth, tileHeight] : {std::pair{64, 64}, std::pair{300, 700}}) {
@@ -466,6 +477,44 @@ TEST_F(ImageIoTest, ExrTiledFilesAreReadAndTheirTileSizeBounded) {
     expectMessage(thrownMessage([&] { obscura::readExr(wide); }), wide,
                   "tiles of 64x64 pixels with 4096 channels in a data window of 32768x8 take 1073741824 values at a "
                   "time, more than 67108864");
+}
+
+// An emptied tile read as whatever OpenEXR's buffer held (1.0327e+35 where 4 was written): each tile is held to
+// the scanline chunks' rule. A mipmapped file's reduced levels are skipped, and its full level read.
+TEST_F(ImageIoTest, ExrTileWithoutItsPixelDataIsAnError) {
+    writeTiledExr(file("mip.exr"), 8, 8, 4, 4, Imf::ZIP_COMPRESSION, Imf::MIPMAP_LEVELS);
+    const Image mip = obscura::readExr(file("mip.exr"));
+    ASSERT_EQ(mip.pixels.size(), 64u);
+    for (std::size_t i = 0; i < 64; ++i) ASSERT_EQ(mip.pixels[i], float(i));
+
+    for (const auto& [compression, expected] : {std::pair{Imf::NO_COMPRESSION, std::string("expected 64")},
+                                                std::pair{Imf::ZIP_COMPRESSION, std::string("expected at least 1")}}) {
+        writeTiledExr(file("tiles.exr"), 8, 8, 4, 4, compression);
+        std::string bytes = readBytes(file("tiles.exr"));
+        ASSERT_EQ(obscura::readExr(file("tiles.exr")).pixels.back(), 63.0f);
+        // Tile (1, 0) of level (0, 0): its chunk opens with those four numbers, then its data's size.
+        std::string opening;
+        for (std::int32_t v : {1, 0, 0, 0}) appendRaw(opening, v);
+        const std::size_t at = bytes.find(opening);
+        ASSERT_NE(at, std::string::npos);
+        const std::int32_t zero = 0;
+        std::memcpy(bytes.data() + at + opening.size(), &zero, sizeof zero);
+        writeBytes(file("emptied.exr"), bytes);
+        expectMessage(thrownMessage([&] { obscura::readExr(file("emptied.exr")); }), file("emptied.exr"),
+                      "tile (1, 0) holds 0 bytes of pixel data, " + expected);
+    }
+    // An uncompressed tile cut short.
+    writeTiledExr(file("tiles.exr"), 8, 8, 4, 4, Imf::NO_COMPRESSION);
+    std::string bytes = readBytes(file("tiles.exr"));
+    std::string opening;
+    for (std::int32_t v : {1, 1, 0, 0, 64}) appendRaw(opening, v);
+    const std::size_t at = bytes.find(opening);
+    ASSERT_NE(at, std::string::npos);
+    const std::int32_t half = 32;
+    std::memcpy(bytes.data() + at + 16, &half, sizeof half);
+    writeBytes(file("short.exr"), bytes);
+    expectMessage(thrownMessage([&] { obscura::readExr(file("short.exr")); }), file("short.exr"),
+                  "tile (1, 1) holds 32 bytes of pixel data, expected 64");
 }
 
 // OpenEXR 3.1 decodes a chunk without data as zeros; a depth or environment map emptied that way must not
