@@ -146,6 +146,15 @@ TEST_F(AlchemyCli, AoRejectsBadBuffers) {
     expectFailure("ao --depth " + path("nan.exr") + cam + " -o " + path("ao.exr"), {"nan.exr", "(5, 7)"});
     expectFailure("ao --depth " + path("missing.exr") + cam + " -o " + path("ao.exr"), {"missing.exr"});
     expectFailure("ao --depth " + path("g/normal.exr") + cam + " -o " + path("ao.exr"), {"normal.exr", "1 channel"});
+    // A one-channel PNG read as depth once passed: its codes / 255 are no meters (and a 16-bit one lost 8 bits).
+    // Radiance HDR holds no negative value, which normals need.
+    obscura::Image grey(24, 16, 1, 0.5f);
+    obscura::writePng(path("depth.png"), grey);
+    expectFailure("ao --depth " + path("depth.png") + cam + " -o " + path("ao.exr"),
+                  {"--depth", "depth.png", "read from a float .exr file, not a .png file"});
+    EXPECT_FALSE(fs::exists(path("ao.exr")));
+    expectFailure("ao --depth " + path("g/depth.exr") + " --normal " + path("n.hdr") + cam + " -o " + path("ao.exr"),
+                  {"--normal", "n.hdr", "unit normals are read from a float .exr file, not a .hdr file"});
     ASSERT_EQ(run("gbuffer corner --size 20x16 -q -o " + path("small")).code, 0);
     expectFailure("ao --depth " + path("small/depth.exr") + cam + " -o " + path("ao.exr"), {"depth.exr", "20x16", "24x16"});
     expectFailure("ao --depth " + path("g/depth.exr") + " --normal " + path("small/normal.exr") + cam + " -o " +
