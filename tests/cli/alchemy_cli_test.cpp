@@ -53,7 +53,7 @@ TEST_F(AlchemyCli, RenderAndAoAgreeBitForBit) {
 }
 
 // Normals from another tool are often stored under R, G, B, which an EXR keeps as B, G, R: read in that order,
-// x and z swapped and the AO changed. Under either names the AO is the render's own.
+// x and z swapped and the AO changed. Under either names, and as RGBA, the AO is the render's own.
 TEST_F(AlchemyCli, NormalsNamedRgbAreReadAsXyz) {
     Result r = run("render demo --size 64x36 -q --ao alchemy --ao-samples 16 --blur none -o " + path("f.png") +
                    " --aov-dir " + path("aov"));
@@ -66,6 +66,23 @@ TEST_F(AlchemyCli, NormalsNamedRgbAreReadAsXyz) {
             path("aov/camera.json") + " --ao-samples 16 --blur none -o " + path("ao.exr"));
     ASSERT_EQ(r.code, 0) << r.out;
     EXPECT_EQ(obscura::readExr(path("ao.exr")).pixels, obscura::readExr(path("aov/ao.exr")).pixels);
+
+    // As an engine dumps them: R, G, B and an alpha, which is left out.
+    obscura::Image rgba(normal.width, normal.height, 4, 1.0f);
+    rgba.channelNames = {"R", "G", "B", "A"};
+    for (std::size_t i = 0; i < normal.pixelCount(); ++i)
+        for (std::size_t c = 0; c < 3; ++c) rgba.pixels[4 * i + c] = normal.pixels[3 * i + c];
+    obscura::writeExr(path("rgba-normal.exr"), rgba);
+    r = run("ao --depth " + path("aov/depth.exr") + " --normal " + path("rgba-normal.exr") + " --camera " +
+            path("aov/camera.json") + " --ao-samples 16 --blur none -o " + path("ao.exr"));
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_EQ(obscura::readExr(path("ao.exr")).pixels, obscura::readExr(path("aov/ao.exr")).pixels);
+    // Four channels of which the last is no alpha are still refused.
+    rgba.channelNames = {"R", "G", "B", "W"};
+    obscura::writeExr(path("rgbw-normal.exr"), rgba);
+    expectFailure("ao --depth " + path("aov/depth.exr") + " --normal " + path("rgbw-normal.exr") + " --camera " +
+                      path("aov/camera.json") + " -o " + path("x.exr"),
+                  {"rgbw-normal.exr", "normal needs 3 channels, has 4"});
 }
 
 // --blur-normal-weight: auto is off for the separable blur and on for the 2-D one, so "on" changes the

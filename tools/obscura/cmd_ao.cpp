@@ -38,13 +38,17 @@ struct AoOptions {
     std::vector<const CLI::Option*> alchemyOnlyFlags;
 };
 
-// The whole image when it has exactly names.size() channels, or the channels `names` of a combined
-// G-buffer EXR (the one `obscura gbuffer -o g.exr` writes: Z, N.X, N.Y, N.Z, albedo.*); otherwise fails
-// naming the file.
+// The whole image when it has exactly names.size() channels (three and an alpha for three), or the channels
+// `names` of a combined G-buffer EXR (the one `obscura gbuffer -o g.exr` writes: Z, N.X, N.Y, N.Z, albedo.*);
+// otherwise fails naming the file.
 Image channels(const Image& img, const std::vector<std::string>& names, const std::string& path, const char* what) {
     const int n = int(names.size());
     std::vector<int> index;
-    if (img.channels == n) {
+    // Engines dump their normal buffers as RGBA: the alpha after R, G, B (as readExr orders them, whatever the
+    // file's own order) is left out.
+    const bool alphaAfter = img.channels == n + 1 && int(img.channelNames.size()) == img.channels &&
+                            (img.channelNames.back() == "A" || img.channelNames.back() == "a");
+    if (img.channels == n || (n == 3 && alphaAfter)) {
         for (int c = 0; c < n; ++c) index.push_back(c);
     } else {
         const auto& cn = img.channelNames;
@@ -188,7 +192,8 @@ void addAoCommand(CLI::App& app) {
                     "Linear view depth EXR: 1 channel, or a channel named Z; meters along -Z, +inf for sky")
         ->required();
     cmd->add_option("--normal", o->normal,
-                    "View-space unit normal EXR: 3 channels, or N.X N.Y N.Z; default: rebuilt from depth");
+                    "View-space unit normal EXR: 3 channels (R G B A: the alpha is left out), or N.X N.Y N.Z; default: "
+                    "rebuilt from depth");
     cmd->add_option("--camera", o->camera, "Camera JSON of the buffers (as `obscura gbuffer` writes it)")->required();
     cmd->add_option("-o,--output", o->output, "Output AO EXR (1 channel Y, 1 = unoccluded)")->required();
     cmd->add_option("--method", o->method, "AO method: " + eval::aoMethodNames() + " (see `obscura compare --help`)")->capture_default_str();
