@@ -168,10 +168,10 @@ TEST_F(AlchemyCli, AoRejectsBadBuffers) {
     obscura::Image grey(24, 16, 1, 0.5f);
     obscura::writePng(path("depth.png"), grey);
     expectFailure("ao --depth " + path("depth.png") + cam + " -o " + path("ao.exr"),
-                  {"--depth", "depth.png", "read from a float .exr file, not a .png file"});
+                  {"--depth: ", "depth.png: linear depth in meters is read from .exr files, not .png"});
     EXPECT_FALSE(fs::exists(path("ao.exr")));
     expectFailure("ao --depth " + path("g/depth.exr") + " --normal " + path("n.hdr") + cam + " -o " + path("ao.exr"),
-                  {"--normal", "n.hdr", "unit normals are read from a float .exr file, not a .hdr file"});
+                  {"--normal: ", "n.hdr: a unit normal buffer is read from .exr files, not .hdr"});
     ASSERT_EQ(run("gbuffer corner --size 20x16 -q -o " + path("small")).code, 0);
     expectFailure("ao --depth " + path("small/depth.exr") + cam + " -o " + path("ao.exr"), {"depth.exr", "20x16", "24x16"});
     expectFailure("ao --depth " + path("g/depth.exr") + " --normal " + path("small/normal.exr") + cam + " -o " +

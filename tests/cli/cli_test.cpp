@@ -54,7 +54,7 @@ TEST_F(Cli, CorruptEnvironmentImages) {
     // A PNG is display values, not radiance; it was read as radiance before.
     ASSERT_EQ(run("render plane --size 32x18 -q -o " + path("sky.png")).code, 0);
     expectFailure("render plane --env " + path("sky.png") + kFast + "-o " + path("f.png"),
-                  {"--env", "sky.png", "linear radiance in a .hdr or .exr file, not an 8-bit .png"});
+                  {"--env: ", "sky.png: an environment's linear radiance is read from .hdr or .exr files, not .png"});
     EXPECT_FALSE(fs::exists(path("f.png")));
 }
 

@@ -141,17 +141,28 @@ void warnIgnored(const std::vector<const CLI::Option*>& options, const std::stri
             std::fprintf(stderr, "obscura: warning: %s: %s; ignored\n", option->get_name().c_str(), why.c_str());
 }
 
+namespace {
+
+// The extensions as a list for a message ("a, b, c", or with `last` before the last: "a or b"), and whether
+// path has one of them.
+std::string extensionList(const std::vector<std::string>& extensions, const std::string& last = ", ") {
+    std::string list;
+    for (std::size_t i = 0; i < extensions.size(); ++i)
+        list += (i == 0 ? "" : i + 1 == extensions.size() ? last : ", ") + extensions[i];
+    return list;
+}
+
+bool hasExtension(const std::string& path, const std::vector<std::string>& extensions) {
+    return std::find(extensions.begin(), extensions.end(), fileExtension(path)) != extensions.end();
+}
+
+} // namespace
+
 void checkOutputPath(const std::string& flag, const std::string& path, const std::vector<std::string>& extensions,
                      const std::vector<std::string>& inputs) {
     if (path.empty()) fail(flag, "output path is empty");
-    std::string ext = fileExtension(path);
-    bool ok = false;
-    std::string list;
-    for (const auto& e : extensions) {
-        ok = ok || ext == e;
-        list += (list.empty() ? "" : ", ") + e;
-    }
-    if (!ok) fail(path, "unsupported output format '" + ext + "' (expected " + list + ")");
+    if (!hasExtension(path, extensions))
+        fail(path, "unsupported output format '" + fileExtension(path) + "' (expected " + extensionList(extensions) + ")");
     fs::path parent = fs::path(path).parent_path();
     if (!parent.empty() && !fs::is_directory(parent)) fail(path, "directory " + parent.string() + " does not exist");
     std::error_code ec;
@@ -159,6 +170,14 @@ void checkOutputPath(const std::string& flag, const std::string& path, const std
     for (const std::string& input : inputs)
         if (!input.empty() && fs::exists(path, ec) && fs::exists(input, ec) && fs::equivalent(path, input, ec))
             fail(path, "is the input file " + input + "; the input is never overwritten, choose another output");
+}
+
+void checkInputFormat(const std::string& flag, const std::string& path, const std::vector<std::string>& extensions,
+                      const std::string& content) {
+    if (path.empty() || hasExtension(path, extensions)) return;
+    const std::string ext = fileExtension(path);
+    fail(flag, path + ": " + content + " is read from " + extensionList(extensions, " or ") + " files, not " +
+                   (ext.empty() ? std::string("a file without an extension") : ext));
 }
 
 void checkOutputDirectory(const std::string& flag, const std::string& dir, bool create) {

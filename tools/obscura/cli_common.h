@@ -64,6 +64,11 @@ void checkOutputPath(const std::string& flag, const std::string& path, const std
                      const std::vector<std::string>& inputs = {});
 void checkOutputDirectory(const std::string& flag, const std::string& dir, bool create);
 
+// Fails early if an input (skipped when empty) is not one of `extensions`, where readImage would read other
+// formats as something they cannot hold: "<flag>: <path>: <content> is read from .hdr or .exr files, not .png".
+void checkInputFormat(const std::string& flag, const std::string& path, const std::vector<std::string>& extensions,
+                      const std::string& content);
+
 // A one-line progress bar on stderr when it is a terminal; silent otherwise. Thread-safe.
 class Progress {
 public:

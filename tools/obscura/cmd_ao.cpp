@@ -113,14 +113,8 @@ void run(const AoOptions& o) {
         fail("--normal", "method " + o.method + " needs a normal buffer");
     // Only an EXR holds what these are: a PNG's 8-bit codes / 255 (a 16-bit depth PNG in millimeters is read as
     // 8 bits) are no depth in meters, and Radiance HDR stores no negative value, which normals have.
-    const auto requireExr = [](const char* flag, const std::string& file, const char* what) {
-        const std::string ext = fileExtension(file);
-        if (!file.empty() && ext != ".exr")
-            fail(flag, file + ": " + what + " are read from a float .exr file, not " +
-                           (ext.empty() ? std::string("a file without extension") : "a " + ext + " file"));
-    };
-    requireExr("--depth", o.depth, "linear depths in meters");
-    requireExr("--normal", o.normal, "unit normals");
+    checkInputFormat("--depth", o.depth, {".exr"}, "linear depth in meters");
+    checkInputFormat("--normal", o.normal, {".exr"}, "a unit normal buffer");
     o.gpu.validate();
     o.gtao.validate();
     validateGtaoMipRatioOverride(o.gtaoMipRatio);

@@ -65,9 +65,7 @@ void run(const RenderOptions& o) {
     // Everything that can be checked before the work is checked first.
     checkOutputPath("-o", o.output, {".png", ".exr"}, {o.env, o.scene});
     // A PNG holds display values (sRGB, clipped at 1), not radiance: read as one it lit scenes dim and flat.
-    if (const std::string ext = fileExtension(o.env); !o.env.empty() && ext != ".hdr" && ext != ".exr")
-        fail("--env", o.env + ": an environment is linear radiance in a .hdr or .exr file" +
-                          (ext == ".png" ? std::string(", not an 8-bit .png") : std::string()));
+    checkInputFormat("--env", o.env, {".hdr", ".exr"}, "an environment's linear radiance");
     const std::string notThis = ", not --ao " + o.ao;
     if (o.ao != "raytraced") warnIgnored(o.raytracedFlags, "applies to --ao raytraced" + notThis);
     if (o.ao != "alchemy") warnIgnored(o.alchemyFlags, "applies to --ao alchemy" + notThis);
