@@ -24,7 +24,9 @@
 #include <new>
 #include <set>
 #include <string>
+#include <string_view>
 #include <system_error>
+#include <utility>
 #include <vector>
 
 namespace obscura {
@@ -90,6 +92,14 @@ int linesPerChunk(Imf::Compression compression) {
     }
 }
 
+// The bytes one pixel of every channel takes in the file, uncompressed.
+std::size_t pixelBytes(const Imf::Header& header) {
+    std::size_t bytes = 0;
+    for (auto it = header.channels().begin(); it != header.channels().end(); ++it)
+        bytes += it.channel().type == Imf::HALF ? 2u : 4u;
+    return bytes;
+}
+
 // Scanlines a band of decoding should hold a multiple of, so that no chunk is decoded twice: the compression's
 // lines per chunk, or a tile's height (a tile row is cached whole, so a taller tile needs no alignment).
 std::int64_t bandAlignment(const Imf::Header& header) {
@@ -116,8 +126,8 @@ void checkDataWindow(const std::string& path, const Imf::Header& header) {
                        std::to_string(kMaxValues) + " values)");
     // A chunk is decoded whole, and a band of decoding holds at least one (bandAlignment's rows), so their size is
     // allocated before any of their data is read: 32768 pixels by 65536 channels is 8 GiB of floats from a header
-    // of 1.5 MB. A tile is decoded as far as it overlaps the data window (a tile taller than the image costs
-    // nothing). Each product is at most 256 times kMaxValues, checked above.
+    // of about 1.4 MB (22 bytes a channel). A tile is decoded as far as it overlaps the data window (a tile taller
+    // than the image costs nothing). Each product is at most 256 times kMaxValues, checked above.
     const bool tiled = header.hasTileDescription();
     std::int64_t atATime = std::min<std::int64_t>(bandAlignment(header), height) * width * channels;
     if (tiled)
@@ -160,13 +170,11 @@ class ChunkCheck {
 public:
     ChunkCheck(const std::string& path, const Imf::Header& header, std::int64_t width)
         : path_(path), compression_(header.compression()), lines_(linesPerChunk(compression_)),
-          maxY_(header.dataWindow().max.y) {
-        for (auto it = header.channels().begin(); it != header.channels().end(); ++it)
-            rowBytes_ += std::size_t(width) * (it.channel().type == Imf::HALF ? 2u : 4u);
+          maxY_(header.dataWindow().max.y), rowBytes_(std::size_t(width) * pixelBytes(header)) {
         if (!header.hasTileDescription()) buffer_.resize(rowBytes_ * std::size_t(lines_));
     }
 
-    // Band rows start on a chunk boundary: kBandRows is a multiple of every chunk height.
+    // Band rows start on a chunk boundary: readExr's bands are whole chunks (bandAlignment).
     void check(Imf::InputFile& file, int firstY, int lastY) {
         if (buffer_.empty()) return;
         for (std::int64_t y = firstY; y <= lastY; y += lines_) {
@@ -190,7 +198,7 @@ private:
     Imf::Compression compression_;
     int lines_;
     std::int64_t maxY_;
-    std::size_t rowBytes_ = 0;
+    std::size_t rowBytes_;
     std::vector<char> buffer_;
 };
 
@@ -200,9 +208,7 @@ private:
 // rawTileData reads the tiles in file order without decompressing them, on a second handle of the file; a tile
 // it cannot read at all is left to readPixels, which says so in OpenEXR's words.
 void checkTiles(const std::string& path, const Imf::Header& header) {
-    std::size_t pixelBytes = 0;
-    for (auto it = header.channels().begin(); it != header.channels().end(); ++it)
-        pixelBytes += it.channel().type == Imf::HALF ? 2u : 4u;
+    const std::size_t bytes = pixelBytes(header);
     const bool uncompressed = header.compression() == Imf::NO_COMPRESSION;
     Imf::TiledInputFile tiles(path.c_str(), 0);
     std::int64_t count = 0;
@@ -219,7 +225,8 @@ void checkTiles(const std::string& path, const Imf::Header& header) {
         }
         if (lx != 0 || ly != 0) continue;  // the reduced levels are not read
         const Imath::Box2i box = tiles.dataWindowForTile(dx, dy, 0, 0);
-        const std::size_t expected = std::size_t(box.max.x - box.min.x + 1) * std::size_t(box.max.y - box.min.y + 1) * pixelBytes;
+        const std::size_t expected =
+            std::size_t(box.max.x - box.min.x + 1) * std::size_t(box.max.y - box.min.y + 1) * bytes;
         if (size <= 0 || (uncompressed && std::size_t(size) != expected))
             fail(path, "tile (" + std::to_string(dx) + ", " + std::to_string(dy) + ") holds " + std::to_string(size) +
                            " bytes of pixel data, expected " +
@@ -227,19 +234,15 @@ void checkTiles(const std::string& path, const Imf::Header& header) {
     }
 }
 
-// A component's place in its layer: R G B A, then X Y Z, then the rest (by name).
-int componentRank(const std::string& name) {
+// A channel's layer (its name up to the last '.') and its component's place in the layer: R G B A, then X Y Z,
+// then the rest (7, left in name order).
+std::pair<std::string, int> layerAndRank(const std::string& name) {
     const std::size_t dot = name.rfind('.');
-    const std::string component = dot == std::string::npos ? name : name.substr(dot + 1);
-    static const char* const kOrder[] = {"R", "G", "B", "A", "X", "Y", "Z"};
-    for (int i = 0; i < 7; ++i)
-        if (component.size() == 1 && std::toupper(static_cast<unsigned char>(component[0])) == kOrder[i][0]) return i;
-    return 7;
-}
-
-std::string layerOf(const std::string& name) {
-    const std::size_t dot = name.rfind('.');
-    return dot == std::string::npos ? std::string() : name.substr(0, dot);
+    const std::size_t start = dot == std::string::npos ? 0 : dot + 1;
+    // A component of one letter has a place; any other (and '\0', which the list lacks) has none.
+    const char letter = name.size() == start + 1 ? char(std::toupper(static_cast<unsigned char>(name[start]))) : '\0';
+    const std::size_t rank = std::string_view("RGBAXYZ").find(letter);
+    return {name.substr(0, start == 0 ? 0 : dot), rank == std::string_view::npos ? 7 : int(rank)};
 }
 
 // OpenEXR keeps a file's channels sorted by name, whatever order they were written in, so R, G, B come back as
@@ -248,11 +251,8 @@ std::string layerOf(const std::string& name) {
 // components take their usual order, as OpenEXR's own RGBA interface reads them: R G B A, then X Y Z, then the
 // rest by name. What writeExr wrote in that order (every file Obscura writes) reads back in it.
 void sortChannelsConventionally(std::vector<std::string>& names) {
-    std::stable_sort(names.begin(), names.end(), [](const std::string& a, const std::string& b) {
-        const std::string layerA = layerOf(a), layerB = layerOf(b);
-        if (layerA != layerB) return layerA < layerB;
-        return componentRank(a) < componentRank(b);
-    });
+    std::stable_sort(names.begin(), names.end(),
+                     [](const std::string& a, const std::string& b) { return layerAndRank(a) < layerAndRank(b); });
 }
 
 std::vector<std::string> exrChannelNames(const std::string& path, const Image& image) {
@@ -308,14 +308,15 @@ Image readExr(const std::string& path) {
         const std::size_t xStride = sizeof(float) * names.size();
         const std::size_t rowValues = std::size_t(width) * names.size();
         // Growing band by band moved the decoded image about twice over (a 3840x2160 RGB read on one thread took
-        // 1.39 s, and 0.84 s with its room reserved; docs/PERFORMANCE.md). Room for all of it is taken up front where the file could plausibly hold
-        // it: deflate packs at most 1032:1, so a header that claims over 4096 times the file's bytes is most
-        // likely forged, and is left to grow band by band and fail on its first missing chunk. Either way the
-        // same pixels are read; only the copies differ.
+        // 1.39 s, and 0.84 s with its room reserved; docs/PERFORMANCE.md). Room for all of it is taken up front
+        // where the file could plausibly hold it: deflate packs at most 1032:1, so a header that claims over 4096
+        // times the file's bytes is most likely forged, and is left to grow band by band and fail on its first
+        // missing chunk. Either way the same pixels are read; only the copies differ.
         std::error_code sizeError;
         const std::uintmax_t fileBytes = std::filesystem::file_size(path, sizeError);
         const double imageBytes = double(rowValues) * double(height) * sizeof(float);
-        if (!sizeError && imageBytes <= double(fileBytes) * 4096.0) image.pixels.reserve(rowValues * std::size_t(height));
+        if (!sizeError && imageBytes <= double(fileBytes) * 4096.0)
+            image.pixels.reserve(rowValues * std::size_t(height));
         // Up to kBandRows, fewer where rows are wide, but whole chunks: a band starts on a chunk boundary.
         const std::int64_t chunk = bandAlignment(header);
         const std::int64_t bandRows =
