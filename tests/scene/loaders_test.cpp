@@ -1,6 +1,7 @@
 // Tests for the glTF, OBJ and PLY loaders and loadScene on the hand-made fixtures in tests/data.
 #include "obscura/error.h"
 #include "obscura/scene_io.h"
+#include "scene/gltf_json_check.h"
 
 #include <gtest/gtest.h>
 
@@ -193,11 +194,13 @@ TEST(LoaderGltf, LyingFilesGiveErrors) {
 
 // The type check leaves the contents of data: URIs out of what it parses by following the JSON's strings: names
 // with escaped quotes, escaped backslashes and "data:" in them load as they are, and the check still reaches
-// the properties after them.
+// the properties after them. The node's name has an escaped quote before "\"data:x\"", so a scan that ends a
+// string at any quote takes that second escaped quote for an opening one, cuts "data:x\" out of the name and
+// leaves JSON that does not parse.
 TEST(LoaderGltf, EscapedQuotesInNamesDoNotConfuseTheTypeCheck) {
     TempDir dir;
     const std::string json =
-        R"({"asset": {"version": "2.0"}, "nodes": [{"mesh": 0, "name": "a \"data:x\" b \\", "translation": [1, 2, 3]}],)"
+        R"({"asset": {"version": "2.0"}, "nodes": [{"mesh": 0, "name": "\" \"data:x\" b \\", "translation": [1, 2, 3]}],)"
         R"( "meshes": [{"name": "\\\"data:", "primitives": [{"attributes": {"POSITION": 0}}]}],)"
         R"( "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"}],)"
         R"( "bufferViews": [{"buffer": 0, "byteLength": 36}], "buffers": [{"byteLength": 36, "uri": )"
@@ -211,6 +214,27 @@ TEST(LoaderGltf, EscapedQuotesInNamesDoNotConfuseTheTypeCheck) {
     const std::string path = dir.write("names_wrong.gltf", wrong);
     EXPECT_NE(loadError(path).find(path + ": nodes[0].translation must be an array of 3 numbers"), std::string::npos)
         << loadError(path);
+}
+
+// What the scan leaves out, exactly. Each case defeats a shortcut: ending a string at any quote (the first),
+// taking a quote after any backslash for an escaped one (the second: "\\" ends the name, so "data:b" that
+// follows is a real URI), and looking for "data: anywhere (the third).
+TEST(LoaderGltf, DataUriContentsAreLeftOutAndNothingElse) {
+    struct Case {
+        std::string in, out;
+    };
+    const Case cases[] = {
+        {R"({"n": "\" \"data:x\" y", "uri": "data:abc"})", R"({"n": "\" \"data:x\" y", "uri": ""})"},
+        {R"({"n": "a \\", "uri": "data:b", "m": "\"data:c\""})", R"({"n": "a \\", "uri": "", "m": "\"data:c\""})"},
+        {R"({"n": "x\"data:y", "images": [{"uri": "data:image/png;base64,iVBO"}, {"uri": "file.png"}]})",
+         R"({"n": "x\"data:y", "images": [{"uri": ""}, {"uri": "file.png"}]})"},
+        {R"({"uri": "data:", "n": "unterminated \"data:z)", R"({"uri": "", "n": "unterminated \"data:z)"},
+        {"", ""},
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.in);
+        EXPECT_EQ(loader::withoutDataUris(c.in), c.out);
+    }
 }
 
 // A .glb's JSON chunk is checked too: quad.glb with its second accessor's byteOffset 12 written as -2.
