@@ -182,6 +182,8 @@ QualityResult compareWithDense(const Scene& scene, const BakeSettings& settings,
     {
         const trace::HitStream stream(tracer);
         const CosineHemisphereSet set(256);
+        // Welding moved vertices by up to its tolerance off the surface traced, as the bake's samples.
+        const float weldDistance = settings.weldTolerance * length(tracer.bounds().size());
         const auto limit = int(std::floor(double(settings.backFaceLimit) * 256));
         parallelFor(mesh.positions.size(), [&](std::size_t b, std::size_t e) {
             std::vector<Vec3> dirs(256);
@@ -201,7 +203,8 @@ QualityResult compareWithDense(const Scene& scene, const BakeSettings& settings,
                     dirs[std::size_t(i)] = tx * l.x + bx * l.y + n * l.z;
                 }
                 const Vec3 p = at[v];
-                stream.closestHits(p + n * tracer.selfHitOffset(p), dirs.data(), 256, trace::kInfinity, t.data(), back.data());
+                stream.closestHits(p + n * (tracer.selfHitOffset(p, n) + weldDistance), dirs.data(), 256, trace::kInfinity,
+                                   t.data(), back.data());
                 int backs = 0;
                 for (std::uint8_t x : back) backs += x;
                 if (backs > limit) used[v] = 0;

@@ -43,7 +43,8 @@ void BakeSettings::validate() const {
 namespace detail {
 
 SampleTracer::SampleTracer(const trace::Tracer& tracer, const BakeSettings& settings)
-    : tracer_(tracer), settings_(settings), directions_(settings.rays), stream_(tracer) {
+    : tracer_(tracer), settings_(settings), directions_(settings.rays), stream_(tracer),
+      weldDistance_(settings.weldTolerance * length(tracer.bounds().size())) {
     for (std::size_t c = 0; c < settings.distances.size(); ++c) {
         d_[c] = settings.distances[c];
         a_[c] = std::log(0.5f) / d_[c];
@@ -81,7 +82,8 @@ SampleFrame SampleTracer::frame(const SampleSet& samples, std::size_t s) const {
     const Vec3 p = samples.positions[s];
     f.n = samples.normals[s];
     orthonormalBasis(f.n, f.t, f.b);
-    f.origin = p + f.n * tracer_.selfHitOffset(p);
+    // Welding moved vertices by up to its distance, so a sample may lie that far off the surface traced.
+    f.origin = p + f.n * (tracer_.selfHitOffset(p, f.n) + weldDistance_);
     f.shift = CosineHemisphereSet::shift(hashCombine(settings_.seed, std::uint32_t(s)));
     return f;
 }

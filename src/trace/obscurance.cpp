@@ -41,18 +41,19 @@ ObscuranceEstimator::ObscuranceEstimator(const Tracer& tracer, const ObscuranceS
       // Beyond 24 d the exponential weight exp(a t) is below 2^-24, under float resolution of A.
       tfar_(settings.falloff == Falloff::Exponential ? 24.0f * settings.halfDistance : settings.radius) {}
 
-ObscuranceEstimator::PointFrame ObscuranceEstimator::frame(Vec3 p, Vec3 n, Vec3 ng, std::uint32_t pointId) const {
+ObscuranceEstimator::PointFrame ObscuranceEstimator::frame(Vec3 p, Vec3 n, Vec3 ng, std::uint32_t pointId,
+                                                           float offset) const {
     PointFrame f;
     if (dot(ng, n) < 0.0f) ng = -ng;
-    f.origin = p + ng * tracer_.selfHitOffset(p);
+    f.origin = p + ng * (offset >= 0.0f ? offset : tracer_.selfHitOffset(p, ng));
     f.n = n;
     orthonormalBasis(n, f.t, f.b);
     f.shift = CosineHemisphereSet::shift(hashCombine(settings_.seed, pointId));
     return f;
 }
 
-float ObscuranceEstimator::operator()(Vec3 p, Vec3 n, Vec3 ng, std::uint32_t pointId) const {
-    const PointFrame f = frame(p, n, ng, pointId);
+float ObscuranceEstimator::operator()(Vec3 p, Vec3 n, Vec3 ng, std::uint32_t pointId, float offset) const {
+    const PointFrame f = frame(p, n, ng, pointId, offset);
     const int rays = settings_.rays;
     double occlusion = 0.0;
     if (settings_.falloff == Falloff::Binary) {
@@ -83,8 +84,10 @@ Image ambientObscurance(const Tracer& tracer, const GBuffer& g, const Obscurance
         for (auto y = int(y0); y < int(y1); ++y) {
             for (int x = 0; x < cam.width; ++x) {
                 Vec3 p, n, ng;
-                if (pixelSurface(tracer, g, worldFromView, x, y, p, n, ng))
-                    ao.at(x, y) = estimate(p, n, ng, std::uint32_t(y) * std::uint32_t(cam.width) + std::uint32_t(x));
+                float offset;
+                if (pixelSurface(tracer, g, worldFromView, x, y, p, n, ng, offset))
+                    ao.at(x, y) =
+                        estimate(p, n, ng, std::uint32_t(y) * std::uint32_t(cam.width) + std::uint32_t(x), offset);
             }
             int done = ++rowsDone;
             if (progress) progress(double(done) / double(cam.height));

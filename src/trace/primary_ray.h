@@ -22,16 +22,17 @@ inline PrimaryRay primaryRay(const Camera& camera, const Mat4& worldFromView, fl
 }
 
 // The surface behind G-buffer pixel (x, y), traced again for the exact point and geometric normal (facing
-// the camera) that the G-buffer does not store; n is the G-buffer's normal in world space. False for sky
-// or a miss.
+// the camera) that the G-buffer does not store, and the self-hit offset of rays leaving that point; n is the
+// G-buffer's normal in world space. False for sky or a miss.
 inline bool pixelSurface(const Tracer& tracer, const GBuffer& g, const Mat4& worldFromView, int x, int y, Vec3& p,
-                         Vec3& n, Vec3& ng) {
+                         Vec3& n, Vec3& ng, float& offset) {
     if (g.isSky(x, y)) return false;
     PrimaryRay ray = primaryRay(g.camera, worldFromView, float(x) + 0.5f, float(y) + 0.5f);
     Hit hit;
     if (!tracer.intersect(ray.origin, ray.direction, ray.tnear, ray.tfar, hit)) return false;
     p = ray.origin + ray.direction * hit.t;
     ng = dot(hit.geometricNormal, ray.direction) > 0.0f ? -hit.geometricNormal : hit.geometricNormal;
+    offset = tracer.selfHitOffset(hit, ray.origin, p);
     n = normalize(transformVector(worldFromView, g.viewNormal(x, y)));
     return true;
 }

@@ -46,8 +46,10 @@ TraceBenchResult benchObscurance(const Tracer& tracer, const GBuffer& g, const O
         for (int y = y0; y < std::min(cam.height, y0 + rowsPerBatch); ++y)
             for (int x = 0; x < cam.width; ++x) {
                 Vec3 p, n, ng;
-                if (!pixelSurface(tracer, g, worldFromView, x, y, p, n, ng)) continue;
-                auto f = estimator.frame(p, n, ng, std::uint32_t(y) * std::uint32_t(cam.width) + std::uint32_t(x));
+                float offset;
+                if (!pixelSurface(tracer, g, worldFromView, x, y, p, n, ng, offset)) continue;
+                auto f = estimator.frame(p, n, ng, std::uint32_t(y) * std::uint32_t(cam.width) + std::uint32_t(x),
+                                         offset);
                 for (int i = 0; i < s.rays; ++i) {
                     Vec3 w = estimator.direction(f, i);
                     batch.ox.push_back(f.origin.x);

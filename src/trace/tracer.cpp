@@ -8,6 +8,7 @@
 #include "trace/embree_ray.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <string>
@@ -207,9 +208,50 @@ Vec3 Tracer::shadingNormal(const Hit& hit) const {
 
 Vec3 Tracer::albedo(const Hit& hit) const { return scene_.meshes[scene_.instances[hit.instance].mesh].baseColor; }
 
-float Tracer::selfHitOffset(Vec3 p) const {
-    float m = std::max({1.0f, std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
-    return 1e-4f * m;
+namespace {
+
+constexpr double kSelfHitPerUlpScale = 2.5e-7;  // x the largest |coordinate| x the aspect ratio
+constexpr double kMinAspect = 4.0;
+
+} // namespace
+
+float selfHitOffset(Vec3 a, Vec3 b, Vec3 c, Vec3 p, float scale) {
+    const double m = std::max({double(maxAbsComponent(a)), double(maxAbsComponent(b)), double(maxAbsComponent(c)),
+                               double(maxAbsComponent(p)), double(scale)});
+    // In double: the cross product of a sliver's edges is what float gets wrong.
+    const auto edge = [](Vec3 from, Vec3 to) {
+        return std::array<double, 3>{double(to.x) - double(from.x), double(to.y) - double(from.y),
+                                     double(to.z) - double(from.z)};
+    };
+    const std::array<double, 3> u = edge(a, b), v = edge(a, c), w = edge(b, c);
+    const double cx = u[1] * v[2] - u[2] * v[1], cy = u[2] * v[0] - u[0] * v[2], cz = u[0] * v[1] - u[1] * v[0];
+    const double twiceArea = std::sqrt(cx * cx + cy * cy + cz * cz);
+    const double longest2 = std::max({u[0] * u[0] + u[1] * u[1] + u[2] * u[2], v[0] * v[0] + v[1] * v[1] + v[2] * v[2],
+                                      w[0] * w[0] + w[1] * w[1] + w[2] * w[2]});
+    // A triangle the scene kept has some area; the cap only keeps a pathological one finite.
+    const double aspect = twiceArea > 0 ? std::clamp(longest2 / twiceArea, kMinAspect, 1e6) : 1e6;
+    return float(kSelfHitPerUlpScale * m * aspect);
+}
+
+float Tracer::selfHitOffset(const Hit& hit, Vec3 origin, Vec3 p) const {
+    const Instance& inst = scene_.instances[hit.instance];
+    const Mesh& mesh = scene_.meshes[inst.mesh];
+    const std::uint32_t* tri = &mesh.indices[3 * std::size_t(hit.primitive)];
+    return trace::selfHitOffset(transformPoint(inst.worldFromObject, mesh.positions[tri[0]]),
+                                transformPoint(inst.worldFromObject, mesh.positions[tri[1]]),
+                                transformPoint(inst.worldFromObject, mesh.positions[tri[2]]), p,
+                                maxAbsComponent(origin));
+}
+
+float Tracer::selfHitOffset(Vec3 p, Vec3 ng) const {
+    const double m = bounds_.empty() ? double(maxAbsComponent(p))
+                                     : std::max({double(maxAbsComponent(p)), double(maxAbsComponent(bounds_.lo)),
+                                                 double(maxAbsComponent(bounds_.hi))});
+    const auto reach = float(kSelfHitPerUlpScale * m * 100.0);
+    // From `reach` above p, which clears any triangle but a thinner sliver, back down through p.
+    Hit hit;
+    if (reach > 0.0f && intersect(p + ng * reach, -ng, 0.0f, 2.0f * reach, hit)) return selfHitOffset(hit, p, p);
+    return reach;
 }
 
 } // namespace obscura::trace

@@ -84,8 +84,9 @@ inline Image occludersSeen(const trace::Tracer& tracer, const GBuffer& g, float 
     for (int y = 0; y < g.height(); ++y)
         for (int x = 0; x < g.width(); ++x) {
             Vec3 p, n, ng;
-            if (!trace::pixelSurface(tracer, g, worldFromView, x, y, p, n, ng)) continue;
-            const auto frame = estimator.frame(p, n, ng, 0);
+            float offset;
+            if (!trace::pixelSurface(tracer, g, worldFromView, x, y, p, n, ng, offset)) continue;
+            const auto frame = estimator.frame(p, n, ng, 0, offset);
             bool hidden = false;
             for (int i = 0; i < settings.rays && !hidden; ++i) {
                 const Vec3 d = estimator.direction(frame, i);

@@ -183,3 +183,50 @@ TEST(ClosedForm, WeightsOfTheFalloffs) {
     EXPECT_NEAR(s.weight(0.5f), 0.2f, 1e-6);   // u / t above u
     EXPECT_EQ(s.weight(1.0f), 0.0f);           // cut at r
 }
+
+// The same floor and ceiling 1 m apart, tilted and carried 1 km and 5 km from the origin, with the positions
+// stored in world space as a level's are: occlusion within d = 2 is (h/d)^2 = 0.25 wherever the scene is.
+// Rays leave a point offset along the normal by a few float ulps of its coordinates; a fixed 1e-4 of |p| put
+// them 0.1 m up at 1 km (0.20) and 0.5 m up at 5 km (0.06). The tolerance adds the bias that the offset itself
+// may cause: (h^2 - (h - o)^2) / d^2 for an offset o of 2.5e-7 x the largest coordinate x the aspect ratio 4.
+TEST(ClosedForm, OcclusionUnderACeilingDoesNotDependOnWhereTheSceneIs) {
+    const double h = builtin::kCeilingHeight, d = 2.0, expected = (h / d) * (h / d);
+    const Mat4 rotation = Mat4::rotation(normalize(Vec3{0.3f, 0.2f, 1.0f}), 0.7f);
+    for (float distance : {0.0f, 1000.0f, 5000.0f}) {
+        SCOPED_TRACE(distance);
+        BuiltinScene s = makeBuiltinScene("ceiling");
+        const Vec3 shift = normalize(Vec3{1.0f, -0.4f, 0.6f}) * distance;
+        for (Mesh& m : s.scene.meshes) {
+            for (Vec3& p : m.positions) p = transformPoint(rotation, p) + shift;
+            for (Vec3& n : m.normals) n = transformVector(rotation, n);
+        }
+        Tracer tracer(s.scene);
+        const double largest = double(distance) + std::sqrt(2.0) * double(builtin::kPlaneHalfSize) + 2.0;
+        const double offset = 2.5e-7 * largest * 4.0;
+        const double bias = (h * h - (h - offset) * (h - offset)) / (d * d);
+        const Vec3 up = transformVector(rotation, kUp);
+
+        // Points given by the caller: the tracer finds their triangle for the offset.
+        double sum = 0;
+        const int points = 16;
+        for (int i = 0; i < points; ++i) {
+            const Vec3 p = transformPoint(rotation, {0.37f * float(i % 4) - 0.5f, 0, 0.29f * float(i / 4) - 0.4f}) + shift;
+            sum += double(ambientObscurance(tracer, p, up, up, occlusion(float(d)), std::uint32_t(i)));
+        }
+        EXPECT_NEAR(sum / points, expected, 3 * sigma(expected) / std::sqrt(double(points)) + bias);
+
+        // Points found by primary rays: a camera 0.5 m above the floor looking straight down.
+        Camera camera;
+        camera.position = transformPoint(rotation, {0, 0.5f, 0}) + shift;
+        camera.target = transformPoint(rotation, {0, 0, 0}) + shift;
+        camera.up = transformVector(rotation, {0, 0, -1});
+        camera.width = camera.height = 8;
+        ObscuranceSettings settings = occlusion(float(d));
+        settings.rays = 1024;
+        const Image ao = ambientObscurance(tracer, renderGBuffer(tracer, camera), settings);
+        double mean = 0;
+        for (float a : ao.pixels) mean += double(a);
+        mean /= double(ao.pixels.size());
+        EXPECT_NEAR(mean, expected, 3 * sigma(expected, 1024 * 64) + bias);
+    }
+}
