@@ -8,7 +8,8 @@
 // any split of the work over threads or machines gives the same bits.
 //
 // Errors: BakeSettings::validate() and bakeScene() throw obscura::Error naming the bad field or problem;
-// the stage functions assume valid settings and a sanitized scene (sanitizeScene) and check nothing else.
+// the stage functions assume valid settings and a sanitized scene (sanitizeScene) and check nothing else,
+// but for generateSamples' limit on the sample count.
 #pragma once
 
 #include "obscura/math.h"
@@ -67,8 +68,9 @@ struct BakeSettings {
 // the scene's instance order, then the mesh's order, so the result does not depend on threads.
 //
 // Hard creases: around each position-welded vertex, faces that share an edge through it and whose normals
-// differ by at most the crease angle form one smoothing group; each group gets its own copy of the vertex
-// (same position). The regulariser then has no edge across a crease, and each side of a 90-degree step keeps
+// differ by at most the crease angle (plus what rounding the vertices to float can explain, so coplanar
+// faces never split) are joined, and the connected components of that relation are the smoothing groups,
+// whatever the faces' order; each group gets its own copy of the vertex (same position). The regulariser then has no edge across a crease, and each side of a 90-degree step keeps
 // the value of the hemisphere it sees. A file vertex maps to the copy of the first kept face (in file order)
 // that uses it; where one file vertex serves faces on both sides of a crease, its output is that face's side.
 // glTF and OBJ files with hard edges already split them into separate file vertices, so there the map is
@@ -105,6 +107,8 @@ struct SampleSet {
 
 // Samples per face: clamp(ceil(area * density), min, max) (§2.1); points are Owen-scrambled Sobol points,
 // seeded by the triangle id, mapped to the triangle with the area-preserving square-to-triangle warp.
+// Areas and normals are computed in double, as the weld's degeneracy test is. Throws obscura::Error, before
+// allocating, when the total passes 2^32 - 1 (sample ids are 32-bit).
 SampleSet generateSamples(const WeldedMesh& mesh, const BakeSettings& settings);
 
 // ---- stage 3: rays -----------------------------------------------------------------------------

@@ -3,29 +3,42 @@
 // playable area; the finite-element weights (A_T / N_T in the solve) make up for the uneven density.
 #include "obscura/bake.h"
 
+#include "obscura/error.h"
 #include "obscura/parallel.h"
 #include "obscura/sampling.h"
 
+#include "bake/face_geometry.h"
+
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <string>
 
 namespace obscura::bake {
 
 SampleSet generateSamples(const WeldedMesh& mesh, const BakeSettings& settings) {
     SampleSet s;
     const std::size_t triangles = mesh.triangleCount();
+    // Counted in 64 bits and checked before anything is allocated: a 32-bit running total once wrapped past
+    // 2^32 samples, and the per-face writes below ran off the end of the arrays. A prefix stored in the
+    // 32-bit triangleFirst is exact whenever the total passes the check. Every face has a sample at least,
+    // so the check also keeps the per-sample triangle ids in range.
     s.triangleFirst.resize(triangles + 1);
-    std::uint32_t total = 0;
+    std::uint64_t total = 0;
     for (std::size_t t = 0; t < triangles; ++t) {
-        s.triangleFirst[t] = total;
+        s.triangleFirst[t] = std::uint32_t(total);
         const Vec3 p0 = mesh.positions[mesh.indices[3 * t]], p1 = mesh.positions[mesh.indices[3 * t + 1]],
                    p2 = mesh.positions[mesh.indices[3 * t + 2]];
-        const double area = 0.5 * double(length(cross(p1 - p0, p2 - p0)));
+        const double area = 0.5 * detail::twiceArea(p0, p1, p2);
         const double wanted = std::ceil(area * double(settings.sampleDensity));
-        const auto n = std::uint32_t(std::clamp(wanted, double(settings.minSamplesPerFace), double(settings.maxSamplesPerFace)));
-        total += n;
+        total += std::uint64_t(std::clamp(wanted, double(settings.minSamplesPerFace), double(settings.maxSamplesPerFace)));
     }
-    s.triangleFirst[triangles] = total;
+    constexpr std::uint64_t kMaxSamples = std::numeric_limits<std::uint32_t>::max();
+    if (total > kMaxSamples)
+        fail("bake", std::to_string(total) + " samples on " + std::to_string(triangles) + " faces exceed the " +
+                         std::to_string(kMaxSamples) + " that 32-bit sample ids can number; lower --max-samples-per-face, "
+                         "--min-samples-per-face or --sample-density, or bake the scene in parts");
+    s.triangleFirst[triangles] = std::uint32_t(total);
     s.positions.resize(total);
     s.normals.resize(total);
     s.triangles.resize(total);
@@ -35,7 +48,8 @@ SampleSet generateSamples(const WeldedMesh& mesh, const BakeSettings& settings) 
         for (std::size_t t = begin; t < end; ++t) {
             const Vec3 p0 = mesh.positions[mesh.indices[3 * t]], p1 = mesh.positions[mesh.indices[3 * t + 1]],
                        p2 = mesh.positions[mesh.indices[3 * t + 2]];
-            const Vec3 n = normalize(cross(p1 - p0, p2 - p0));
+            // In double, as the weld's area test: a sliver it keeps can have a float cross product of zero.
+            const Vec3 n = detail::unitNormal(p0, p1, p2);
             // The first N points of a scrambled Sobol sequence are stratified for any N; the warp
             // (1 - sqrt u, sqrt u (1 - v), sqrt u v) maps equal areas of the square to equal areas of the face.
             const OwenSobol2D sequence(hashCombine(settings.seed, std::uint32_t(t)));

@@ -5,7 +5,10 @@
 // different hemispheres.
 #include "obscura/bake.h"
 
+#include "bake/face_geometry.h"
+
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
 #include <unordered_map>
@@ -13,6 +16,8 @@
 namespace obscura::bake {
 
 namespace {
+
+using detail::twiceArea;
 
 // Cells of the weld grid, packed 21 bits per axis; positions lie inside the scene bounds, so cell
 // coordinates are in [0, diagonal / cell] and the tolerance floor below keeps that under 2^21.
@@ -26,37 +31,59 @@ struct CellGrid {
     }
 };
 
-double twiceArea(Vec3 a, Vec3 b, Vec3 c) {
-    // In double: float cross products of long thin triangles round to zero or worse.
-    const double u[3] = {double(b.x) - double(a.x), double(b.y) - double(a.y), double(b.z) - double(a.z)};
-    const double v[3] = {double(c.x) - double(a.x), double(c.y) - double(a.y), double(c.z) - double(a.z)};
-    const double x = u[1] * v[2] - u[2] * v[1], y = u[2] * v[0] - u[0] * v[2], z = u[0] * v[1] - u[1] * v[0];
-    return std::sqrt(x * x + y * y + z * z);
-}
-
-Vec3 unitNormal(Vec3 a, Vec3 b, Vec3 c) {
-    const double u[3] = {double(b.x) - double(a.x), double(b.y) - double(a.y), double(b.z) - double(a.z)};
-    const double v[3] = {double(c.x) - double(a.x), double(c.y) - double(a.y), double(c.z) - double(a.z)};
-    const double x = u[1] * v[2] - u[2] * v[1], y = u[2] * v[0] - u[0] * v[2], z = u[0] * v[1] - u[1] * v[0];
-    const double l = std::sqrt(x * x + y * y + z * z);
-    return l > 0 ? Vec3{float(x / l), float(y / l), float(z / l)} : Vec3{};
-}
-
 std::uint32_t findRoot(std::vector<std::uint32_t>& parent, std::uint32_t i) {
     while (parent[i] != i) i = parent[i] = parent[parent[i]];
     return i;
 }
 
-// One copy of each welded vertex per smoothing group of its faces: corners of two faces that share an edge
-// through the vertex join when the faces' normals are within the crease angle. Rewrites out.indices,
-// out.positions and out.vertexMap; fileCorner[c] is the file vertex (vertexMap index) of kept corner c.
+// How far rounding the vertices to float can turn a face's normal, at most: each coordinate is off by half
+// an ulp of the largest one, sqrt(3) of that per vertex, taken as 2^-22 |p|max to leave room for the
+// instance transform's own rounding; moving the corners by d turns u x v by at most 2 d (|u| + |v|). Capped
+// at 1 degree, so that a sliver whose normal rounding decides does not join the faces on both sides of a
+// crease it lies on.
+double normalSlack(Vec3 a, Vec3 b, Vec3 c, double twiceAreaABC) {
+    double largest = 0;
+    for (Vec3 p : {a, b, c}) largest = std::max({largest, std::fabs(double(p.x)), std::fabs(double(p.y)), std::fabs(double(p.z))});
+    const double d = 0x1p-22 * largest;
+    const double edges = double(length(b - a)) + double(length(c - a));
+    constexpr double kMaxSlack = 3.14159265358979323846 / 180.0;
+    return twiceAreaABC > 0 ? std::min(2.0 * d * edges / twiceAreaABC, kMaxSlack) : kMaxSlack;
+}
+
+// One copy of each welded vertex per smoothing group of its faces. Around a vertex, two faces join when they
+// share an edge through it and the angle between their normals is at most the crease angle plus both faces'
+// normalSlack; the groups are the connected components of that relation, so they depend on the faces alone,
+// never on their order in the file. (Comparing only the first face on an edge with the others once split two
+// fins 10 degrees apart on a floor or not, as the floor came first or last.) The slack keeps faces that are
+// coplanar before rounding together at any crease angle, 0 included: in float, cos(0.01 degrees) is 1 and
+// the float normals of such faces agree only to about 1e-7. Rewrites out.indices, out.positions and
+// out.vertexMap; fileCorner[c] is the file vertex (vertexMap index) of kept corner c.
 void splitCreases(WeldedMesh& out, const std::vector<std::uint32_t>& fileCorner, float creaseAngle) {
     const std::size_t corners = out.indices.size(), vertices = out.positions.size();
-    const float cosLimit = float(std::cos(double(creaseAngle) * 3.14159265358979323846 / 180.0));
-    std::vector<Vec3> faceNormal(corners / 3);
-    for (std::size_t t = 0; t < faceNormal.size(); ++t)
-        faceNormal[t] = unitNormal(out.positions[out.indices[3 * t]], out.positions[out.indices[3 * t + 1]],
-                                   out.positions[out.indices[3 * t + 2]]);
+    const double limit = double(creaseAngle) * 3.14159265358979323846 / 180.0;
+    std::vector<std::array<double, 3>> normal(corners / 3);  // unit, in double
+    for (std::size_t t = 0; t < normal.size(); ++t) {
+        const detail::FaceCross n = detail::faceCross(out.positions[out.indices[3 * t]], out.positions[out.indices[3 * t + 1]],
+                                                      out.positions[out.indices[3 * t + 2]]);
+        const double l = n.length();  // > 0: the weld dropped faces without area
+        normal[t] = {n.x / l, n.y / l, n.z / l};
+    }
+    auto slack = [&](std::uint32_t t) {
+        const Vec3 a = out.positions[out.indices[3 * t]], b = out.positions[out.indices[3 * t + 1]],
+                   c = out.positions[out.indices[3 * t + 2]];
+        return normalSlack(a, b, c, detail::twiceArea(a, b, c));
+    };
+    const double cosLimit = std::cos(limit);
+    auto joined = [&](std::uint32_t s, std::uint32_t t) {
+        const std::array<double, 3>& m = normal[s];
+        const std::array<double, 3>& n = normal[t];
+        const double cosine = m[0] * n[0] + m[1] * n[1] + m[2] * n[2];
+        // Within the crease angle itself: the common case, decided without the slack.
+        if (cosine >= cosLimit) return true;
+        // atan2 of the cross and dot products: acos of the dot cannot tell angles below ~1e-8 from 0.
+        const double x = m[1] * n[2] - m[2] * n[1], y = m[2] * n[0] - m[0] * n[2], z = m[0] * n[1] - m[1] * n[0];
+        return std::atan2(std::sqrt(x * x + y * y + z * z), cosine) <= limit + slack(s) + slack(t);
+    };
     // Corners around each welded vertex (CSR), in corner order.
     std::vector<std::uint32_t> first(vertices + 1, 0), around(corners);
     for (std::uint32_t v : out.indices) ++first[v + 1];
@@ -76,14 +103,16 @@ void splitCreases(WeldedMesh& out, const std::vector<std::uint32_t>& fileCorner,
             spokes.emplace_back(out.indices[3 * t + (k + 2) % 3], c);
         }
         std::sort(spokes.begin(), spokes.end());
+        // Every pair of faces on each edge through v (a manifold edge has one pair).
         for (std::size_t i = 0; i < spokes.size();) {
-            std::size_t j = i + 1;
-            for (; j < spokes.size() && spokes[j].first == spokes[i].first; ++j)
-                if (dot(faceNormal[spokes[i].second / 3], faceNormal[spokes[j].second / 3]) >= cosLimit) {
-                    const std::uint32_t a = findRoot(parent, spokes[i].second), b = findRoot(parent, spokes[j].second);
-                    if (a != b) parent[std::max(a, b)] = std::min(a, b);
+            std::size_t end = i + 1;
+            while (end < spokes.size() && spokes[end].first == spokes[i].first) ++end;
+            for (std::size_t j = i; j < end; ++j)
+                for (std::size_t k = j + 1; k < end; ++k) {
+                    const std::uint32_t a = findRoot(parent, spokes[j].second), b = findRoot(parent, spokes[k].second);
+                    if (a != b && joined(spokes[j].second / 3, spokes[k].second / 3)) parent[std::max(a, b)] = std::min(a, b);
                 }
-            i = j;
+            i = end;
         }
     }
     // New vertices in welded-vertex order, then the order of each group's first corner: deterministic.

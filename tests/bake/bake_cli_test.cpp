@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <signal.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <cstdio>
@@ -144,7 +146,9 @@ TEST_F(BakeCli, BadInputIsOneLineAndNoOutput) {
     // A size_t once took -1 as 2^64 - 1.
     expectFailure("bake " + data("cube.obj") + out + " --raw-embree-check -1 -q", {"--raw-embree-check: must be in [0, 1000000000], got -1"});
     expectFailure("bake " + data("cube.obj") + out + " --raw-embree-check 1000000001 -q", {"--raw-embree-check"});
-    expectFailure("bake " + data("cube.obj") + out + " --threads -1 -q", {"threads: must be in [0, 1024]"});
+    // The flag as the user typed it, as every other flag's message has it (ThreadLimit's own says "threads").
+    expectFailure("bake " + data("cube.obj") + out + " --threads -1 -q", {"--threads: must be in [0, 1024]", "got -1"});
+    expectFailure("bake " + data("cube.obj") + out + " --threads 1025 -q", {"--threads: must be in [0, 1024]", "got 1025"});
     expectFailure("bake " + data("cube.obj") + out + " --mode fuzzy -q", {"--mode"});
     expectFailure("bake " + data("cube.obj") + out + " --crease-angle 200 -q", {"--crease-angle"});
     expectFailure("bake " + data("cube.obj") + out + " --linear-solver qr -q", {"--linear-solver"});
@@ -158,4 +162,72 @@ TEST_F(BakeCli, BadInputIsOneLineAndNoOutput) {
     EXPECT_EQ(readBytes(path("quad.glb")), before);
     expectFailure("scenes --generate maze -o " + path("m.glb"), {"--generate"});
     expectFailure("scenes --generate level --triangles 10 -o " + path("m.glb"), {"--triangles"});
+}
+
+TEST_F(BakeCli, DistancesAreParsedStrictly) {
+    const std::string out = " -o " + path("o.csv");
+    const std::string bake = "bake " + data("cube.obj") + out + " --rays 4 --max-samples-per-face 4 -q ";
+    // getline once dropped the trailing empty item: "1," was one distance while ",2" and "1,,2" failed.
+    for (const char* bad : {"1,", ",2", "1,,2", ",", "1, ", "2,300,4"})
+        expectFailure(bake + "--distances \"" + bad + "\"", {"--distances", "expected one or two distances"});
+    // Channel 0 is _AO_SHORT and takes --blend's weight: the order is not free.
+    for (const char* bad : {"300,2", "2,2"})
+        expectFailure(bake + "--distances " + bad, {"--distances", "the short distance must be less than the long one"});
+    // strtof read hex floats; inf was refused by the bake after a message that offered it.
+    for (const char* bad : {"0x1p1", "2,0x1p9", "inf", "2,inf", "nan", "1e7", "abc"})
+        expectFailure(bake + "--distances " + bad, {"--distances", "expected a distance in (0, 1e6] m, got"});
+    for (const char* bad : {"0x1p1", "inf", "-1"})
+        expectFailure(bake + "--distance " + bad, {"--distance: expected a distance in (0, 1e6] m, got"});
+    const Result inf = run(bake + "--distance inf");
+    EXPECT_EQ(inf.out.find("or \"inf\""), std::string::npos) << "offers the inf it refuses: " << inf.out;
+    // Given together, one of the two once won without a word.
+    expectFailure(bake + "--distance 2 --distances 1,300", {"--distance", "cannot be given with --distances"});
+    expectFailure(bake + "--distances 1,300 --distance 2", {"--distance", "cannot be given with --distances"});
+    // Spaces around a number are taken on either side, as parseVec3 takes them ("2 " was once refused, " 2" not).
+    for (const char* good : {" 2", "2 ", " 2 , 300 ", "0.5,2"}) {
+        const Result r = run(bake + "--distances \"" + good + "\"");
+        EXPECT_EQ(r.code, 0) << good << ": " << r.out;
+    }
+    for (const char* good : {" 2", "2 "}) {
+        const Result r = run(bake + "--distance \"" + good + "\"");
+        EXPECT_EQ(r.code, 0) << good << ": " << r.out;
+    }
+    // Read as the same numbers: the CSV's first vertex under --distances " 0.5 , 2 " is that of "0.5,2" to the
+    // last digit (tolerance 0: the same settings give the same bits).
+    ASSERT_EQ(run(bake + "--distances \" 0.5 , 2 \"").code, 0);
+    std::ifstream spaced(path("o.csv"));
+    std::string header, a, b;
+    std::getline(spaced, header);
+    std::getline(spaced, a);
+    ASSERT_EQ(run(bake + "--distances 0.5,2").code, 0);
+    std::ifstream plain(path("o.csv"));
+    std::getline(plain, header);
+    std::getline(plain, b);
+    EXPECT_EQ(a, b);
+}
+
+TEST_F(BakeCli, FailedReportLeavesNoOutput) {
+    const std::string args = " -o " + path("x.csv") + " --report ";
+    const std::string fast = " --rays 4 --max-samples-per-face 4 -q";
+    // The report's directory takes no files: found before the bake, nothing written.
+    expectFailure("bake plane" + args + "/proc/r.json" + fast, {"/proc/r.json", "cannot write"});
+    // The report's write itself fails, after the output's (here: a 512-byte file size limit, which the 115-byte
+    // CSV of the plane meets and the ~1 kB report does not): the output is removed again.
+    struct rlimit before {};
+    ASSERT_EQ(getrlimit(RLIMIT_FSIZE, &before), 0);
+    struct rlimit small = before;
+    small.rlim_cur = 512;
+    void (*oldHandler)(int) = signal(SIGXFSZ, SIG_IGN);  // inherited: the write fails with EFBIG instead
+    ASSERT_EQ(setrlimit(RLIMIT_FSIZE, &small), 0);
+    const Result r = run("bake plane" + args + path("r.json") + fast);
+    setrlimit(RLIMIT_FSIZE, &before);
+    signal(SIGXFSZ, oldHandler);
+    EXPECT_EQ(r.code, 1) << r.out;
+    EXPECT_NE(r.out.find("r.json: write failed"), std::string::npos) << r.out;
+    EXPECT_EQ(entries(), 0u) << "output or report left behind: " << r.out;
+    // Without the limit both files are written.
+    const Result ok = run("bake plane" + args + path("r.json") + fast);
+    EXPECT_EQ(ok.code, 0) << ok.out;
+    EXPECT_TRUE(fs::exists(path("x.csv")));
+    EXPECT_TRUE(fs::exists(path("r.json")));
 }

@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 
 using namespace obscura;
@@ -28,7 +30,80 @@ Scene fold(float angleDegrees) {
     return scene;
 }
 
+// A flat (n x n)-cell grid of `cell`-metre squares, turned by 0.37 rad about x and 0.61 rad about z and moved
+// to `offset`: coplanar faces whose float vertices put their float normals ~1e-7 apart.
+Scene tiltedGrid(int n, double cell, Vec3 offset) {
+    Mesh m;
+    const double ax = 0.37, az = 0.61;
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i) {
+            double x = i * cell, y = 0, z = -j * cell;
+            const double y1 = y * std::cos(ax) - z * std::sin(ax), z1 = y * std::sin(ax) + z * std::cos(ax);
+            const double x2 = x * std::cos(az) - y1 * std::sin(az), y2 = x * std::sin(az) + y1 * std::cos(az);
+            m.positions.push_back({float(x2 + double(offset.x)), float(y2 + double(offset.y)), float(z1 + double(offset.z))});
+        }
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            const auto a = std::uint32_t(j * (n + 1) + i), b = a + 1, c = a + std::uint32_t(n) + 2, d = a + std::uint32_t(n) + 1;
+            m.indices.insert(m.indices.end(), {a, b, d, b, c, d});
+        }
+    Scene scene;
+    scene.add(m);
+    return scene;
+}
+
+// A floor and two fins 10 degrees apart on one shared edge (0, 1), the three faces in the order given.
+Scene floorAndFins(const std::array<int, 3>& order) {
+    const float s = std::sin(10.0f * 3.14159265f / 180.0f), c = std::cos(10.0f * 3.14159265f / 180.0f);
+    Mesh m;
+    m.positions = {{0, 0, 0}, {1, 0, 0}, {0.5f, 0, -1}, {0.5f, 1, 0}, {0.5f, c, s}};
+    const std::uint32_t faces[3][3] = {{0, 1, 2}, {0, 1, 3}, {0, 1, 4}};  // floor, fin, fin
+    for (int f : order) m.indices.insert(m.indices.end(), faces[f], faces[f] + 3);
+    Scene scene;
+    scene.add(m);
+    return scene;
+}
+
 } // namespace
+
+TEST(Crease, CoplanarFacesAreNeverSplit) {
+    // In float, cos(0.01 degrees) is 1 and the normals of these coplanar faces agree to ~1e-7 only, so
+    // crease angles of 0.01 degrees and below once split a flat grid (121 vertices) into 168. Near the
+    // origin and 1 km away (where a vertex rounds by ~6e-5 m): one vertex per grid point, exactly.
+    for (const Vec3 offset : {Vec3{0.123f, 0.456f, 0.789f}, Vec3{1000.0f, -500.0f, 250.0f}})
+        for (const float crease : {0.0f, 0.001f, 0.01f, 1.0f, 60.0f}) {
+            const WeldedMesh w = weldScene(tiltedGrid(10, offset.x > 100 ? 0.5 : 0.1, offset), 0.0f, crease);
+            EXPECT_EQ(w.triangleCount(), 200u);
+            EXPECT_EQ(w.positions.size(), 121u) << "crease " << crease << " offset " << offset.x;
+        }
+}
+
+TEST(Crease, SmallCreaseAnglesStillSplitRealFolds) {
+    // The rounding slack (~1e-6 rad here) must not swallow a real fold: at a crease angle of 0.01 degrees a
+    // 0.05-degree fold splits (6 -> 8 vertices) and a 0.005-degree one does not; at 0, a 0.05-degree fold splits.
+    EXPECT_EQ(weldScene(fold(0.05f), 0.0f, 0.01f).positions.size(), 8u);
+    EXPECT_EQ(weldScene(fold(0.005f), 0.0f, 0.01f).positions.size(), 6u);
+    EXPECT_EQ(weldScene(fold(0.05f), 0.0f, 0.0f).positions.size(), 8u);
+}
+
+TEST(Crease, GroupsDoNotDependOnFaceOrder) {
+    // Crease 60: the fins (10 degrees apart) join, the floor (80 and 90 degrees from them) stays apart, so the
+    // shared edge's two vertices get two copies each: 5 + 2 = 7 vertices in any order. Comparing only the
+    // edge's first face with the others gave 9 with the floor first (the fins never compared) and 7 last.
+    std::array<int, 3> order{0, 1, 2};
+    do {
+        const WeldedMesh w = weldScene(floorAndFins(order), 0.0f, 60.0f);
+        ASSERT_EQ(w.triangleCount(), 3u);
+        EXPECT_EQ(w.positions.size(), 7u) << "order " << order[0] << order[1] << order[2];
+        // Corners 0 and 1 of each face are the shared edge's; the fins' copies agree, the floor's differ.
+        std::array<std::size_t, 3> slot{};  // face (0 floor, 1 and 2 fins) -> its triangle in w
+        for (std::size_t t = 0; t < 3; ++t) slot[std::size_t(order[t])] = t;
+        for (std::size_t k = 0; k < 2; ++k) {
+            EXPECT_EQ(w.indices[3 * slot[1] + k], w.indices[3 * slot[2] + k]);
+            EXPECT_NE(w.indices[3 * slot[0] + k], w.indices[3 * slot[1] + k]);
+        }
+    } while (std::next_permutation(order.begin(), order.end()));
+}
 
 TEST(Crease, SplitsOnlyPastTheCreaseAngle) {
     // 90 degrees > 60: the shared edge's two file vertices get one copy per side (6 -> 8 vertices), the file

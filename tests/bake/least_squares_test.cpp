@@ -1,12 +1,14 @@
 // Least-squares vertex baking (Kavan et al. 2011) on hand-made signals with exact expected values: no ray
 // is traced, the sample values are written straight into RayResults.
 #include "obscura/bake.h"
+#include "obscura/error.h"
 
 #include "bake/bake_test_util.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
 using namespace obscura;
 using namespace obscura::bake;
@@ -204,5 +206,67 @@ TEST(Samples, CountsAreClampedAndAreaProportional) {
         EXPECT_GE(l.y, 0.0f);
         EXPECT_LE(l.x + l.y, 1.0f);
         EXPECT_NEAR(s.normals[k].y, 1.0f, 1e-6f);
+    }
+}
+
+TEST(Samples, CountPast32BitsFailsBeforeAllocating) {
+    // 2^20 + 1 faces at 4096 samples each: 2^32 + 4096 samples, which a 32-bit running total wrapped to 4096
+    // before the per-face writes ran past the arrays; 2^20 faces (exactly 2^32) is the first count too many.
+    // The faces share three vertices: the count alone matters, and it must fail before ~150 GB of samples.
+    for (std::size_t faces : {std::size_t(1) << 20, (std::size_t(1) << 20) + 1}) {
+        WeldedMesh w;
+        w.positions = {{0, 0, 0}, {100, 0, 0}, {0, 0, -100}};  // 5000 m^2: the cap decides
+        w.indices.resize(3 * faces);
+        for (std::size_t i = 0; i < w.indices.size(); ++i) w.indices[i] = std::uint32_t(i % 3);
+        BakeSettings settings;
+        settings.minSamplesPerFace = settings.maxSamplesPerFace = 4096;
+        const std::string count = std::to_string(std::uint64_t(faces) * 4096u);
+        try {
+            generateSamples(w, settings);
+            ADD_FAILURE() << faces << " faces: no error";
+        } catch (const Error& e) {
+            const std::string message = e.what();
+            EXPECT_NE(message.find(count + " samples"), std::string::npos) << message;
+            EXPECT_NE(message.find("--max-samples-per-face"), std::string::npos) << message;
+        }
+    }
+}
+
+TEST(Samples, SliverNormalIsUnitInDouble) {
+    // Three nearly collinear float points whose float cross product is exactly zero while the weld's
+    // double area test keeps the face: its samples once got the normal (0, 0, 0), so their rays started
+    // on the surface and went nowhere. A floor below sets the scene's size for the weld's area floor.
+    Mesh m;
+    m.positions = {{-0.192421168f, -0.706987262f, -0.245998502f}, {0.78435421f, 0.212644503f, 0.00793144014f},
+                   {1.76112962f, 1.1322763f, 0.261861384f},        {-2, -1, -2}, {2, -1, -2}, {2, -1, 2}, {-2, -1, 2}};
+    m.indices = {0, 1, 2, 3, 6, 5, 3, 5, 4};
+    Scene scene;
+    scene.add(m);
+    WeldedMesh w = weldScene(scene, 0.0f, 180.0f);
+    ASSERT_EQ(w.triangleCount(), 3u) << "the weld keeps the sliver";
+    BakeSettings settings;
+    settings.minSamplesPerFace = settings.maxSamplesPerFace = 1;
+    SampleSet s = generateSamples(w, settings);
+    ASSERT_EQ(s.size(), 3u);
+    // The reference: the cross product of the float positions' edges in long double.
+    const Vec3 p0 = m.positions[0], p1 = m.positions[1], p2 = m.positions[2];
+    using Long = long double;
+    const Long u[3] = {Long(p1.x) - Long(p0.x), Long(p1.y) - Long(p0.y), Long(p1.z) - Long(p0.z)};
+    const Long v[3] = {Long(p2.x) - Long(p0.x), Long(p2.y) - Long(p0.y), Long(p2.z) - Long(p0.z)};
+    const Long c[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    const Long l = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+    ASSERT_GT(l, 0.0L);
+    for (std::size_t k = 0; k < s.size(); ++k) {
+        const Vec3 n = s.normals[k];
+        // Unit to float rounding of each component: 1e-6.
+        EXPECT_NEAR(double(length(n)), 1.0, 1e-6) << "sample " << k << " on face " << s.triangles[k];
+        if (s.triangles[k] == 0) {
+            // The same direction as the reference to float rounding: 1e-6 per component.
+            EXPECT_NEAR(double(n.x), double(c[0] / l), 1e-6);
+            EXPECT_NEAR(double(n.y), double(c[1] / l), 1e-6);
+            EXPECT_NEAR(double(n.z), double(c[2] / l), 1e-6);
+        } else {
+            EXPECT_NEAR(double(n.y), 1.0, 1e-6) << "floor faces +Y";
+        }
     }
 }

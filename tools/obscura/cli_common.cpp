@@ -3,11 +3,13 @@
 
 #include "obscura/error.h"
 #include "obscura/image_io.h"
+#include "obscura/parallel.h"
 #include "obscura/scene_io.h"
 
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -74,13 +76,60 @@ void parseSize(const std::string& flag, const std::string& text, int& width, int
     height = int(h);
 }
 
+bool parseDecimal(const std::string& text, float& value) {
+    // from_chars, not strtof: strtof also reads hex floats and skips leading spaces but not trailing ones.
+    const auto space = [](char c) { return c == ' ' || c == '\t'; };
+    const char* first = text.data();
+    const char* last = first + text.size();
+    while (first != last && space(*first)) ++first;
+    while (last != first && space(last[-1])) --last;
+    if (first != last && *first == '+' && last - first > 1 && first[1] != '-' && first[1] != '+') ++first;
+    const auto [end, error] = std::from_chars(first, last, value, std::chars_format::general);
+    return first != last && error == std::errc() && end == last;
+}
+
 float parseRadius(const std::string& flag, const std::string& text) {
-    if (text == "inf" || text == "infinity") return INFINITY;
-    char* end = nullptr;
-    float r = std::strtof(text.c_str(), &end);
-    if (end == text.c_str() || *end != '\0' || !(r > 0.0f) || !std::isfinite(r))
+    float r = 0.0f;
+    if (!parseDecimal(text, r) || !(r > 0.0f))
         fail(flag, "expected a distance > 0 in meters or \"inf\", got \"" + text + "\"");
     return r;
+}
+
+// BakeSettings::validate's bound on a distance, checked here too so that the message names the flag the user
+// gave (--distance or --distances) and does not offer "inf", which the bake refuses.
+constexpr float kMaxBakeDistance = 1e6f;
+
+float parseBakeDistance(const std::string& flag, const std::string& text) {
+    float d = 0.0f;
+    if (!parseDecimal(text, d) || !(d > 0.0f && d <= kMaxBakeDistance))
+        fail(flag, "expected a distance in (0, 1e6] m, got \"" + text + "\"");
+    return d;
+}
+
+// Split by hand: getline drops a trailing empty item, so "1," read as one distance while ",2" and "1,,2"
+// failed. The order matters downstream: channel 0 is _AO_SHORT and takes --blend's weight.
+std::vector<float> parseBakeDistances(const std::string& flag, const std::string& text) {
+    std::vector<std::string> items;
+    for (std::size_t start = 0;;) {
+        const std::size_t comma = text.find(',', start);
+        items.push_back(text.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+        if (comma == std::string::npos) break;
+        start = comma + 1;
+    }
+    const bool blank = std::any_of(items.begin(), items.end(),
+                                   [](const std::string& item) { return item.find_first_not_of(" \t") == std::string::npos; });
+    if (items.size() > 2 || blank) fail(flag, "expected one or two distances \"short,long\", got \"" + text + "\"");
+    std::vector<float> out;
+    for (const std::string& item : items) out.push_back(parseBakeDistance(flag, item));
+    if (out.size() == 2 && !(out[0] < out[1]))
+        fail(flag, "the short distance must be less than the long one, got \"" + text + "\"");
+    return out;
+}
+
+void checkThreads(const std::string& flag, int threads) {
+    if (threads < 0 || threads > kMaxThreads)
+        fail(flag, "must be in [0, " + std::to_string(kMaxThreads) + "] (0 = all hardware threads), got " +
+                       std::to_string(threads));
 }
 
 void CameraOptions::add(CLI::App& app) {

@@ -30,8 +30,18 @@ LoadedScene loadSceneArgument(const std::string& argument);
 Vec3 parseVec3(const std::string& flag, const std::string& text);
 // "WxH" -> width, height (each in [1, 32768]); throws obscura::Error naming the flag.
 void parseSize(const std::string& flag, const std::string& text, int& width, int& height);
+// A decimal number ("2", "0.5", "-1e3", "+4"; spaces around it allowed, as parseVec3 allows them), stored in
+// `value`; false for anything else, hex floats ("0x1p1") and numbers outside float's range included. "inf"
+// and "nan" read as themselves: callers that take neither check the value.
+bool parseDecimal(const std::string& text, float& value);
 // A float that may be "inf".
 float parseRadius(const std::string& flag, const std::string& text);
+// A bake distance in (0, 1e6] m, and --distances' "short,long" (short < long) or one value.
+float parseBakeDistance(const std::string& flag, const std::string& text);
+std::vector<float> parseBakeDistances(const std::string& flag, const std::string& text);
+// --threads as every command takes it: [0, kMaxThreads], 0 for all hardware threads; throws obscura::Error
+// naming the flag (ThreadLimit's own message says "threads").
+void checkThreads(const std::string& flag, int threads);
 
 // Camera flags common to render and gbuffer.
 struct CameraOptions {

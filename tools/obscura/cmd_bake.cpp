@@ -12,12 +12,19 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <memory>
 #include <mutex>
-#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <unistd.h>
 
 namespace obscura::cli {
 
@@ -30,6 +37,7 @@ struct BakeOptions {
     std::string input, output, report, mode = "obscurance", distances = "2,300", solver = "auto";
     std::string distance;  // --distance as given, parsed and checked where it was given
     CLI::Option* distanceOption = nullptr;
+    CLI::Option* distancesOption = nullptr;
     bake::BakeSettings settings;
     bake::ArtistControls controls;
     int threads = 0;
@@ -37,14 +45,27 @@ struct BakeOptions {
     bool quiet = false;
 };
 
-std::vector<float> parseDistances(const std::string& text) {
-    std::vector<float> out;
-    std::stringstream in(text);
-    std::string item;
-    while (std::getline(in, item, ',')) out.push_back(parseRadius("--distances", item));
-    if (out.empty() || out.size() > 2) fail("--distances", "expected one or two distances \"short,long\", got \"" + text + "\"");
-    return out;
+// Fails naming `path` if its directory takes no new file, by creating (exclusively, so nothing is reused)
+// and removing an empty one beside it, as writeAtomically's temporary will be.
+void checkWritable(const std::string& path) {
+    const std::string probe = path + ".probe-" + std::to_string(getpid());
+    std::FILE* f = std::fopen(probe.c_str(), "wbx");
+    if (!f) fail(path, std::string("cannot write: ") + std::strerror(errno));
+    std::fclose(f);
+    std::remove(probe.c_str());
 }
+
+// Removes a written output unless kept, when a later step of the command fails.
+struct OutputGuard {
+    std::string path;
+    bool keep = false;
+    explicit OutputGuard(std::string written) : path(std::move(written)) {}
+    OutputGuard(const OutputGuard&) = delete;
+    OutputGuard& operator=(const OutputGuard&) = delete;
+    ~OutputGuard() {
+        if (!keep) std::remove(path.c_str());
+    }
+};
 
 std::string loadAverage() {
     std::ifstream in("/proc/loadavg");
@@ -71,16 +92,23 @@ void runBake(BakeOptions& o) {
     else if (o.solver == "cholmod") s.linearSolver = bake::LinearSolver::Cholmod;
     else if (o.solver == "ldlt") s.linearSolver = bake::LinearSolver::SimplicialLDLT;
     else fail("--linear-solver", "expected auto, cholmod or ldlt, got \"" + o.solver + "\"");
-    // --distance was once a float whose non-positive (and NaN) values fell back to --distances' default unsaid.
-    s.distances = o.distanceOption->count() > 0 ? std::vector<float>{parseRadius("--distance", o.distance)}
-                                                : parseDistances(o.distances);
+    // --distance was once a float whose non-positive (and NaN) values fell back to --distances' default unsaid;
+    // given with --distances, one of the two was once dropped without a word.
+    if (o.distanceOption->count() > 0 && o.distancesOption->count() > 0)
+        fail("--distance", "cannot be given with --distances (--distance d is --distances d); give one of them");
+    s.distances = o.distanceOption->count() > 0 ? std::vector<float>{parseBakeDistance("--distance", o.distance)}
+                                                : parseBakeDistances("--distances", o.distances);
     s.validate();
     o.controls.validate();
     if (o.rawCheck < 0 || o.rawCheck > kMaxRawCheckStride)
         fail("--raw-embree-check", "must be in [0, " + std::to_string(kMaxRawCheckStride) + "], got " +
                                        std::to_string(o.rawCheck));
+    checkThreads("--threads", o.threads);
     checkOutputPath("--output", o.output, {".glb", ".gltf", ".ply", ".csv"}, {o.input});
     if (!o.report.empty()) checkOutputPath("--report", o.report, {".json"}, {o.input});
+    // Before the bake, which can take hours: a directory that takes no new files (read-only, /proc) fails now.
+    checkWritable(o.output);
+    if (!o.report.empty()) checkWritable(o.report);
 
     ThreadLimit limit(o.threads);
     const int threads = o.threads > 0 ? o.threads : hardwareThreads();
@@ -107,6 +135,9 @@ void runBake(BakeOptions& o) {
     progress("write", 0.0);
     auto tw = std::chrono::steady_clock::now();
     bake::writeBakeOutput(o.input, loaded.scene, r, o.controls, o.output);
+    // From here a failure removes the output again: a command that fails leaves neither file (checkWritable
+    // made that rare: it takes a full disk or a directory changed during the bake).
+    OutputGuard written{o.output};
     r.times.write = secondsSince(tw);
     progress("write", 1.0);
     {
@@ -165,6 +196,7 @@ void runBake(BakeOptions& o) {
             if (!out) fail(o.report, "write failed");
         });
     }
+    written.keep = true;
     if (o.quiet) return;
     std::string distances;  // what the bake used, --distance or --distances
     for (float d : s.distances) distances += (distances.empty() ? "" : ",") + numberText(d);
@@ -207,7 +239,8 @@ void addBakeCommand(CLI::App& app) {
     cmd->add_option("input", o->input, "Scene file (.gltf .glb .obj .ply) or built-in scene name")->required();
     cmd->add_option("-o,--output", o->output, "Output .glb, .gltf, .ply (quality) or .csv")->required();
     cmd->add_option("--mode", o->mode, "obscurance (exponential kernel) or occlusion (binary within d)")->capture_default_str();
-    cmd->add_option("--distances", o->distances, "Half distances d in m, \"short,long\" or one value")->capture_default_str();
+    o->distancesOption = cmd->add_option("--distances", o->distances, "Half distances d in m, \"short,long\" (short < long) or one value")
+                             ->capture_default_str();
     o->distanceOption = cmd->add_option("--distance", o->distance, "One distance d in m (same as --distances d)");
     cmd->add_option("--rays", o->settings.rays, "Rays per sample, [1, 65536]")->capture_default_str();
     cmd->add_option("--alpha", o->settings.alpha, "Regulariser weight, unitless, [0, 1e6]")->capture_default_str();

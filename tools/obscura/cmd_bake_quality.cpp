@@ -30,6 +30,7 @@ struct QualityOptions {
 };
 
 void runQuality(const QualityOptions& o) {
+    checkThreads("--threads", o.threads);
     ThreadLimit limit(o.threads);
     if (!(o.maxEdge > 0.0f)) fail("--max-edge", "must be > 0");
     if (!(o.grading >= 0.0f && o.grading <= 100.0f)) fail("--grading", "must be in [0, 100] per m");
@@ -37,9 +38,7 @@ void runQuality(const QualityOptions& o) {
     bake::BakeSettings settings;
     settings.rays = o.rays;
     settings.creaseAngle = o.creaseAngle;
-    settings.distances.clear();
-    std::stringstream ds(o.distances);
-    for (std::string item; std::getline(ds, item, ',');) settings.distances.push_back(parseRadius("--distances", item));
+    settings.distances = parseBakeDistances("--distances", o.distances);
     settings.validate();
     nlohmann::json report;
     if (!o.json)
