@@ -149,8 +149,8 @@ struct GtaoResult {
     Image bentNormal;  // 3 channels, view-space unit vectors; sky (0, 0, 0)
 };
 
-// Throws obscura::Error if the G-buffer does not match the constants' size (or its normals are not 3
-// channels), or if a depth is NaN, zero or negative or a normal not finite (naming the first such pixel):
+// Throws obscura::Error if the G-buffer does not match the constants' size (or its depth is not 1 channel
+// or its normals not 3), or if a depth is NaN, zero or negative or a normal not finite (naming the first such pixel):
 // computeGtao's check, and its GPU pass's.
 void checkGtaoBuffers(const GBuffer& gbuffer, const GtaoConstants& constants);
 

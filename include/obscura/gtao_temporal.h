@@ -55,7 +55,9 @@ struct GtaoTemporalSettings {
 // shared cross-bilateral weight). `values` has 1 or 3 channels (3: vectors, renormalised), `depth` and
 // `normal` are the grid's own (1 and 3 channels, same size). Sky pixels keep their value.
 // windowPhase 0..3 gathers a 4x4 window instead, 4..7 a 2x2 one, every tap at weight 1
-// (obscura/reconstruct_window.h says which); -1: the 5x5 window.
+// (obscura/reconstruct_window.h says which); -1: the 5x5 window. Throws obscura::Error("reconstruct
+// interleaved: ...") for values of another channel count, depth or normal of another size or channel count,
+// or a windowPhase outside -1..7.
 Image reconstructInterleaved(const Image& values, const Image& depth, const Image& normal, float depthSigma,
                              int windowPhase = -1);
 // The windowPhase of frame frameIndex: -1 without alternatingWindow, else 0, 1, 3, 2 in turn, plus 4 for
@@ -66,7 +68,11 @@ int reconstructWindowPhase(const GtaoTemporalSettings& settings, int frameIndex)
 void checkReconstructWindowPhase(int windowPhase);
 
 // Depth-aware upsampling of a half-resolution image (pixel (x, y) taken at full-resolution (2x, 2y)) to the
-// G-buffer's size: bilinear weights times the depth weight of each low-resolution tap.
+// G-buffer's size: bilinear weights times the depth weight of each low-resolution tap. `low` has 1 or 3
+// channels (3: vectors, renormalised) and the grid's size, ceil(width / 2) x ceil(height / 2); `lowDepth` is
+// its depth (1 channel). Sky pixels get 1 (1 channel) or (0, 0, 0). A surface pixel none of whose 4 taps is a
+// surface (a feature thinner than the grid's spacing) gets an open surface's values: 1, or its own G-buffer
+// normal. Throws obscura::Error("upsample depth-aware: ...") for images of another size or channel count.
 Image upsampleDepthAware(const Image& low, const Image& lowDepth, const GBuffer& full, float depthSigma);
 
 class GtaoTemporal {

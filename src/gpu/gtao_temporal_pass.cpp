@@ -352,7 +352,8 @@ Image reconstructInterleaved(Context& context, const Image& values, const Image&
     const int w = values.width, h = values.height;
     if (values.channels != 1 && values.channels != 3)
         fail("reconstruct interleaved", "values must have 1 or 3 channels, not " + std::to_string(values.channels));
-    if (depth.width != w || depth.height != h || normal.width != w || normal.height != h || normal.channels < 3)
+    if (depth.width != w || depth.height != h || depth.channels != 1 || normal.width != w || normal.height != h ||
+        normal.channels < 3)
         fail("reconstruct interleaved", "depth (1 channel) and normal (3 channels) must match the " +
                                             std::to_string(w) + "x" + std::to_string(h) + " values");
     ssao::checkReconstructWindowPhase(windowPhase);  // the CPU's check and message
@@ -375,10 +376,10 @@ Image upsampleDepthAware(Context& context, const Image& low, const Image& lowDep
     const int w = full.width(), h = full.height();
     if (low.channels != 1 && low.channels != 3)
         fail("upsample depth-aware", "values must have 1 or 3 channels, not " + std::to_string(low.channels));
-    if (low.empty() || lowDepth.width != low.width || lowDepth.height != low.height)
+    if (low.empty() || lowDepth.width != low.width || lowDepth.height != low.height || lowDepth.channels != 1)
         fail("upsample depth-aware", "low-resolution depth (1 channel) must match the " + std::to_string(low.width) +
                                          "x" + std::to_string(low.height) + " values, which must not be empty");
-    if (full.depth.width != w || full.depth.height != h)
+    if (full.depth.width != w || full.depth.height != h || full.depth.channels != 1)
         fail("upsample depth-aware", "G-buffer depth must match its camera's size");
     Context::Impl& c = context.impl();
     const Buffer in = uploadChannels(c, low, low.channels);
@@ -420,8 +421,8 @@ GtaoTemporal& GtaoTemporal::operator=(GtaoTemporal&&) noexcept = default;
 const ssao::GtaoResult& GtaoTemporal::frame(const GBuffer& g) {
     const int w = g.width(), h = g.height();
     // ssao::GtaoTemporal::frame's checks and messages.
-    if (g.depth.width != w || g.depth.height != h || g.normal.width != w || g.normal.height != h ||
-        g.normal.channels != 3)
+    if (g.depth.width != w || g.depth.height != h || g.depth.channels != 1 || g.normal.width != w ||
+        g.normal.height != h || g.normal.channels != 3)
         fail("gtao temporal", "G-buffer images do not match its camera's size");
     g.validatePixels("gtao temporal");  // the CPU's check of the depths and normals; the shaders check nothing
     if (frame_ > 0 && (w != passes_->width() || h != passes_->height()))

@@ -78,16 +78,9 @@ void recordSpecularOcclusion(Context::Impl& c, VkCommandBuffer cmd, const Specul
 
 Image specularOcclusionWith(Context& context, const GBuffer& g, const Image& ao, const Image& bentNormal,
                             ssao::SpecularOcclusionMode mode, float roughness, int lookup) {
-    // ssao::computeSpecularOcclusion's checks and messages (tests/gpu compare them).
-    if (!(roughness >= 0.0f && roughness <= 1.0f)) fail("roughness", "must be in [0, 1]");
-    if (ao.width != g.width() || ao.height != g.height() || ao.channels != 1 || bentNormal.width != g.width() ||
-        bentNormal.height != g.height() || bentNormal.channels != 3)
-        fail("specular occlusion", "AO and bent-normal images must match the " + std::to_string(g.width()) + "x" +
-                                       std::to_string(g.height()) + " G-buffer (1 and 3 channels)");
-    // The CPU reads the G-buffer unchecked; uploads need its planes whole.
-    if (g.depth.pixelCount() != ao.pixelCount() || g.depth.channels != 1 || g.normal.pixelCount() != ao.pixelCount() ||
-        g.normal.channels < 3)
-        fail("specular occlusion", "G-buffer depth and normal must match its camera's size");
+    // ssao::computeSpecularOcclusion's checks and messages (tests/gpu compare them); they also keep the uploads
+    // whole and NaN out of the table coordinates.
+    ssao::checkSpecularOcclusionInputs(g, ao, bentNormal, roughness);
     Context::Impl& c = context.impl();
     const Texture table = specularTable(
         c, mode, lookup == kSpecularLookupHardware ? TextureFilter::Linear : TextureFilter::Nearest);

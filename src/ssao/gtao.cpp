@@ -407,11 +407,15 @@ GtaoPixel gtaoPixel(const GtaoConstants& c, const GBuffer& g, const GtaoDepthMip
 void checkGtaoBuffers(const GBuffer& gbuffer, const GtaoConstants& constants) {
     if (gbuffer.width() != constants.width || gbuffer.height() != constants.height ||
         gbuffer.depth.width != constants.width || gbuffer.depth.height != constants.height ||
-        gbuffer.normal.width != constants.width || gbuffer.normal.height != constants.height ||
-        gbuffer.normal.channels != 3)
+        gbuffer.normal.width != constants.width || gbuffer.normal.height != constants.height)
         fail("gtao", "G-buffer is " + std::to_string(gbuffer.depth.width) + "x" + std::to_string(gbuffer.depth.height) +
                          " but the constants are for " + std::to_string(constants.width) + "x" +
-                         std::to_string(constants.height) + " (or its normal image is not 3 channels)");
+                         std::to_string(constants.height));
+    // The kernel and the depth MIPs index the planes as 1 and 3 floats per pixel: a depth of 2 channels was read
+    // from the wrong places, one of none from an empty image.
+    if (gbuffer.depth.channels != 1 || gbuffer.normal.channels != 3)
+        fail("gtao", "G-buffer depth has " + std::to_string(gbuffer.depth.channels) + " channels and normal " +
+                         std::to_string(gbuffer.normal.channels) + "; they must have 1 and 3");
     if (constants.mipLevels < 0 || constants.mipLevels > GTAO_MAX_MIP_LEVELS)
         fail("gtao", "the constants ask for " + std::to_string(constants.mipLevels) +
                          " depth MIP levels; the chain has 0 to " + std::to_string(GTAO_MAX_MIP_LEVELS));

@@ -10,12 +10,17 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 namespace obscura::ssao {
 
 namespace {
 
 bool finiteDepth(float d) { return d < 1e30f; }
+
+std::string imageShape(const Image& image) {
+    return std::to_string(image.width) + "x" + std::to_string(image.height) + "x" + std::to_string(image.channels);
+}
 
 Vec3 vec3At(const Image& image, int x, int y) { return {image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2)}; }
 void setVec3(Image& image, int x, int y, Vec3 v) {
@@ -64,6 +69,14 @@ void checkReconstructWindowPhase(int windowPhase) {
 
 Image reconstructInterleaved(const Image& values, const Image& depth, const Image& normal, float depthSigma,
                              int windowPhase) {
+    // The gather sums at most 3 channels, and reads depth and normal at every pixel of the values.
+    if (values.channels != 1 && values.channels != 3)
+        fail("reconstruct interleaved", "values must have 1 or 3 channels, not " + std::to_string(values.channels));
+    if (depth.width != values.width || depth.height != values.height || depth.channels != 1 ||
+        normal.width != values.width || normal.height != values.height || normal.channels != 3)
+        fail("reconstruct interleaved", "depth (1 channel) and normal (3 channels) must match the " +
+                                            std::to_string(values.width) + "x" + std::to_string(values.height) +
+                                            " values, not " + imageShape(depth) + " and " + imageShape(normal));
     checkReconstructWindowPhase(windowPhase);
     Image out = values;
     const int w = values.width, h = values.height, channels = values.channels;
@@ -106,6 +119,21 @@ Image reconstructInterleaved(const Image& values, const Image& depth, const Imag
 
 Image upsampleDepthAware(const Image& low, const Image& lowDepth, const GBuffer& full, float depthSigma) {
     const int w = full.width(), h = full.height(), channels = low.channels;
+    // The filter sums at most 3 channels; it reads the full depth (and, for vectors, the normal) at every pixel of
+    // the camera's size, and the low-resolution depth and values at the grid pixels (x / 2, y / 2) and next to them.
+    if (channels != 1 && channels != 3)
+        fail("upsample depth-aware", "values must have 1 or 3 channels, not " + std::to_string(channels));
+    if (low.width != (w + 1) / 2 || low.height != (h + 1) / 2)
+        fail("upsample depth-aware", "values are " + imageShape(low) + " but the grid of a " + std::to_string(w) +
+                                         "x" + std::to_string(h) + " G-buffer is " + std::to_string((w + 1) / 2) +
+                                         "x" + std::to_string((h + 1) / 2));
+    if (lowDepth.width != low.width || lowDepth.height != low.height || lowDepth.channels != 1)
+        fail("upsample depth-aware", "low-resolution depth (1 channel) must match the " + std::to_string(low.width) +
+                                         "x" + std::to_string(low.height) + " values, not " + imageShape(lowDepth));
+    if (full.depth.width != w || full.depth.height != h || full.depth.channels != 1 || full.normal.width != w ||
+        full.normal.height != h || full.normal.channels != 3)
+        fail("upsample depth-aware", "G-buffer depth (1 channel) and normal (3 channels) must match its camera's " +
+                                         std::to_string(w) + "x" + std::to_string(h));
     Image out(w, h, channels, channels == 1 ? 1.0f : 0.0f);
     forRows(h, [&](int y) {
         for (int x = 0; x < w; ++x) {
@@ -133,7 +161,14 @@ Image upsampleDepthAware(const Image& low, const Image& lowDepth, const GBuffer&
                 for (int c = 0; c < channels; ++c) sum[c] += wt * low.at(tx[t], ty[t], c);
                 weightSum += wt;
             }
-            if (best < 0) continue;
+            // No surface among the taps: a feature thinner than the grid's spacing, which the grid never saw, against
+            // the sky. It gets what the full-resolution kernel gives such a lone pixel, an open surface's values:
+            // visibility 1 (the image's fill) and its own normal as the bent normal, where (0, 0, 0) would read as
+            // no direction at all (GTSO's beta from it is pi/2 whatever the view: S = 0.5 for 1).
+            if (best < 0) {
+                if (channels == 3) setVec3(out, x, y, normalize(full.viewNormal(x, y)));
+                continue;
+            }
             // No tap on this surface (a thin feature between the samples): take the closest in depth.
             if (!(weightSum > 1e-4f)) {
                 for (int c = 0; c < channels; ++c) out.at(x, y, c) = low.at(tx[best], ty[best], c);
@@ -154,8 +189,8 @@ GtaoTemporal::GtaoTemporal(const GtaoSettings& settings, const GtaoTemporalSetti
 
 const GtaoResult& GtaoTemporal::frame(const GBuffer& g) {
     const int w = g.width(), h = g.height();
-    if (g.depth.width != w || g.depth.height != h || g.normal.width != w || g.normal.height != h ||
-        g.normal.channels != 3)
+    if (g.depth.width != w || g.depth.height != h || g.depth.channels != 1 || g.normal.width != w ||
+        g.normal.height != h || g.normal.channels != 3)
         fail("gtao temporal", "G-buffer images do not match its camera's size");
     g.validatePixels("gtao temporal");  // computeGtao's check of the depths and normals
     if (frame_ > 0 && (w != previousCamera_.width || h != previousCamera_.height))

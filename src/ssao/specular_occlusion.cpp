@@ -11,7 +11,10 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
+#include <limits>
+#include <string>
 
 namespace obscura::ssao {
 
@@ -19,6 +22,7 @@ namespace {
 
 constexpr int kN = kSpecularTableSize;
 constexpr float kHalfPi = 0.5f * kPi;
+constexpr double kPiD = 3.14159265358979323846;
 // VNDF samples per (roughness, theta_o) cell; with the Sobol net the tables agree with an independent
 // Monte Carlo integration to about 0.01 (tests/ssao/specular_occlusion_test.cpp).
 constexpr int kSamples = 2048;
@@ -49,11 +53,57 @@ Vec3 sampleVisibleNormal(Vec3 view, float alpha, Vec2 u) {
 
 float gridStep(float range) { return range / float(kN - 1); }
 
-// Fractional grid coordinate of v in [0, range], split into a cell index and a weight.
-void gridCoordinate(float v, float range, int& i, float& f) {
-    const float g = std::clamp(v / gridStep(range), 0.0f, float(kN - 1));
+// Fractional grid coordinate g in [0, kN - 1], split into a cell index and a weight. max(0, g) comes first
+// because it maps NaN to 0: std::clamp would hand NaN on to int(), which is undefined for it.
+void splitCoordinate(float g, int& i, float& f) {
+    g = std::min(std::max(0.0f, g), float(kN - 1));
     i = std::min(int(g), kN - 2);
     f = g - float(i);
+}
+
+// Fractional grid coordinate of v in [0, range].
+void gridCoordinate(float v, float range, int& i, float& f) { splitCoordinate(v / gridStep(range), i, f); }
+
+// The 4-D table's beta axis follows the bent normal in the plane of n and w_r, so that b = n is node
+// kNormalNode at every theta_o: nodes 0..kNormalNode tilt b from w_r (beta = 0) to n (beta = theta_o) in equal
+// steps, the nodes above tilt it on past n in steps of (pi/2) / (kN - 1 - kNormalNode), the last on the horizon
+// (beta = theta_o + pi/2; beyond it b would be below the surface). An axis uniform in beta over [0, pi] put b = n
+// between two nodes, and at grazing views S falls from 1 to about 0 within one such step past b = n (the
+// hemisphere about a b tilted away from w_r cuts off the lobe at the horizon), so an unoccluded pixel's S was
+// interpolated across that fall: 0.53 at theta_o = 89.9 degrees, roughness 0.
+constexpr int kNormalNode = 15;
+constexpr float kPastNormalStep = kHalfPi / float(kN - 1 - kNormalNode);
+
+float betaCoordinate(float beta, float thetaO) {
+    if (beta > thetaO) return float(kNormalNode) + (beta - thetaO) / kPastNormalStep;
+    return thetaO > 0.0f ? float(kNormalNode) * beta / thetaO : float(kNormalNode);
+}
+
+// Solid angle of the intersection of caps of half-angles a1, a2 whose axes are beta apart (Omega_i of eq. 19,
+// App. B). Gauss-Bonnet on the lens gives 2 (pi - gamma - cos a1 phi1 - cos a2 phi2) (the textbook form,
+// Mazonka 2012), with phi_i the lens's half-arc about axis i and gamma the angle at a corner of the lens of the
+// triangle (axis 1, axis 2, corner); that sum cancels to the lens's size from terms of order 1, and its acos
+// lose half the digits near +-1, so a cap of a few milliradians came out 0 in float. The same sum regrouped is
+// the two cap sectors less the kite of the two triangles: 2 (phi1 (1 - cos a1) + phi2 (1 - cos a2) - E), E the
+// triangle's spherical excess; here 1 - cos a = 2 sin^2(a / 2), the angles come from the half-angle formulas
+// and E from L'Huilier's theorem, all of which take the triangle's sides, not cosines, so the terms cancel only
+// down to the lens's size relative to the smaller cap. In double, as the reference the GPU's float is held to.
+double capIntersection(double a1, double a2, double beta) {
+    if (beta >= a1 + a2) return 0.0;  // disjoint
+    const double s1 = std::sin(0.5 * a1), s2 = std::sin(0.5 * a2);
+    const double cap1 = 4.0 * kPiD * s1 * s1, cap2 = 4.0 * kPiD * s2 * s2;
+    if (beta <= std::fabs(a1 - a2)) return std::min(cap1, cap2);  // one inside the other
+    if (beta >= 2.0 * kPiD - a1 - a2) return cap1 + cap2 - 4.0 * kPiD;  // together they cover the sphere
+    // The half-perimeter and its differences from the sides, each from the sides themselves (s - a1 would round
+    // to 0 or below where beta is within an ulp of a1 - a2), all in [0, pi).
+    const double s = 0.5 * (a1 + a2 + beta), sb = std::max(0.0, 0.5 * (a1 + a2 - beta)),
+                 sa1 = std::max(0.0, 0.5 * (a2 + beta - a1)), sa2 = std::max(0.0, 0.5 * (a1 + beta - a2));
+    const double sinS = std::sin(s), sinB = std::sin(sb), sin1 = std::sin(sa1), sin2 = std::sin(sa2);
+    const double phi1 = 2.0 * std::atan2(std::sqrt(sinB * sin1), std::sqrt(sinS * sin2));
+    const double phi2 = 2.0 * std::atan2(std::sqrt(sinB * sin2), std::sqrt(sinS * sin1));
+    const double excess =
+        4.0 * std::atan(std::sqrt(std::tan(0.5 * s) * std::tan(0.5 * sb) * std::tan(0.5 * sa1) * std::tan(0.5 * sa2)));
+    return std::max(0.0, 2.0 * (phi1 * 2.0 * s1 * s1 + phi2 * 2.0 * s2 * s2 - excess));
 }
 
 } // namespace
@@ -63,25 +113,27 @@ float visibilityConeCos(float ao) { return std::sqrt(std::clamp(1.0f - ao, 0.0f,
 float specularConeCos(float roughness) { return std::exp(-2.30259f * roughness * roughness); }
 
 float capIntersectionSolidAngle(float a1, float a2, float beta) {
-    if (beta >= a1 + a2) return 0.0f;
-    if (beta <= std::fabs(a1 - a2)) return 2.0f * kPi * (1.0f - std::cos(std::min(a1, a2)));
-    const float c1 = std::cos(a1), c2 = std::cos(a2), cb = std::cos(beta);
-    const float s1 = std::sin(a1), s2 = std::sin(a2), sb = std::sin(beta);
-    const float g = std::acos(clampCos((cb - c1 * c2) / (s1 * s2)));
-    const float b1 = std::acos(clampCos((c2 - cb * c1) / (sb * s1)));
-    const float b2 = std::acos(clampCos((c1 - cb * c2) / (sb * s2)));
-    return std::max(0.0f, 2.0f * (kPi - g - c1 * b1 - c2 * b2));
+    return float(capIntersection(double(a1), double(a2), double(beta)));
 }
 
 float specularOcclusionCone(float alphaV, float beta, float roughness) {
-    const float alphaS = std::acos(specularConeCos(roughness));
-    const float specular = 2.0f * kPi * (1.0f - std::cos(alphaS));
-    if (!(specular > 0.0f)) return beta <= alphaV ? 1.0f : 0.0f;  // a mirror: the reflection ray's visibility
-    return std::clamp(capIntersectionSolidAngle(alphaV, alphaS, beta) / specular, 0.0f, 1.0f);
+    if (std::isnan(alphaV) || std::isnan(beta) || std::isnan(roughness)) return std::numeric_limits<float>::quiet_NaN();
+    // eq. 26 as 1 - cos(alpha_s) = -expm1(-2.30259 r^2): 1 - exp(-x) in float is off by up to 6e-8 / x, 3% at
+    // r = 0.001.
+    const double oneMinusCos = -std::expm1(-2.30259 * double(roughness) * double(roughness));
+    // A mirror: the reflection ray's visibility. Strictly inside the cone, as the limit r -> 0 has it: with
+    // AO = 0 (alpha_v = 0) the cone is empty and S must be 0 even for b = w_r.
+    if (!(oneMinusCos > 0.0)) return beta < alphaV ? 1.0f : 0.0f;
+    const double alphaS = 2.0 * std::asin(std::sqrt(0.5 * oneMinusCos));
+    const double specular = 2.0 * kPiD * oneMinusCos;  // Omega_s of eq. 19
+    return float(std::clamp(capIntersection(double(alphaV), alphaS, double(beta)) / specular, 0.0, 1.0));
 }
 
 float SpecularOcclusionTable::alphaVAt(int i) { return float(i) * gridStep(kHalfPi); }
-float SpecularOcclusionTable::betaAt(int j) { return float(j) * gridStep(kPi); }
+float SpecularOcclusionTable::betaAt(int j, float thetaO) {
+    if (j <= kNormalNode) return thetaO * float(j) / float(kNormalNode);
+    return thetaO + float(j - kNormalNode) * kPastNormalStep;
+}
 float SpecularOcclusionTable::roughnessAt(int k) { return float(k) * gridStep(1.0f); }
 float SpecularOcclusionTable::thetaOAt(int l) { return float(l) * gridStep(kHalfPi); }
 
@@ -112,7 +164,7 @@ SpecularOcclusionTable::SpecularOcclusionTable(bool fourD) : fourD_(fourD) {
             }
             for (int j = 0; j < betas; ++j) {
                 // Bent normal in the plane of n and w_r, beta from w_r towards n (b = n in the 3-D table).
-                const float bAngle = fourD ? thetaO - betaAt(j) : 0.0f;
+                const float bAngle = fourD ? thetaO - betaAt(j, thetaO) : 0.0f;
                 const Vec3 b{std::sin(bAngle), 0.0f, std::cos(bAngle)};
                 std::array<float, kN> bins{};
                 for (int s = 0; s < kSamples; ++s) {
@@ -151,10 +203,12 @@ float SpecularOcclusionTable::node(int i, int j, int k, int l) const {
 }
 
 float SpecularOcclusionTable::lookup(float alphaV, float beta, float roughness, float thetaO) const {
+    if (std::isnan(alphaV) || std::isnan(beta) || std::isnan(roughness) || std::isnan(thetaO))
+        return std::numeric_limits<float>::quiet_NaN();
     int i, j = 0, k, l;
     float fi, fj = 0.0f, fk, fl;
     gridCoordinate(alphaV, kHalfPi, i, fi);
-    if (fourD_) gridCoordinate(beta, kPi, j, fj);
+    if (fourD_) splitCoordinate(betaCoordinate(beta, thetaO), j, fj);
     gridCoordinate(roughness, 1.0f, k, fk);
     gridCoordinate(thetaO, kHalfPi, l, fl);
     float result = 0.0f;
@@ -184,13 +238,57 @@ float specularOcclusion(SpecularOcclusionMode mode, float ao, Vec3 bentNormal, V
     return 1.0f;
 }
 
-Image computeSpecularOcclusion(const GBuffer& g, const Image& ao, const Image& bentNormal, SpecularOcclusionMode mode,
-                               float roughness) {
+namespace {
+
+std::string shapeText(const Image& image) {
+    return std::to_string(image.width) + "x" + std::to_string(image.height) + "x" + std::to_string(image.channels);
+}
+
+bool finiteAt(const Image& image, int x, int y) {
+    bool finite = true;
+    for (int c = 0; c < image.channels; ++c) finite &= std::isfinite(image.at(x, y, c));
+    return finite;
+}
+
+} // namespace
+
+void checkSpecularOcclusionInputs(const GBuffer& g, const Image& ao, const Image& bentNormal, float roughness) {
     if (!(roughness >= 0.0f && roughness <= 1.0f)) fail("roughness", "must be in [0, 1]");
     if (ao.width != g.width() || ao.height != g.height() || ao.channels != 1 || bentNormal.width != g.width() ||
         bentNormal.height != g.height() || bentNormal.channels != 3)
         fail("specular occlusion", "AO and bent-normal images must match the " + std::to_string(g.width()) + "x" +
                                        std::to_string(g.height()) + " G-buffer (1 and 3 channels)");
+    // Every pixel's depth and normal is read at the camera's size: smaller planes were read past their end.
+    if (g.depth.width != g.width() || g.depth.height != g.height() || g.depth.channels != 1 ||
+        g.normal.width != g.width() || g.normal.height != g.height() || g.normal.channels != 3)
+        fail("specular occlusion", "G-buffer depth (" + shapeText(g.depth) + ") and normal (" + shapeText(g.normal) +
+                                       ") must match its camera's " + std::to_string(g.width()) + "x" +
+                                       std::to_string(g.height()) + " (1 and 3 channels)");
+    g.validatePixels("specular occlusion");
+    // A NaN AO or bent normal would make a NaN table coordinate; name it as a NaN depth is named. Sky pixels
+    // are not read, so what they hold does not matter. The scan is branch-free; only a bad image takes the
+    // loop that names the first bad pixel.
+    std::atomic<bool> bad{false};
+    parallelFor(std::size_t(g.height()), [&](std::size_t begin, std::size_t end) {
+        bool anyBad = false;
+        for (int y = int(begin); y < int(end); ++y)
+            for (int x = 0; x < g.width(); ++x)
+                anyBad |= !g.isSky(x, y) & !(finiteAt(ao, x, y) & finiteAt(bentNormal, x, y));
+        if (anyBad) bad.store(true, std::memory_order_relaxed);
+    }, 16);
+    if (!bad.load()) return;
+    for (int y = 0; y < g.height(); ++y)
+        for (int x = 0; x < g.width(); ++x) {
+            if (g.isSky(x, y)) continue;
+            const std::string pixel = " at pixel (" + std::to_string(x) + ", " + std::to_string(y) + ")";
+            if (!finiteAt(ao, x, y)) fail("specular occlusion", "AO" + pixel + " is " + numberText(ao.at(x, y)));
+            if (!finiteAt(bentNormal, x, y)) fail("specular occlusion", "bent normal" + pixel + " is not finite");
+        }
+}
+
+Image computeSpecularOcclusion(const GBuffer& g, const Image& ao, const Image& bentNormal, SpecularOcclusionMode mode,
+                               float roughness) {
+    checkSpecularOcclusionInputs(g, ao, bentNormal, roughness);
     // Build the table before the parallel loop, so its own parallel construction is not nested.
     if (mode == SpecularOcclusionMode::Lut4) SpecularOcclusionTable::fourD();
     if (mode == SpecularOcclusionMode::Lut3) SpecularOcclusionTable::threeD();

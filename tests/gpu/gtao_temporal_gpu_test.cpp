@@ -825,7 +825,7 @@ TEST(GpuGtaoTemporal, RejectsBadInputAsTheCpuPassDoes) {
     testing::expectSameError([&] { cpu.frame(larger); }, [&] { gpu.frame(larger); });
     EXPECT_EQ(gpu.framesRendered(), 1);
 
-    // The filters check what the GPU must read safely (the CPU ones check nothing).
+    // The filters check what the GPU must read safely (the CPU ones check as much, tests/ssao/gtao_temporal_test.cpp).
     EXPECT_THROW(reconstructInterleaved(context, Image(16, 16, 2), g.depth, g.normal, 0.05f), Error);
     EXPECT_THROW(reconstructInterleaved(context, Image(16, 16, 1), g.depth, Image(8, 8, 3), 0.05f), Error);
     EXPECT_THROW(upsampleDepthAware(context, Image(8, 8, 1), Image(4, 4, 1), g, 0.05f), Error);

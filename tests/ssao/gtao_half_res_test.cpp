@@ -181,3 +181,33 @@ TEST(GtaoHalfResolution, BeatsTheHighPresetWithItsBlurAgainstRayTracing) {
         }
     }
 }
+
+// A pole one pixel wide in an odd column against the sky (6x6, depth 2 m, n = +Z): the grid never sees it,
+// so each of its pixels has only sky among its 4 taps. The full-resolution kernel gives it visibility 1 and
+// bent normal (0, 0, 1); the upsampling left (0, 0, 0). Exact within float rounding (1e-6).
+TEST(GtaoHalfResolution, ThinFeatureAgainstTheSkyKeepsItsNormal) {
+    const GBuffer g = test::poleAgainstTheSky();
+    const GtaoResult full = computeGtao(g, GtaoSettings{});
+    const GtaoResult half = computeGtaoHalfResolution(g, GtaoSettings{}, GtaoHalfResolutionSettings{});
+    for (int y = 0; y < 6; ++y) {
+        EXPECT_NEAR(half.visibility.at(3, y), full.visibility.at(3, y), 1e-6f) << "row " << y;
+        for (int c = 0; c < 3; ++c)
+            EXPECT_NEAR(half.bentNormal.at(3, y, c), full.bentNormal.at(3, y, c), 1e-6f)
+                << "row " << y << " channel " << c;
+    }
+    EXPECT_NEAR(full.bentNormal.at(3, 0, 2), 1.0f, 1e-6f);
+}
+
+// The G-buffer's depth must have 1 channel (computeGtao's check, checkGtaoBuffers): with 2 the kernel read
+// every depth from the wrong place.
+TEST(GtaoHalfResolution, RejectsADepthImageOfAnotherChannelCount) {
+    BuiltinScene s = makeBuiltinScene("demo");
+    GBuffer g = render("demo", s.camera, 16, 10);
+    g.depth = Image(16, 10, 2, 2.0f);
+    try {
+        computeGtaoHalfResolution(g, GtaoSettings{}, GtaoHalfResolutionSettings{});
+        ADD_FAILURE() << "a 2-channel depth was accepted";
+    } catch (const Error& e) {
+        EXPECT_EQ(std::string(e.what()), "gtao: G-buffer depth has 2 channels and normal 3; they must have 1 and 3");
+    }
+}

@@ -3,12 +3,14 @@
 #pragma once
 
 #include "obscura/builtin_scenes.h"
+#include "obscura/error.h"
 #include "obscura/gbuffer.h"
 #include "obscura/metrics.h"
 #include "obscura/trace.h"
 #include "trace/primary_ray.h"
 
 #include <cmath>
+#include <functional>
 #include <string>
 
 namespace obscura::test {
@@ -112,6 +114,36 @@ inline double maskFraction(const GBuffer& g, const Image& mask) {
                 in += mask.at(x, y) > 0.5f ? 1 : 0;
             }
     return all > 0 ? in / all : 0.0;
+}
+
+// A 6x6 view of the sky with a surface pixel in each row of column 3, 2 m away facing the camera (normal
+// `normal`): a pole one pixel wide that the half-resolution grid (columns 0, 2, 4) never sees.
+inline GBuffer poleAgainstTheSky(Vec3 normal = {0, 0, 1}) {
+    Camera cam;
+    cam.position = {0, 0, 0};
+    cam.target = {0, 0, -1};
+    cam.width = cam.height = 6;
+    GBuffer g;
+    g.camera = cam;
+    g.depth = Image(6, 6, 1, INFINITY);
+    g.normal = Image(6, 6, 3, 0.0f);
+    for (int y = 0; y < 6; ++y) {
+        g.depth.at(3, y) = 2.0f;
+        g.normal.at(3, y, 0) = normal.x;
+        g.normal.at(3, y, 1) = normal.y;
+        g.normal.at(3, y, 2) = normal.z;
+    }
+    return g;
+}
+
+// The message of the obscura::Error that `run` throws, or "no error".
+inline std::string errorOf(const std::function<void()>& run) {
+    try {
+        run();
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "no error";
 }
 
 } // namespace obscura::test

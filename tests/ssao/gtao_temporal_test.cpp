@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <functional>
 #include <set>
 #include <string>
 
@@ -80,6 +81,7 @@ Image meanOfPhases(const FlatPlane& p, int first) {
     }
     return mean;
 }
+
 
 } // namespace
 
@@ -546,4 +548,114 @@ TEST(GtaoTemporal, NearerPlanarZoneCostsAccuracyInTheTargetConfiguration) {
             EXPECT_GT(mae[1], mae[0] + 1e-4) << name << " " << g.width();
         }
     }
+}
+
+// The pole of poleAgainstTheSky: at half resolution all 4 grid taps of its pixels are sky. The full-resolution
+// kernel gives such a lone pixel visibility 1 and its normal as the bent normal (nothing around it occludes);
+// the upsampling left bent normal (0, 0, 0), which GTSO reads as a cone pointing nowhere (S = 0.5 instead of 1
+// for the cone model at roughness 0.3). Exact values: 1 and the normal within float rounding (1e-6).
+TEST(GtaoTemporal, ThinFeatureAgainstTheSkyKeepsItsNormalAtHalfResolution) {
+    const GBuffer g = test::poleAgainstTheSky();
+    const GtaoResult full = computeGtao(g, GtaoSettings{});
+    for (bool gridHistory : {false, true}) {
+        GtaoTemporalSettings t;
+        t.halfResolution = true;
+        t.gridHistory = gridHistory;
+        GtaoTemporal temporal(GtaoSettings{}, t);
+        for (int frame = 0; frame < 2; ++frame) {
+            const GtaoResult& r = temporal.frame(g);
+            for (int y = 0; y < 6; ++y) {
+                EXPECT_NEAR(r.visibility.at(3, y), full.visibility.at(3, y), 1e-6f) << gridHistory << " row " << y;
+                for (int c = 0; c < 3; ++c)
+                    EXPECT_NEAR(r.bentNormal.at(3, y, c), full.bentNormal.at(3, y, c), 1e-6f)
+                        << gridHistory << " row " << y << " channel " << c;
+            }
+        }
+    }
+    EXPECT_NEAR(full.bentNormal.at(3, 0, 2), 1.0f, 1e-6f);
+    // The upsampling alone, with a tilted normal: the pixel's own normal, not the grid's fill.
+    const Vec3 tilted = normalize(Vec3{0.6f, 0.0f, 0.8f});
+    const GBuffer tiltedPole = test::poleAgainstTheSky(tilted);
+    const Image lowDepth(3, 3, 1, INFINITY), lowBent(3, 3, 3, 0.0f), lowVisibility(3, 3, 1, 1.0f);
+    const Image bent = upsampleDepthAware(lowBent, lowDepth, tiltedPole, 0.05f);
+    const Image visibility = upsampleDepthAware(lowVisibility, lowDepth, tiltedPole, 0.05f);
+    for (int y = 0; y < 6; ++y) {
+        EXPECT_NEAR(bent.at(3, y, 0), tilted.x, 1e-6f) << "row " << y;
+        EXPECT_NEAR(bent.at(3, y, 1), tilted.y, 1e-6f) << "row " << y;
+        EXPECT_NEAR(bent.at(3, y, 2), tilted.z, 1e-6f) << "row " << y;
+        EXPECT_EQ(visibility.at(3, y), 1.0f) << "row " << y;
+        EXPECT_EQ(bent.at(2, y, 2), 0.0f) << "row " << y;  // sky stays (0, 0, 0)
+    }
+}
+
+// The G-buffer's depth has 1 channel: with none the frame loaded from an empty image, with 2 it read every
+// depth from the wrong place.
+TEST(GtaoTemporal, FrameRejectsADepthImageOfAnotherChannelCount) {
+    const GBuffer plane = test::poleAgainstTheSky();
+    for (int channels : {0, 2}) {
+        GBuffer bad = plane;
+        bad.depth = Image(6, 6, channels, 2.0f);
+        for (bool half : {false, true}) {
+            GtaoTemporalSettings t;
+            t.halfResolution = half;
+            GtaoTemporal temporal(GtaoSettings{}, t);
+            EXPECT_EQ(test::errorOf([&] { temporal.frame(bad); }),
+                      "gtao temporal: G-buffer images do not match its camera's size")
+                << channels << " channels, half " << half;
+            EXPECT_EQ(temporal.framesRendered(), 0);
+        }
+    }
+}
+
+// The public filters read what they are given at the values' (or the G-buffer's) size and sum at most 3
+// channels: 4-channel values overran the sum, a smaller depth or low-resolution depth was read past its end.
+TEST(GtaoTemporal, FiltersRejectImagesTheyCannotRead) {
+    const FlatPlane p = flatPlane(8, 8, 7);
+    auto reconstructError = [](const Image& values, const Image& depth, const Image& normal) {
+        return test::errorOf([&] { reconstructInterleaved(values, depth, normal, 0.05f); });
+    };
+    EXPECT_EQ(reconstructError(Image(8, 8, 4, 0.5f), p.depth, p.normal),
+              "reconstruct interleaved: values must have 1 or 3 channels, not 4");
+    EXPECT_EQ(reconstructError(Image(8, 8, 2, 0.5f), p.depth, p.normal),
+              "reconstruct interleaved: values must have 1 or 3 channels, not 2");
+    for (const auto& [depth, normal] :
+         {std::pair{Image(4, 4, 1, 3.0f), p.normal}, std::pair{Image(8, 8, 2, 3.0f), p.normal},
+          std::pair{p.depth, Image(8, 7, 3, 0.0f)}, std::pair{p.depth, Image(8, 8, 2, 0.0f)}}) {
+        const std::string message = reconstructError(p.values, depth, normal);
+        EXPECT_EQ(message.rfind("reconstruct interleaved: depth (1 channel) and normal (3 channels) must match the 8x8 "
+                                "values, not ",
+                                0),
+                  0u)
+            << message;
+    }
+    EXPECT_EQ(reconstructError(p.values, p.depth, p.normal), "no error");
+
+    // A 7x5 G-buffer's grid is 4x3.
+    GBuffer g = test::poleAgainstTheSky();
+    g.camera.width = 7;
+    g.camera.height = 5;
+    g.depth = Image(7, 5, 1, 2.0f);
+    g.normal = Image(7, 5, 3, 0.0f);
+    auto upsampleError = [&](const Image& low, const Image& lowDepth, const GBuffer& full) {
+        return test::errorOf([&] { upsampleDepthAware(low, lowDepth, full, 0.05f); });
+    };
+    const Image low(4, 3, 1, 0.5f), lowDepth(4, 3, 1, 2.0f);
+    EXPECT_EQ(upsampleError(low, lowDepth, g), "no error");
+    EXPECT_EQ(upsampleError(Image(4, 3, 3, 0.5f), lowDepth, g), "no error");
+    EXPECT_EQ(upsampleError(Image(4, 3, 4, 0.5f), lowDepth, g),
+              "upsample depth-aware: values must have 1 or 3 channels, not 4");
+    EXPECT_EQ(upsampleError(Image(8, 8, 1, 0.5f), Image(8, 8, 1, 2.0f), g),
+              "upsample depth-aware: values are 8x8x1 but the grid of a 7x5 G-buffer is 4x3");
+    EXPECT_EQ(upsampleError(low, Image(2, 2, 1, 2.0f), g),
+              "upsample depth-aware: low-resolution depth (1 channel) must match the 4x3 values, not 2x2x1");
+    EXPECT_EQ(upsampleError(low, Image(4, 3, 2, 2.0f), g),
+              "upsample depth-aware: low-resolution depth (1 channel) must match the 4x3 values, not 4x3x2");
+    GBuffer smallDepth = g;
+    smallDepth.depth = Image(3, 3, 1, 2.0f);
+    EXPECT_EQ(upsampleError(low, lowDepth, smallDepth),
+              "upsample depth-aware: G-buffer depth (1 channel) and normal (3 channels) must match its camera's 7x5");
+    GBuffer smallNormal = g;
+    smallNormal.normal = Image(3, 3, 3, 0.0f);
+    EXPECT_EQ(upsampleError(Image(4, 3, 3, 0.5f), lowDepth, smallNormal),
+              "upsample depth-aware: G-buffer depth (1 channel) and normal (3 channels) must match its camera's 7x5");
 }

@@ -240,6 +240,26 @@ TEST(Gtao, BadSettingsAndBuffersThrow) {
     EXPECT_NO_THROW(computeGtao(sky, GtaoSettings{}));
 }
 
+// The G-buffer's depth has 1 channel: with 2 the kernel and the depth MIPs read every depth from the wrong place
+// (at(x, y) takes channel 0, the raw planes every value), with none the scan of the pixels loaded from an empty
+// image.
+TEST(Gtao, DepthImageMustHaveOneChannel) {
+    BuiltinScene plane = makeBuiltinScene("plane");
+    const GBuffer g = render(plane.scene, plane.camera, 16, 12);
+    for (int channels : {0, 2}) {
+        GBuffer bad = g;
+        bad.depth = Image(16, 12, channels, 2.0f);
+        try {
+            computeGtao(bad, GtaoSettings{});
+            ADD_FAILURE() << channels << " depth channels accepted";
+        } catch (const Error& e) {
+            EXPECT_EQ(std::string(e.what()), "gtao: G-buffer depth has " + std::to_string(channels) +
+                                                 " channels and normal 3; they must have 1 and 3");
+        }
+    }
+    EXPECT_NO_THROW(computeGtao(g, GtaoSettings{}));
+}
+
 TEST(Gtao, SameBitsOnAnyThreadCount) {
     BuiltinScene s = makeBuiltinScene("demo");
     GBuffer g = render(s.scene, s.camera, 96, 64);

@@ -35,12 +35,26 @@ layout(std430, binding = kSpecularBindingOutput) writeonly buffer Output { float
 const float kPi = 3.14159265358979;
 const float kHalfPi = 0.5 * kPi;
 
-// Fractional grid coordinate of v in [0, range] on tableSize nodes: a cell index and a weight.
-void gridCoordinate(float v, float range, out int i, out float f) {
+// Fractional grid coordinate g in [0, tableSize - 1]: a cell index and a weight.
+void splitCoordinate(float g, out int i, out float f) {
     const int n = k.tableSize;
-    const float g = clamp(v / (range / float(n - 1)), 0.0, float(n - 1));
+    g = clamp(g, 0.0, float(n - 1));
     i = min(int(g), n - 2);
     f = g - float(i);
+}
+
+// Fractional grid coordinate of v in [0, range] on tableSize nodes.
+void gridCoordinate(float v, float range, out int i, out float f) {
+    splitCoordinate(v / (range / float(k.tableSize - 1)), i, f);
+}
+
+// The 4-D table's beta axis follows the bent normal: node kNormalNode is b = n at every theta_o, the nodes
+// below tilt b towards w_r (node 0: beta = 0), those above tilt it past n towards the horizon (the last: beta =
+// theta_o + pi/2). SpecularOcclusionTable::betaAt and the CPU's betaCoordinate.
+const int kNormalNode = 15;
+float betaCoordinate(float beta, float thetaO) {
+    if (beta > thetaO) return float(kNormalNode) + (beta - thetaO) / (kHalfPi / float(k.tableSize - 1 - kNormalNode));
+    return thetaO > 0.0 ? float(kNormalNode) * beta / thetaO : float(kNormalNode);
 }
 
 float node4(int i, int j, int kk, int l) { return texelFetch(table, ivec3(i, j, l * k.tableSize + kk), 0).r; }
@@ -52,7 +66,7 @@ float lookup(float alphaV, float beta, float roughness, float thetaO) {
     int i, j = 0, kk, l;
     float fi, fj = 0.0, fk, fl;
     gridCoordinate(alphaV, kHalfPi, i, fi);
-    if (fourD) gridCoordinate(beta, kPi, j, fj);
+    if (fourD) splitCoordinate(betaCoordinate(beta, thetaO), j, fj);
     gridCoordinate(roughness, 1.0, kk, fk);
     gridCoordinate(thetaO, kHalfPi, l, fl);
     if (kLookup == kSpecularLookupHardware) {
@@ -81,21 +95,32 @@ float lookup(float alphaV, float beta, float roughness, float thetaO) {
 
 float clampCos(float c) { return clamp(c, -1.0, 1.0); }
 
+// The CPU's capIntersection in float: two cap sectors less the kite of the triangle (axis 1, axis 2, a corner
+// of the lens), with the angles from the half-angle formulas and the excess from L'Huilier's theorem, so that a
+// cap of a few milliradians keeps its digits (the textbook 2 (pi - gamma - cos a1 b1 - cos a2 b2) lost them all).
 float capIntersectionSolidAngle(float a1, float a2, float beta) {
     if (beta >= a1 + a2) return 0.0;
-    if (beta <= abs(a1 - a2)) return 2.0 * kPi * (1.0 - cos(min(a1, a2)));
-    const float c1 = cos(a1), c2 = cos(a2), cb = cos(beta);
-    const float s1 = sin(a1), s2 = sin(a2), sb = sin(beta);
-    const float g = acos(clampCos((cb - c1 * c2) / (s1 * s2)));
-    const float b1 = acos(clampCos((c2 - cb * c1) / (sb * s1)));
-    const float b2 = acos(clampCos((c1 - cb * c2) / (sb * s2)));
-    return max(0.0, 2.0 * (kPi - g - c1 * b1 - c2 * b2));
+    const float s1 = sin(0.5 * a1), s2 = sin(0.5 * a2);
+    const float cap1 = 4.0 * kPi * s1 * s1, cap2 = 4.0 * kPi * s2 * s2;
+    if (beta <= abs(a1 - a2)) return min(cap1, cap2);
+    if (beta >= 2.0 * kPi - a1 - a2) return cap1 + cap2 - 4.0 * kPi;
+    const float s = 0.5 * (a1 + a2 + beta), sb = max(0.0, 0.5 * (a1 + a2 - beta));
+    const float sa1 = max(0.0, 0.5 * (a2 + beta - a1)), sa2 = max(0.0, 0.5 * (a1 + beta - a2));
+    // atan(y, x) is undefined for x = y = 0; the branches above leave at most one of them 0.
+    const float phi1 = 2.0 * atan(sqrt(sin(sb) * sin(sa1)), max(sqrt(sin(s) * sin(sa2)), 1e-30));
+    const float phi2 = 2.0 * atan(sqrt(sin(sb) * sin(sa2)), max(sqrt(sin(s) * sin(sa1)), 1e-30));
+    const float excess = 4.0 * atan(sqrt(tan(0.5 * s) * tan(0.5 * sb) * tan(0.5 * sa1) * tan(0.5 * sa2)));
+    return max(0.0, 2.0 * (phi1 * 2.0 * s1 * s1 + phi2 * 2.0 * s2 * s2 - excess));
 }
 
 float specularOcclusionCone(float alphaV, float beta, float roughness) {
-    const float alphaS = acos(exp(-2.30259 * roughness * roughness));  // eq. 26
-    const float specular = 2.0 * kPi * (1.0 - cos(alphaS));
-    if (!(specular > 0.0)) return beta <= alphaV ? 1.0 : 0.0;  // a mirror: the reflection ray's visibility
+    // eq. 26 as 1 - cos(alpha_s): GLSL has no expm1, and 1 - exp(-x) in float keeps few digits below x = 0.01,
+    // where the series' next term is below 5e-8 of it.
+    const float x = 2.30259 * roughness * roughness;
+    const float oneMinusCos = x < 0.01 ? x * (1.0 - x * (0.5 - x / 6.0)) : 1.0 - exp(-x);
+    if (!(oneMinusCos > 0.0)) return beta < alphaV ? 1.0 : 0.0;  // a mirror: strictly inside, as the CPU's
+    const float alphaS = 2.0 * asin(sqrt(0.5 * oneMinusCos));
+    const float specular = 2.0 * kPi * oneMinusCos;
     return clamp(capIntersectionSolidAngle(alphaV, alphaS, beta) / specular, 0.0, 1.0);
 }
 
