@@ -285,8 +285,7 @@ private:
 } // namespace
 
 Scene loadGltf(const std::string& path, LoadInfo* info) {
-    std::error_code ec;
-    if (!std::filesystem::exists(path, ec)) fail(path, "no such file");
+    loader::checkSceneFile(path);
     std::string ext = std::filesystem::path(path).extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
 

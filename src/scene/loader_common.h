@@ -1,8 +1,10 @@
 // Small pieces every scene loader shares.
 #pragma once
 
+#include "obscura/error.h"
 #include "obscura/scene_io.h"
 
+#include <filesystem>
 #include <string>
 
 namespace obscura::loader {
@@ -14,6 +16,16 @@ inline std::string firstLine(const std::string& s) {
     std::string line = s.substr(begin, s.find('\n', begin) - begin);
     while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
     return line;
+}
+
+// A scene file must exist and be a file: a directory named x.ply once reached the C++ library's "basic_filebuf::
+// underflow error reading the file: Is a directory", without the path, and x.gltf read as out of memory.
+inline void checkSceneFile(const std::string& path) {
+    std::error_code ec;
+    const std::filesystem::file_status status = std::filesystem::status(path, ec);
+    if (!std::filesystem::exists(status)) fail(path, "no such file");
+    if (std::filesystem::is_directory(status)) fail(path, "is a directory, not a scene file");
+    if (!std::filesystem::is_regular_file(status)) fail(path, "not a regular file");
 }
 
 // The caller's LoadInfo, reset, or a local one when the caller passed none.

@@ -38,14 +38,42 @@ std::size_t sizeOf(Type t) {
 
 bool isInteger(Type t) { return t != Type::Float32 && t != Type::Float64; }
 
-// The largest value of an integer type, which is what a full-intensity colour channel holds in it.
+// The largest value of an integer type, which is what a full-intensity colour channel holds in it (127 for a
+// char: a signed type's negative half is not light).
 double fullScale(Type t) {
     switch (t) {
-    case Type::Int8: case Type::UInt8: return 255.0;
-    case Type::Int16: case Type::UInt16: return 65535.0;
-    case Type::Int32: case Type::UInt32: return 4294967295.0;
+    case Type::Int8: return 127.0;
+    case Type::UInt8: return 255.0;
+    case Type::Int16: return 32767.0;
+    case Type::UInt16: return 65535.0;
+    case Type::Int32: return 2147483647.0;
+    case Type::UInt32: return 4294967295.0;
     default: return 1.0;
     }
+}
+
+// The smallest value of an integer type.
+double lowest(Type t) {
+    switch (t) {
+    case Type::Int8: return -128.0;
+    case Type::Int16: return -32768.0;
+    case Type::Int32: return -2147483648.0;
+    default: return 0.0;
+    }
+}
+
+const char* typeName(Type t) {
+    switch (t) {
+    case Type::Int8: return "char";
+    case Type::UInt8: return "uchar";
+    case Type::Int16: return "short";
+    case Type::UInt16: return "ushort";
+    case Type::Int32: return "int";
+    case Type::UInt32: return "uint";
+    case Type::Float32: return "float";
+    case Type::Float64: return "double";
+    }
+    return "?";
 }
 
 bool parseType(std::string_view s, Type& t) {
@@ -183,6 +211,11 @@ public:
             fail(path_, "line " + std::to_string(line_) + ": expected a number, got '" + std::string(tok) + "'");
         if (isInteger(type) && !(std::floor(v) == v))
             fail(path_, "line " + std::to_string(line_) + ": expected an integer, got '" + std::string(tok) + "'");
+        // What a binary file could hold in the declared type, and no more: 'inf' and 1e30 passed the integer
+        // test above and then met an integer cast, undefined for them.
+        if (isInteger(type) && !(v >= lowest(type) && v <= fullScale(type)))
+            fail(path_, "line " + std::to_string(line_) + ": '" + std::string(tok) + "' does not fit the declared type " +
+                            typeName(type));
         return true;
     }
 
@@ -194,6 +227,15 @@ public:
     }
 
     std::size_t remaining() const { return data_.size() - pos_; }
+
+    // Throws if anything but white space follows the last element's rows.
+    void expectEnd() {
+        while (pos_ < data_.size() && std::isspace(static_cast<unsigned char>(data_[pos_])))
+            if (data_[pos_++] == '\n') ++line_;
+        if (pos_ < data_.size())
+            fail(path_, "line " + std::to_string(line_) + ": data after the last element (the header declares fewer rows "
+                                                          "than the file holds)");
+    }
 
 private:
     std::string_view data_;
@@ -226,6 +268,12 @@ public:
     }
 
     std::size_t remaining() const { return data_.size() - pos_; }
+
+    void expectEnd(const std::string& path) const {
+        if (remaining() > 0)
+            fail(path, std::to_string(remaining()) + " bytes after the last element (the header declares fewer rows than "
+                                                     "the file holds)");
+    }
 
 private:
     template <class T> static double as(const unsigned char* b) {
@@ -288,6 +336,8 @@ public:
             } else skipElement(e);
         }
         if (!haveFaces) fail(path_, "no face element (point clouds are not supported)");
+        if constexpr (std::is_same_v<Source, BinarySource>) src_.expectEnd(path_);
+        else src_.expectEnd();
         if (colorCount_ > 0) mesh_.baseColor = colorSum_ / float(colorCount_);
         return std::move(mesh_);
     }
@@ -348,7 +398,13 @@ private:
             if (normals) mesh_.normals.push_back(unitIfFinite(Vec3{float(at(nx)), float(at(ny)), float(at(nz))}));
             if (colors) {
                 auto channel = [&](int c) { return float(at(c) / fullScale(e.properties[std::size_t(c)].type)); };
-                colorSum_ += Vec3{channel(r), channel(g), channel(b)};
+                const Vec3 color{channel(r), channel(g), channel(b)};
+                // Each vertex's, before the mesh's mean: (2, 2, 2), (-1, -1, -1) and (0.5, 0.5, 0.5) averaged to a
+                // valid grey.
+                if (!(color.x >= 0 && color.x <= 1 && color.y >= 0 && color.y <= 1 && color.z >= 0 && color.z <= 1))
+                    fail(path_, "vertex " + std::to_string(i) + " has colour (" + numberText(color.x) + ", " +
+                                    numberText(color.y) + ", " + numberText(color.z) + "), outside [0, 1]");
+                colorSum_ += color;
                 ++colorCount_;
             }
         }
@@ -372,6 +428,8 @@ private:
     }
 
     void skipElement(const Element& e) {
+        // Rows of no properties hold nothing, however many the header declares (1e18 once took centuries).
+        if (e.properties.empty()) return;
         bool fixed = true;
         std::size_t rowBytes = 0;
         for (const Property& p : e.properties) {
@@ -403,8 +461,7 @@ private:
 } // namespace
 
 Scene loadPly(const std::string& path, LoadInfo* info) {
-    std::error_code ec;
-    if (!std::filesystem::exists(path, ec)) fail(path, "no such file");
+    loader::checkSceneFile(path);
     std::ifstream in(path, std::ios::binary);
     if (!in) fail(path, "cannot open for reading");
     std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

@@ -94,12 +94,13 @@ void computeSmoothNormals(Mesh& mesh) {
 }
 
 std::size_t removeDegenerateTriangles(Mesh& mesh) {
-    [[maybe_unused]] const std::size_t n = mesh.positions.size();
+    const std::size_t n = mesh.positions.size();
     // Relative to the mesh's own size, so a millimetre part and a kilometre terrain are judged alike. Over
-    // finite positions only: one infinite vertex must not make every other triangle "small".
+    // finite positions only: one infinite vertex must not make every other triangle "small". Over the vertices
+    // triangles use only: one stray vertex 1e7 m out once made a unit triangle "degenerate".
     Bounds finite;
-    for (Vec3 p : mesh.positions)
-        if (isFinite(p)) finite.extend(p);
+    for (std::uint32_t i : mesh.indices)
+        if (i < n && isFinite(mesh.positions[i])) finite.extend(mesh.positions[i]);
     const Vec3 diag = finite.size();
     const double minTwiceArea = 2.0 * 1e-12 * double(dot(diag, diag));
     std::size_t kept = 0;
@@ -149,8 +150,9 @@ void checkMesh(const Mesh& mesh, const std::string& what) {
     if (!mesh.normals.empty() && mesh.normals.size() != n)
         fail(what, "mesh '" + mesh.name + "' has " + std::to_string(mesh.normals.size()) + " normals for " +
                        std::to_string(n) + " vertices");
-    for (std::size_t i = 0; i < mesh.normals.size(); ++i)
+    for (std::size_t i = 0; i < mesh.normals.size(); ++i) {
         if (!isFinite(mesh.normals[i])) fail(what, "vertex " + std::to_string(i) + " has a non-finite normal");
+    }
 }
 
 bool isFinite(const Mat4& m) {
@@ -190,6 +192,14 @@ void sanitizeScene(Scene& scene, const std::string& what, std::size_t* dropped) 
     std::size_t removed = 0;
     for (Mesh& mesh : scene.meshes) removed += removeDegenerateTriangles(mesh);
     if (dropped) *dropped = removed;
+    // A file's zero normal (OBJ's "vn 0 0 0", PLY's nx = ny = nz = 0) once reached the G-buffer as (0, 0, 0),
+    // which `ao` then refused in the G-buffer Obscura itself had written. Checked on the triangles kept: an
+    // exporter's per-face normal of a face without area is zero, and that face is dropped above.
+    for (const Mesh& mesh : scene.meshes)
+        if (!mesh.normals.empty())
+            for (std::uint32_t i : mesh.indices)
+                if (mesh.normals[i] == Vec3{})
+                    fail(what, "vertex " + std::to_string(i) + " of mesh '" + mesh.name + "' has a zero-length normal");
     // Counted over instances: triangles in meshes nothing places are not in the scene either.
     if (scene.triangleCount() == 0) fail(what, "no triangles");
 }

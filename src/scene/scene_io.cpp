@@ -2,6 +2,7 @@
 #include "obscura/scene_io.h"
 
 #include "obscura/error.h"
+#include "scene/loader_common.h"
 
 #include <algorithm>
 #include <cctype>
@@ -10,8 +11,7 @@
 namespace obscura {
 
 Scene loadScene(const std::string& path, LoadInfo* info) {
-    std::error_code ec;
-    if (!std::filesystem::exists(path, ec)) fail(path, "no such file");
+    loader::checkSceneFile(path);
     std::string ext = std::filesystem::path(path).extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
     if (ext == ".gltf" || ext == ".glb") return loadGltf(path, info);

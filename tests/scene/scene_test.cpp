@@ -149,6 +149,16 @@ TEST(SceneDegenerate, ThresholdIsRelativeToTheMeshSize) {
     EXPECT_EQ(removeDegenerateTriangles(small), 0u);
 }
 
+// Only vertices that triangles use set the mesh's size: one unreferenced vertex 1e7 m out once made a unit
+// triangle "degenerate" (the threshold became 1e-12 x (1e7)^2 = 100 m^2), and the file had no triangles.
+TEST(SceneDegenerate, UnreferencedVerticesDoNotSetTheThreshold) {
+    Mesh m;
+    m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1e7f, 0, 0}};
+    m.indices = {0, 1, 2};
+    EXPECT_EQ(removeDegenerateTriangles(m), 0u);
+    EXPECT_EQ(m.triangleCount(), 1u);
+}
+
 TEST(SceneDegenerate, NonFiniteAreaIsRemoved) {
     Mesh m = quadXY();
     m.positions.push_back({std::numeric_limits<float>::infinity(), 0, 0});
