@@ -38,7 +38,11 @@ constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
 // A token as messages quote it, cut short: a corrupt file's megabyte "token" would bury the message.
 std::string quoted(std::string_view token) {
     constexpr std::size_t kLongest = 40;
-    return "'" + std::string(token.substr(0, kLongest)) + (token.size() > kLongest ? "...'" : "'");
+    // Appended piece by piece: GCC 12 warns of a false overlap (-Wrestrict) in "'" + std::string(...).
+    std::string out(1, '\'');
+    out.append(token.substr(0, kLongest));
+    out.append(token.size() > kLongest ? "...'" : "'");
+    return out;
 }
 
 // "1 vertex", "3 vertices": for the counts in range messages.
@@ -319,7 +323,10 @@ public:
             } else if (key == "g") {
                 // Several group names join with a space: tinyobjloader keeps one name per shape.
                 std::string name;
-                for (std::size_t i = 1; i < t.size(); ++i) name += (i > 1 ? " " : "") + std::string(t[i]);
+                for (std::size_t i = 1; i < t.size(); ++i) {
+                    if (i > 1) name += ' ';
+                    name.append(t[i]);
+                }
                 startShape(std::move(name), false);
             } else if (key == "usemtl") {
                 const std::string name(rest(t, 1));
