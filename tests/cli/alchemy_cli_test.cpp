@@ -215,6 +215,18 @@ TEST_F(AlchemyCli, AoRejectsBadBuffers) {
         else
             expectFailure(args, {"scaled.exr", "has length 0.8"});
     }
+    // Sky written as a finite 1e31, which every pass reads as sky: its zero normals are not checked either
+    // (the plane's view has a row of sky at this size).
+    ASSERT_EQ(run("gbuffer plane --size 24x16 -q -o " + path("sky")).code, 0);
+    obscura::Image farSky = obscura::readExr(path("sky/depth.exr"));
+    int skyPixels = 0;
+    for (float& d : farSky.pixels)
+        if (std::isinf(d)) d = 1e31f, ++skyPixels;
+    ASSERT_GT(skyPixels, 0);
+    obscura::writeExr(path("far_sky.exr"), farSky);
+    const Result farSkyRun = run("ao --depth " + path("far_sky.exr") + " --normal " + path("sky/normal.exr") +
+                                 " --camera " + path("sky/camera.json") + " -o " + path("far_sky_ao.exr"));
+    EXPECT_EQ(farSkyRun.code, 0) << farSkyRun.out;
 }
 
 TEST_F(AlchemyCli, RenderRejectsBadAlchemyFlags) {

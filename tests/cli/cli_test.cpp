@@ -77,6 +77,19 @@ TEST_F(Cli, BadFlagValues) {
 
 // An empty value ("--threads $UNSET") is a command-line error in every command, not 0 for a number or "not given"
 // for a path or a vector: the command would run on a setting nobody chose.
+// A directory named like a built-in scene does not hide it (a file does): `gbuffer plane -o plane` writes one,
+// and running it again failed with "plane: unknown scene format ''".
+TEST_F(Cli, DirectoryNamedLikeABuiltInSceneDoesNotHideIt) {
+    const fs::path before = fs::current_path();
+    fs::current_path(dir);
+    const Result first = run("gbuffer plane --size 16x12 -q -o plane");
+    const Result again = run("gbuffer plane --size 16x12 -q -o plane");
+    fs::current_path(before);
+    EXPECT_EQ(first.code, 0) << first.out;
+    EXPECT_EQ(again.code, 0) << again.out;
+    EXPECT_TRUE(fs::exists(dir / "plane" / "depth.exr"));
+}
+
 TEST_F(Cli, EmptyValuesAreRefused) {
     const std::string out = " -o " + path("f.png");
     for (const char* flag : {"--threads", "--ao-radius", "--camera-from", "--aov-dir", "--env", "--size"})

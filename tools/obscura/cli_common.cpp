@@ -24,7 +24,11 @@ namespace fs = std::filesystem;
 
 LoadedScene loadSceneArgument(const std::string& argument) {
     LoadedScene out;
-    if (isBuiltinScene(argument) && !fs::exists(argument)) {
+    // A file of that name wins over a built-in scene, a directory does not: `gbuffer plane -o plane` makes
+    // one, and a second run then failed with "plane: unknown scene format ''".
+    std::error_code ec;
+    const bool file = fs::exists(argument, ec) && !fs::is_directory(argument, ec);
+    if (isBuiltinScene(argument) && !file) {
         BuiltinScene b = makeBuiltinScene(argument);
         out.name = b.name;
         out.scene = std::move(b.scene);

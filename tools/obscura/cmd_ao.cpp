@@ -84,7 +84,9 @@ void checkUnitNormals(const GBuffer& g, const std::string& path) {
     float firstLength = 0.0f;
     for (int y = 0; y < g.height(); ++y)
         for (int x = 0; x < g.width(); ++x) {
-            if (!std::isfinite(g.depth.at(x, y))) continue;
+            // isSky, as the passes read it: a writer's finite "far" of 1e30 or more is sky too, and its normal
+            // is never read (checking only +inf refused such a buffer's zero sky normals).
+            if (g.isSky(x, y)) continue;
             const float length = std::sqrt(g.normal.at(x, y, 0) * g.normal.at(x, y, 0) +
                                            g.normal.at(x, y, 1) * g.normal.at(x, y, 1) +
                                            g.normal.at(x, y, 2) * g.normal.at(x, y, 2));
