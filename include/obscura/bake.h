@@ -59,6 +59,9 @@ struct BakeSettings {
 
     void validate() const;  // throws obscura::Error naming the flag-style field ("--rays: ...")
     int channels() const { return int(distances.size()); }
+    // The weld distance in m for a scene of these bounds: weldTolerance of its diagonal. Welding moves a vertex
+    // by up to it, so the bake's rays also leave their samples that much further off the surface.
+    float weldDistance(const Bounds& sceneBounds) const { return weldTolerance * length(sceneBounds.size()); }
 };
 
 // ---- stage 1: weld -----------------------------------------------------------------------------

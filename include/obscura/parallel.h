@@ -15,10 +15,10 @@ void parallelFor(std::size_t count, const std::function<void(std::size_t begin, 
 inline constexpr int kMaxThreads = 1024;
 
 // Limits the threads parallelFor uses while the object lives (0 = all hardware threads). Throws
-// obscura::Error("threads: ...") outside [0, kMaxThreads].
+// obscura::Error("<what>: ...") outside [0, kMaxThreads]; a command passes its flag's name.
 class ThreadLimit {
 public:
-    explicit ThreadLimit(int threads);
+    explicit ThreadLimit(int threads, const char* what = "threads");
     ~ThreadLimit();
     ThreadLimit(const ThreadLimit&) = delete;
     ThreadLimit& operator=(const ThreadLimit&) = delete;

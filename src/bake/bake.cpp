@@ -32,8 +32,7 @@ BakeResult bakeScene(const Scene& scene, const BakeSettings& settings, const Sta
 
     double t0 = now();
     report("process geometry", 0.0);
-    const float diagonal = length(scene.bounds().size());
-    const WeldedMesh mesh = weldScene(scene, settings.weldTolerance * diagonal, settings.creaseAngle);
+    const WeldedMesh mesh = weldScene(scene, settings.weldDistance(scene.bounds()), settings.creaseAngle);
     if (mesh.triangleCount() == 0) fail("bake", "no triangles left after welding");
     report("process geometry", 1.0);
     double t1 = now();

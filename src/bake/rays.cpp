@@ -44,7 +44,7 @@ namespace detail {
 
 SampleTracer::SampleTracer(const trace::Tracer& tracer, const BakeSettings& settings)
     : tracer_(tracer), settings_(settings), directions_(settings.rays), stream_(tracer),
-      weldDistance_(settings.weldTolerance * length(tracer.bounds().size())) {
+      weldDistance_(settings.weldDistance(tracer.bounds())) {
     for (std::size_t c = 0; c < settings.distances.size(); ++c) {
         d_[c] = settings.distances[c];
         a_[c] = std::log(0.5f) / d_[c];

@@ -7,7 +7,7 @@
 #include "obscura/parallel.h"
 #include "obscura/sampling.h"
 
-#include "bake/face_geometry.h"
+#include "core/face_geometry.h"
 
 #include <algorithm>
 #include <cmath>
@@ -29,7 +29,7 @@ SampleSet generateSamples(const WeldedMesh& mesh, const BakeSettings& settings) 
         s.triangleFirst[t] = std::uint32_t(total);
         const Vec3 p0 = mesh.positions[mesh.indices[3 * t]], p1 = mesh.positions[mesh.indices[3 * t + 1]],
                    p2 = mesh.positions[mesh.indices[3 * t + 2]];
-        const double area = 0.5 * detail::twiceArea(p0, p1, p2);
+        const double area = 0.5 * geometry::twiceArea(p0, p1, p2);
         const double wanted = std::ceil(area * double(settings.sampleDensity));
         total += std::uint64_t(std::clamp(wanted, double(settings.minSamplesPerFace), double(settings.maxSamplesPerFace)));
     }
@@ -49,7 +49,7 @@ SampleSet generateSamples(const WeldedMesh& mesh, const BakeSettings& settings) 
             const Vec3 p0 = mesh.positions[mesh.indices[3 * t]], p1 = mesh.positions[mesh.indices[3 * t + 1]],
                        p2 = mesh.positions[mesh.indices[3 * t + 2]];
             // In double, as the weld's area test: a sliver it keeps can have a float cross product of zero.
-            const Vec3 n = detail::unitNormal(p0, p1, p2);
+            const Vec3 n = geometry::unitNormal(p0, p1, p2);
             // The first N points of a scrambled Sobol sequence are stratified for any N; the warp
             // (1 - sqrt u, sqrt u (1 - v), sqrt u v) maps equal areas of the square to equal areas of the face.
             const OwenSobol2D sequence(hashCombine(settings.seed, std::uint32_t(t)));

@@ -5,7 +5,7 @@
 // different hemispheres.
 #include "obscura/bake.h"
 
-#include "bake/face_geometry.h"
+#include "core/face_geometry.h"
 
 #include <algorithm>
 #include <array>
@@ -17,7 +17,7 @@ namespace obscura::bake {
 
 namespace {
 
-using detail::twiceArea;
+using geometry::twiceArea;
 
 // Cells of the weld grid, packed 21 bits per axis; positions lie inside the scene bounds, so cell
 // coordinates are in [0, diagonal / cell] and the tolerance floor below keeps that under 2^21.
@@ -63,7 +63,7 @@ void splitCreases(WeldedMesh& out, const std::vector<std::uint32_t>& fileCorner,
     const double limit = double(creaseAngle) * 3.14159265358979323846 / 180.0;
     std::vector<std::array<double, 3>> normal(corners / 3);  // unit, in double
     for (std::size_t t = 0; t < normal.size(); ++t) {
-        const detail::FaceCross n = detail::faceCross(out.positions[out.indices[3 * t]], out.positions[out.indices[3 * t + 1]],
+        const geometry::FaceCross n = geometry::faceCross(out.positions[out.indices[3 * t]], out.positions[out.indices[3 * t + 1]],
                                                       out.positions[out.indices[3 * t + 2]]);
         const double l = n.length();  // > 0: the weld dropped faces without area
         normal[t] = {n.x / l, n.y / l, n.z / l};
@@ -71,7 +71,7 @@ void splitCreases(WeldedMesh& out, const std::vector<std::uint32_t>& fileCorner,
     auto slack = [&](std::uint32_t t) {
         const Vec3 a = out.positions[out.indices[3 * t]], b = out.positions[out.indices[3 * t + 1]],
                    c = out.positions[out.indices[3 * t + 2]];
-        return normalSlack(a, b, c, detail::twiceArea(a, b, c));
+        return normalSlack(a, b, c, geometry::twiceArea(a, b, c));
     };
     const double cosLimit = std::cos(limit);
     auto joined = [&](std::uint32_t s, std::uint32_t t) {

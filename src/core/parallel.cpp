@@ -18,11 +18,11 @@ void parallelFor(std::size_t count, const std::function<void(std::size_t, std::s
                       [&](const tbb::blocked_range<std::size_t>& r) { body(r.begin(), r.end()); });
 }
 
-ThreadLimit::ThreadLimit(int threads) {
+ThreadLimit::ThreadLimit(int threads, const char* what) {
     // TBB starts as many workers as it is allowed: 2^31 - 1 once ran a command past 9 GB before any work.
     if (threads < 0 || threads > kMaxThreads)
-        fail("threads", "must be in [0, " + std::to_string(kMaxThreads) + "] (0 = all hardware threads), is " +
-                            std::to_string(threads));
+        fail(what, "must be in [0, " + std::to_string(kMaxThreads) + "] (0 = all hardware threads), got " +
+                       std::to_string(threads));
     if (threads > 0)
         control_ = new tbb::global_control(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
 }

@@ -5,6 +5,8 @@
 #include "obscura/scene_io.h"
 
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 namespace obscura::loader {
@@ -26,6 +28,15 @@ inline void checkSceneFile(const std::string& path) {
     if (!std::filesystem::exists(status)) fail(path, "no such file");
     if (std::filesystem::is_directory(status)) fail(path, "is a directory, not a scene file");
     if (!std::filesystem::is_regular_file(status)) fail(path, "not a regular file");
+}
+
+// The whole file, for the text and PLY readers that parse it in memory.
+inline std::string readWholeFile(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) fail(path, "cannot open for reading");
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (in.bad()) fail(path, "read error");
+    return bytes;
 }
 
 // The caller's LoadInfo, reset, or a local one when the caller passed none.

@@ -16,9 +16,8 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <limits>
 #include <string_view>
 #include <unordered_map>
@@ -50,28 +49,6 @@ std::string counted(std::uint64_t n, const char* one, const char* many) {
     return std::to_string(n) + " " + (n == 1 ? one : many);
 }
 
-// from_chars reports a value beyond double's range the same way on both sides. This tells them apart:
-// true when `s`, a decimal number from_chars accepted, is below 1 in magnitude (so it underflowed).
-bool belowOne(std::string_view s) {
-    if (s.front() == '-' || s.front() == '+') s.remove_prefix(1);
-    const std::size_t e = s.find_first_of("eE");
-    const std::string_view mantissa = s.substr(0, e);
-    const std::size_t dot = std::min(mantissa.find('.'), mantissa.size());
-    const std::size_t first = mantissa.find_first_not_of("0.");
-    if (first == std::string_view::npos) return true;  // zero
-    // The power of ten of the first significant digit: 2 for "123.4", -3 for "0.001".
-    const std::int64_t power = first < dot ? std::int64_t(dot - first) - 1 : -std::int64_t(first - dot);
-    if (e == std::string_view::npos) return power < 0;
-    std::string_view digits = s.substr(e + 1);
-    const bool negative = digits.front() == '-';
-    if (digits.front() == '-' || digits.front() == '+') digits.remove_prefix(1);
-    std::int64_t exponent = 0;
-    auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), exponent);
-    // An exponent no mantissa written in a file could balance: its sign alone decides.
-    if (ec != std::errc{} || exponent > (std::int64_t(1) << 40)) return negative;
-    return (negative ? power - exponent : power + exponent) < 0;
-}
-
 enum class Number { Ok, NotANumber, TooLarge };
 
 // The whole token as a double. A leading '+' is fine (from_chars rejects it; writers do emit it); a value
@@ -82,7 +59,10 @@ Number parseNumber(std::string_view token, double& v) {
     auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
     if (end != s.data() + s.size()) return Number::NotANumber;
     if (ec == std::errc::result_out_of_range) {
-        if (!belowOne(s)) return Number::TooLarge;
+        // from_chars says the same for a value too large and one too small for double; strtod, given the decimal
+        // from_chars accepted, returns +-HUGE_VAL for the first and (nearly) 0 for the second.
+        v = std::strtod(std::string(s).c_str(), nullptr);
+        if (std::isinf(v)) return Number::TooLarge;
         v = s.front() == '-' ? -0.0 : 0.0;
         return Number::Ok;
     }
@@ -158,14 +138,6 @@ std::string_view rest(const std::vector<std::string_view>& tokens, std::size_t f
     return {begin, std::size_t(tokens.back().data() + tokens.back().size() - begin)};
 }
 
-std::string readFile(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) fail(path, "cannot open for reading");
-    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (in.bad()) fail(path, "read error");
-    return bytes;
-}
-
 // Messages about the current line of one file: "<path>: line <n>: <problem>".
 class LineErrors {
 public:
@@ -215,7 +187,7 @@ struct Materials {
 void readMtl(const std::string& path, Materials& out) {
     std::error_code ec;
     if (!fs::is_regular_file(path, ec)) return;
-    const std::string text = readFile(path);
+    const std::string text = loader::readWholeFile(path);
     LineReader lines(text);
     const LineErrors bad(path, lines);
     std::vector<std::string_view> t;
@@ -522,7 +494,7 @@ Scene loadObj(const std::string& path, LoadInfo* info) {
     loader::checkSceneFile(path);
     Obj obj;
     {
-        const std::string text = readFile(path);
+        const std::string text = loader::readWholeFile(path);
         obj = ObjParser(path, text).parse();
     }
 

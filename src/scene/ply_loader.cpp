@@ -13,8 +13,6 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <limits>
 #include <string_view>
 #include <type_traits>
@@ -246,8 +244,8 @@ private:
 
 class BinarySource {
 public:
-    BinarySource(std::string_view data, bool bigEndian)
-        : data_(data), swap_(bigEndian != (std::endian::native == std::endian::big)) {}
+    BinarySource(std::string_view data, bool bigEndian, const std::string& path)
+        : data_(data), swap_(bigEndian != (std::endian::native == std::endian::big)), path_(path) {}
 
     bool read(Type type, double& v) {
         const std::size_t n = sizeOf(type);
@@ -269,10 +267,11 @@ public:
 
     std::size_t remaining() const { return data_.size() - pos_; }
 
-    void expectEnd(const std::string& path) const {
+    // Throws if bytes follow the last element's rows.
+    void expectEnd() const {
         if (remaining() > 0)
-            fail(path, std::to_string(remaining()) + " bytes after the last element (the header declares fewer rows than "
-                                                     "the file holds)");
+            fail(path_, std::to_string(remaining()) + " bytes after the last element (the header declares fewer rows "
+                                                      "than the file holds)");
     }
 
 private:
@@ -298,6 +297,7 @@ private:
     std::string_view data_;
     std::size_t pos_ = 0;
     bool swap_;
+    const std::string& path_;
 };
 
 // Non-finite normals are kept as they are, for sanitizeScene to report (normalize would zero them).
@@ -336,8 +336,7 @@ public:
             } else skipElement(e);
         }
         if (!haveFaces) fail(path_, "no face element (point clouds are not supported)");
-        if constexpr (std::is_same_v<Source, BinarySource>) src_.expectEnd(path_);
-        else src_.expectEnd();
+        src_.expectEnd();
         if (colorCount_ > 0) mesh_.baseColor = colorSum_ / float(colorCount_);
         return std::move(mesh_);
     }
@@ -462,10 +461,7 @@ private:
 
 Scene loadPly(const std::string& path, LoadInfo* info) {
     loader::checkSceneFile(path);
-    std::ifstream in(path, std::ios::binary);
-    if (!in) fail(path, "cannot open for reading");
-    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (in.bad()) fail(path, "read error");
+    const std::string bytes = loader::readWholeFile(path);
 
     std::string_view data(bytes);
     Header h = parseHeader(data, path);
@@ -475,7 +471,7 @@ Scene loadPly(const std::string& path, LoadInfo* info) {
         AsciiSource src(body, h.lines + 1, path);
         mesh = BodyReader<AsciiSource>(src, path).read(h);
     } else {
-        BinarySource src(body, h.format == Format::BinaryBig);
+        BinarySource src(body, h.format == Format::BinaryBig, path);
         mesh = BodyReader<BinarySource>(src, path).read(h);
     }
     mesh.name = std::filesystem::path(path).stem().string();

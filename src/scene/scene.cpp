@@ -3,6 +3,8 @@
 
 #include "obscura/error.h"
 
+#include "core/face_geometry.h"
+
 #include <algorithm>
 #include <cassert>
 #include <cmath>
@@ -109,11 +111,7 @@ std::size_t removeDegenerateTriangles(Mesh& mesh) {
         assert(a < n && b < n && c < n);
         if (a == b || b == c || a == c) continue;
         // In double: float cross products of long thin triangles round to zero or worse.
-        const Vec3 pa = mesh.positions[a], pb = mesh.positions[b], pc = mesh.positions[c];
-        const double u[3] = {double(pb.x) - double(pa.x), double(pb.y) - double(pa.y), double(pb.z) - double(pa.z)};
-        const double v[3] = {double(pc.x) - double(pa.x), double(pc.y) - double(pa.y), double(pc.z) - double(pa.z)};
-        const double cx = u[1] * v[2] - u[2] * v[1], cy = u[2] * v[0] - u[0] * v[2], cz = u[0] * v[1] - u[1] * v[0];
-        const double twiceArea = std::sqrt(cx * cx + cy * cy + cz * cz);
+        const double twiceArea = geometry::twiceArea(mesh.positions[a], mesh.positions[b], mesh.positions[c]);
         if (!std::isfinite(twiceArea) || !(twiceArea > minTwiceArea)) continue;
         mesh.indices[kept++] = a;
         mesh.indices[kept++] = b;

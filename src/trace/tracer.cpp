@@ -5,10 +5,10 @@
 
 #include "obscura/error.h"
 
+#include "core/face_geometry.h"
 #include "trace/embree_ray.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstring>
 #include <string>
@@ -219,15 +219,7 @@ float selfHitOffset(Vec3 a, Vec3 b, Vec3 c, Vec3 p, float scale) {
     const double m = std::max({double(maxAbsComponent(a)), double(maxAbsComponent(b)), double(maxAbsComponent(c)),
                                double(maxAbsComponent(p)), double(scale)});
     // In double: the cross product of a sliver's edges is what float gets wrong.
-    const auto edge = [](Vec3 from, Vec3 to) {
-        return std::array<double, 3>{double(to.x) - double(from.x), double(to.y) - double(from.y),
-                                     double(to.z) - double(from.z)};
-    };
-    const std::array<double, 3> u = edge(a, b), v = edge(a, c), w = edge(b, c);
-    const double cx = u[1] * v[2] - u[2] * v[1], cy = u[2] * v[0] - u[0] * v[2], cz = u[0] * v[1] - u[1] * v[0];
-    const double twiceArea = std::sqrt(cx * cx + cy * cy + cz * cz);
-    const double longest2 = std::max({u[0] * u[0] + u[1] * u[1] + u[2] * u[2], v[0] * v[0] + v[1] * v[1] + v[2] * v[2],
-                                      w[0] * w[0] + w[1] * w[1] + w[2] * w[2]});
+    const double twiceArea = geometry::twiceArea(a, b, c), longest2 = geometry::longestEdge2(a, b, c);
     // A triangle the scene kept has some area; the cap only keeps a pathological one finite.
     const double aspect = twiceArea > 0 ? std::clamp(longest2 / twiceArea, kMinAspect, 1e6) : 1e6;
     return float(kSelfHitPerUlpScale * m * aspect);

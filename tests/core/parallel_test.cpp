@@ -20,7 +20,7 @@ TEST(ThreadLimit, RefusesCountsOutsideItsRange) {
             ADD_FAILURE() << threads << " accepted";
         } catch (const Error& e) {
             const std::string expected =
-                "threads: must be in [0, 1024] (0 = all hardware threads), is " + std::to_string(threads);
+                "threads: must be in [0, 1024] (0 = all hardware threads), got " + std::to_string(threads);
             EXPECT_EQ(std::string(e.what()), expected);
         }
     }

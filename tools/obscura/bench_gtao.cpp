@@ -32,8 +32,7 @@ struct GtaoBenchOptions {
 void runGtaoBench(const GtaoBenchOptions& o) {
     if (o.repeat < 1 || o.repeat > 100) fail("--repeat", "must be in [1, 100]");
     if (!(o.radius > 0.0f && o.radius <= 1e4f)) fail("--radius", "must be in (0, 1e4] m");
-    checkThreads("--threads", o.threads);
-    ThreadLimit limit(o.threads);
+    ThreadLimit limit(o.threads, "--threads");
     const int threads = o.threads > 0 ? o.threads : hardwareThreads();
     LoadedScene loaded = loadSceneArgument(o.scene);
     Camera camera = loaded.camera;

@@ -3,7 +3,6 @@
 
 #include "obscura/error.h"
 #include "obscura/image_io.h"
-#include "obscura/parallel.h"
 #include "obscura/scene_io.h"
 
 #include <CLI/CLI.hpp>
@@ -128,12 +127,6 @@ std::vector<float> parseBakeDistances(const std::string& flag, const std::string
     if (out.size() == 2 && !(out[0] < out[1]))
         fail(flag, "the short distance must be less than the long one, got \"" + text + "\"");
     return out;
-}
-
-void checkThreads(const std::string& flag, int threads) {
-    if (threads < 0 || threads > kMaxThreads)
-        fail(flag, "must be in [0, " + std::to_string(kMaxThreads) + "] (0 = all hardware threads), got " +
-                       std::to_string(threads));
 }
 
 void CameraOptions::add(CLI::App& app) {

@@ -39,9 +39,6 @@ float parseRadius(const std::string& flag, const std::string& text);
 // A bake distance in (0, 1e6] m, and --distances' "short,long" (short < long) or one value.
 float parseBakeDistance(const std::string& flag, const std::string& text);
 std::vector<float> parseBakeDistances(const std::string& flag, const std::string& text);
-// --threads as every command takes it: [0, kMaxThreads], 0 for all hardware threads; throws obscura::Error
-// naming the flag (ThreadLimit's own message says "threads").
-void checkThreads(const std::string& flag, int threads);
 
 // Camera flags common to render and gbuffer.
 struct CameraOptions {

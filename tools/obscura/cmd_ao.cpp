@@ -127,8 +127,7 @@ void run(const AoOptions& o) {
              : o.gtao.value.interleave ? "--gtao-interleave"
                                        : "--gtao-mip-ratio",
              "applies to the gtao methods, not " + o.method);
-    checkThreads("--threads", o.threads);
-    ThreadLimit limit(o.threads);
+    ThreadLimit limit(o.threads, "--threads");
 
     GBuffer g;
     g.camera = readCameraJson(o.camera);

@@ -103,14 +103,13 @@ void runBake(BakeOptions& o) {
     if (o.rawCheck < 0 || o.rawCheck > kMaxRawCheckStride)
         fail("--raw-embree-check", "must be in [0, " + std::to_string(kMaxRawCheckStride) + "], got " +
                                        std::to_string(o.rawCheck));
-    checkThreads("--threads", o.threads);
     checkOutputPath("--output", o.output, {".glb", ".gltf", ".ply", ".csv"}, {o.input});
     if (!o.report.empty()) checkOutputPath("--report", o.report, {".json"}, {o.input});
     // Before the bake, which can take hours: a directory that takes no new files (read-only, /proc) fails now.
     checkWritable(o.output);
     if (!o.report.empty()) checkWritable(o.report);
 
-    ThreadLimit limit(o.threads);
+    ThreadLimit limit(o.threads, "--threads");
     const int threads = o.threads > 0 ? o.threads : hardwareThreads();
     const std::string loadBefore = loadAverage();
     auto t0 = std::chrono::steady_clock::now();

@@ -30,8 +30,7 @@ struct QualityOptions {
 };
 
 void runQuality(const QualityOptions& o) {
-    checkThreads("--threads", o.threads);
-    ThreadLimit limit(o.threads);
+    ThreadLimit limit(o.threads, "--threads");
     if (!(o.maxEdge > 0.0f)) fail("--max-edge", "must be > 0");
     if (!(o.grading >= 0.0f && o.grading <= 100.0f)) fail("--grading", "must be in [0, 100] per m");
     if (o.referenceRays < 1 || o.referenceRays > (1 << 20)) fail("--reference-rays", "must be in [1, 1048576]");

@@ -40,8 +40,7 @@ std::string cpuName() {
 }
 
 void runTrace(const BenchOptions& o) {
-    checkThreads("--threads", o.threads);
-    ThreadLimit limit(o.threads);
+    ThreadLimit limit(o.threads, "--threads");
     const int threads = o.threads > 0 ? o.threads : hardwareThreads();
     LoadedScene loaded;
     if (o.triangles > 0) {

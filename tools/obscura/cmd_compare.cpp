@@ -120,8 +120,7 @@ void run(const CompareOptions& o) {
     const std::unique_ptr<gpu::Context> context = o.gpu.open();
     mo.gpu = context.get();
 
-    checkThreads("--threads", o.threads);
-    ThreadLimit limit(o.threads);
+    ThreadLimit limit(o.threads, "--threads");
     LoadedScene loaded = loadSceneArgument(o.scene);
     const Camera camera = o.camera.apply(loaded);
     trace::Tracer tracer(loaded.scene);

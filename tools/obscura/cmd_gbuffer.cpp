@@ -50,8 +50,7 @@ void run(const GBufferOptions& o) {
         checkOutputDirectory("-o", o.output, true);
     else
         checkOutputPath("-o", o.output, {".exr"});
-    checkThreads("--threads", o.threads);
-    ThreadLimit limit(o.threads);
+    ThreadLimit limit(o.threads, "--threads");
     LoadedScene loaded = loadSceneArgument(o.scene);
     Camera camera = o.camera.apply(loaded);
     trace::Tracer tracer(loaded.scene);

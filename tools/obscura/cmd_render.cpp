@@ -118,8 +118,7 @@ void run(const RenderOptions& o) {
     // Made once every flag has passed, so that a bad one leaves no directory behind.
     if (!o.aovDir.empty()) checkOutputDirectory("--aov-dir", o.aovDir, true);
 
-    checkThreads("--threads", o.threads);
-    ThreadLimit limit(o.threads);
+    ThreadLimit limit(o.threads, "--threads");
     const std::unique_ptr<gpu::Context> context = o.gpu.open();
     LoadedScene loaded = loadSceneArgument(o.scene);
     Camera camera = o.camera.apply(loaded);

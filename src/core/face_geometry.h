@@ -1,13 +1,15 @@
-// Face areas and normals in double, shared by the weld, its crease split and the samples. A float cross
-// product of a long thin triangle rounds to zero (or turns) where the double one does not; every stage
-// has to agree with the weld's degeneracy test, or a face the weld keeps gets a zero normal downstream.
+// Triangle areas, normals and edge lengths in double, shared by the scene's degeneracy test, the tracer's
+// self-hit offset and the bake (weld, crease split, samples). A float cross product of a long thin triangle
+// rounds to zero (or turns) where the double one does not; every stage has to agree with the degeneracy
+// tests, or a face they keep gets a zero normal downstream.
 #pragma once
 
 #include "obscura/math.h"
 
+#include <algorithm>
 #include <cmath>
 
-namespace obscura::bake::detail {
+namespace obscura::geometry {
 
 // (b - a) x (c - a) in double, where the differences of float coordinates are exact (short of magnitudes
 // 2^29 apart) and the products nearly so: good to double precision, not float's.
@@ -24,6 +26,15 @@ inline FaceCross faceCross(Vec3 a, Vec3 b, Vec3 c) {
 
 inline double twiceArea(Vec3 a, Vec3 b, Vec3 c) { return faceCross(a, b, c).length(); }
 
+// The square of the triangle's longest edge.
+inline double longestEdge2(Vec3 a, Vec3 b, Vec3 c) {
+    const auto length2 = [](Vec3 from, Vec3 to) {
+        const double x = double(to.x) - double(from.x), y = double(to.y) - double(from.y), z = double(to.z) - double(from.z);
+        return x * x + y * y + z * z;
+    };
+    return std::max({length2(a, b), length2(a, c), length2(b, c)});
+}
+
 // The unit normal of the counter-clockwise side, rounded to float only at the end (so its length is 1 to
 // float precision for any face the weld keeps); zero for a face that is degenerate in double too.
 inline Vec3 unitNormal(Vec3 a, Vec3 b, Vec3 c) {
@@ -32,4 +43,4 @@ inline Vec3 unitNormal(Vec3 a, Vec3 b, Vec3 c) {
     return l > 0 ? Vec3{float(n.x / l), float(n.y / l), float(n.z / l)} : Vec3{};
 }
 
-} // namespace obscura::bake::detail
+} // namespace obscura::geometry
