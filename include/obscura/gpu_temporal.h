@@ -40,8 +40,8 @@ class Buffer;              // src/gpu/buffer.h
 Image reconstructInterleaved(Context& context, const Image& values, const Image& depth, const Image& normal,
                              float depthSigma, int windowPhase = -1);
 // ssao::upsampleDepthAware: `low` 1 or 3 channels and `lowDepth` of the same, non-empty size; the G-buffer's
-// depth of its camera's size (their first channels are read). The output has the G-buffer's size; sky 1
-// (1 channel) or 0.
+// depth (1 channel) and normal (3) of its camera's size. The output has the G-buffer's size; sky 1 (1 channel)
+// or 0; a surface pixel none of whose taps is a surface gets 1, or its own normal, as on the CPU.
 Image upsampleDepthAware(Context& context, const Image& low, const Image& lowDepth, const GBuffer& full,
                          float depthSigma);
 

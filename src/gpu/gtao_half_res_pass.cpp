@@ -75,8 +75,8 @@ void GtaoHalfResolutionPasses::record(VkCommandBuffer cmd, const Buffer& depth, 
         computeBarrier(cmd);  // the upsampling reads the blurred grid
     }
     const UpsampleConstants up = upsampleConstants(width_, height_, gridWidth_, gridHeight_, width_, 2, half_.depthSigma);
-    recordUpsample(c, cmd, {*low, depth, depth, visibility_}, up, 1);
-    if (bentNormals_) recordUpsample(c, cmd, {rawBent_, depth, depth, bentView_}, up, 3);
+    recordUpsample(c, cmd, {*low, depth, depth, visibility_, normal}, up, 1);
+    if (bentNormals_) recordUpsample(c, cmd, {rawBent_, depth, depth, bentView_, normal, packedNormals_}, up, 3);
     done("upsample");
 }
 

@@ -90,12 +90,12 @@ void recordUpsample(Context::Impl& c, VkCommandBuffer cmd, const UpsampleBuffers
     ComputePipeline& pipeline =
         c.pipelineOfShadersSize("upsample_depth_aware", shaders::upsample_depth_aware,
                                 storageBuffers(kUpsampleBindingCount), kUpsamplePushConstantBytes,
-                                // kUpsampleSpecChannels, PackedLow, PackedOut
-                                {channels, packedLow ? 1 : 0, packedOut ? 1 : 0});
-    // In binding order: kUpsampleBindingLow, LowDepth, Depth, Output.
+                                // kUpsampleSpecChannels, PackedLow, PackedOut, PackedNormals
+                                {channels, packedLow ? 1 : 0, packedOut ? 1 : 0, b.packedNormals ? 1 : 0});
+    // In binding order: kUpsampleBindingLow, LowDepth, Depth, Output, Normal.
     // One invocation per 2x2 block of full-resolution pixels (the shader's main).
-    pipeline.dispatchGrid(cmd, {&b.low, &b.lowDepth, &b.depth, &b.output}, &k, sizeof k, (k.width + 1) / 2,
-                          (k.height + 1) / 2);
+    pipeline.dispatchGrid(cmd, {&b.low, &b.lowDepth, &b.depth, &b.output, &b.normal}, &k, sizeof k,
+                          (k.width + 1) / 2, (k.height + 1) / 2);
 }
 
 GtaoTemporalPasses::GtaoTemporalPasses(Context::Impl& c, const ssao::GtaoSettings& settings,
@@ -239,9 +239,11 @@ void GtaoTemporalPasses::record(VkCommandBuffer cmd, const GtaoTemporalFrameInpu
         computeBarrier(cmd);  // the upsampling reads the accumulated grid
         const UpsampleConstants uk =
             upsampleConstants(width_, height_, gridWidth_, gridHeight_, width_, step_, temporal_.depthSigma);
-        recordUpsample(c, cmd, {next.visibility, in.depth, in.depth, upsampled_}, uk, 1, temporal_.packedHistory,
-                       variant_.packedOutput);
-        if (variant_.bentNormals) recordUpsample(c, cmd, {bentGrid_, in.depth, in.depth, bentView_}, uk, 3);
+        recordUpsample(c, cmd, {next.visibility, in.depth, in.depth, upsampled_, in.normal}, uk, 1,
+                       temporal_.packedHistory, variant_.packedOutput);
+        if (variant_.bentNormals)
+            recordUpsample(c, cmd, {bentGrid_, in.depth, in.depth, bentView_, in.normal, variant_.packedNormals}, uk,
+                           3);
         stage("upsample");
     }
 
@@ -379,16 +381,19 @@ Image upsampleDepthAware(Context& context, const Image& low, const Image& lowDep
     if (low.empty() || lowDepth.width != low.width || lowDepth.height != low.height || lowDepth.channels != 1)
         fail("upsample depth-aware", "low-resolution depth (1 channel) must match the " + std::to_string(low.width) +
                                          "x" + std::to_string(low.height) + " values, which must not be empty");
-    if (full.depth.width != w || full.depth.height != h || full.depth.channels != 1)
-        fail("upsample depth-aware", "G-buffer depth must match its camera's size");
+    if (full.depth.width != w || full.depth.height != h || full.depth.channels != 1 || full.normal.width != w ||
+        full.normal.height != h || full.normal.channels != 3)
+        fail("upsample depth-aware", "G-buffer depth (1 channel) and normal (3 channels) must match its camera's " +
+                                         std::to_string(w) + "x" + std::to_string(h));
     Context::Impl& c = context.impl();
     const Buffer in = uploadChannels(c, low, low.channels);
     const Buffer ld = uploadChannels(c, lowDepth, 1);
     const Buffer d = uploadChannels(c, full.depth, 1);
+    const Buffer n = uploadChannels(c, full.normal, 3);
     Image result(w, h, low.channels);
     const Buffer out = deviceFloats(c, result.pixels.size());
     const UpsampleConstants k = upsampleConstants(w, h, low.width, low.height, low.width, 1, depthSigma);
-    c.submit([&](VkCommandBuffer cmd) { recordUpsample(c, cmd, {in, ld, d, out}, k, low.channels); }, true);
+    c.submit([&](VkCommandBuffer cmd) { recordUpsample(c, cmd, {in, ld, d, out, n}, k, low.channels); }, true);
     download(c, out, result.pixels.data(), result.pixels.size() * sizeof(float));
     return result;
 }

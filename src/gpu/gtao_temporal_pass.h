@@ -44,6 +44,8 @@ struct UpsampleBuffers {
     const Buffer& lowDepth;  // guide
     const Buffer& depth;
     const Buffer& output;
+    const Buffer& normal;    // full-resolution view normals; read with 3 channels only
+    bool packedNormals = false;  // `normal` holds octahedral words (kUpsampleSpecPackedNormals)
 };
 // packedLow: `low` holds packed visibility-and-length words (1 channel; kUpsampleSpecPackedLow). packedOut:
 // `output` receives unorm16 pairs (1 channel; kUpsampleSpecPackedOut, height rows of

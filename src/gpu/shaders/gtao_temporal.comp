@@ -95,7 +95,7 @@ void main() {
     float spatial[4];
     if (kReconstructs)
         reconstructInterleaved(p.x, p.y, w, h, kDepthSigma, kWindowPhase, spatial);
-    else
-        upsampleDepthAware(p.x, p.y, depth, gridWidth(), gridHeight(), kDepthSigma, spatial);
+    else if (!upsampleDepthAware(p.x, p.y, depth, gridWidth(), gridHeight(), kDepthSigma, spatial))
+        setGridVector(spatial, normalize3(loadNormal(pixelIndex(p.x, p.y))));  // no surface among the taps
     accumulateLatticePixel(p, i, depth, spatial);
 }

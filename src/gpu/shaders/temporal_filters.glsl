@@ -94,6 +94,15 @@ void reconstructInterleaved(int x, int y, int w, int h, float depthSigma, int wi
     }
 }
 
+// The bent normal, result[kGridVectorFirst..+3), set to v (no-op without one).
+void setGridVector(inout float result[4], vec3 v) {
+    if (!kGridVector) return;
+    const int b = kGridVectorFirst;
+    result[b] = v.x;
+    result[b + 1] = v.y;
+    result[b + 2] = v.z;
+}
+
 // The upsampling's bent normal, result[kGridVectorFirst..+3), renormalized in place (no-op without one).
 void normalizeGridVector(inout float result[4]) {
     if (!kGridVector) return;
@@ -106,12 +115,15 @@ void normalizeGridVector(inout float result[4]) {
 
 // The upsampling of upsampleDepthAware below, past the taps' positions: grid pixels x0..x1 x y0..y1 and the
 // pixel's place fx, fy between them. A caller that knows them without the conversions (a 2x2 block's
-// invocation) calls it directly.
-void upsampleDepthAwareAt(int x0, int y0, int x1, int y1, float fx, float fy, float d, float depthSigma,
+// invocation) calls it directly. False where the pixel is a surface but none of its taps is: a feature
+// thinner than the grid's spacing against the sky. The CPU gives such a pixel visibility 1 (result holds it)
+// and its own view normal, normalized, as the bent normal, which only the caller can read: it calls
+// setGridVector(result, normalize3(its normal)) with a bent normal among the channels.
+bool upsampleDepthAwareAt(int x0, int y0, int x1, int y1, float fx, float fy, float d, float depthSigma,
                           out float result[4]) {
     // Image out(w, h, channels, channels == 1 ? 1 : 0): an unoccluded sky, no bent normal.
     for (int c = 0; c < 4; ++c) result[c] = kGridScalar && c == 0 ? 1.0 : 0.0;
-    if (!finiteDepth(d)) return;
+    if (!finiteDepth(d)) return true;
     const int tx[4] = int[4](x0, x1, x0, x1), ty[4] = int[4](y0, y0, y1, y1);
     const float bilinear[4] = float[4]((1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy);
     const float sigma = depthSigma * d;
@@ -127,7 +139,7 @@ void upsampleDepthAwareAt(int x0, int y0, int x1, int y1, float fx, float fy, fl
     if (fx == 0.0 && fy == 0.0 && gridDepth(x0, y0) == d && twoSigma2 >= 1.17549435e-38) {
         for (int c = 0; c < kGridChannels; ++c) result[c] = gridValue(x0, y0, c);
         normalizeGridVector(result);
-        return;
+        return true;
     }
     const float invTwoSigma2 = 1.0 / twoSigma2;
     float sum[4] = float[4](0.0, 0.0, 0.0, 0.0), weightSum = 0.0, bestDiff = 1e30;
@@ -144,24 +156,25 @@ void upsampleDepthAwareAt(int x0, int y0, int x1, int y1, float fx, float fy, fl
         for (int c = 0; c < kGridChannels; ++c) sum[c] += wt * gridValue(tx[t], ty[t], c);
         weightSum += wt;
     }
-    if (best < 0) return;
+    if (best < 0) return false;
     // No tap on this surface (a thin feature between the samples): take the closest in depth.
     if (!(weightSum > 1e-4)) {
         for (int c = 0; c < kGridChannels; ++c) result[c] = gridValue(tx[best], ty[best], c);
-        return;
+        return true;
     }
     for (int c = 0; c < kGridChannels; ++c) result[c] = sum[c] / weightSum;
     normalizeGridVector(result);
+    return true;
 }
 
 // The upsampling to full-resolution pixel (x, y) of depth d from the lowWidth x lowHeight grid, channel by
-// channel in result[0..kGridChannels).
-void upsampleDepthAware(int x, int y, float d, int lowWidth, int lowHeight, float depthSigma, out float result[4]) {
+// channel in result[0..kGridChannels). False as upsampleDepthAwareAt.
+bool upsampleDepthAware(int x, int y, float d, int lowWidth, int lowHeight, float depthSigma, out float result[4]) {
     const float gx = 0.5 * float(x), gy = 0.5 * float(y);
     const int x0 = min(int(gx), lowWidth - 1), y0 = min(int(gy), lowHeight - 1);
     const int x1 = min(x0 + 1, lowWidth - 1), y1 = min(y0 + 1, lowHeight - 1);
     const float fx = gx - float(x0), fy = gy - float(y0);
-    upsampleDepthAwareAt(x0, y0, x1, y1, fx, fy, d, depthSigma, result);
+    return upsampleDepthAwareAt(x0, y0, x1, y1, fx, fy, d, depthSigma, result);
 }
 
 #endif

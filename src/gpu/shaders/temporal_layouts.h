@@ -91,6 +91,9 @@ OBSCURA_CONST int kUpsampleSpecPackedLow = 1;
 // R16_UNORM image with an even row pitch holds, a sixteenth of a 1/4096 step, for an engine that reads AO
 // at 16 bits anyway.
 OBSCURA_CONST int kUpsampleSpecPackedOut = 2;
+// constant_id of the full-resolution normals' layout (kUpsampleBindingNormal): 0, 3 floats a pixel; 1, one
+// octahedral word (normal_plane.glsl).
+OBSCURA_CONST int kUpsampleSpecPackedNormals = 3;
 #ifdef __cplusplus
 inline constexpr int upsamplePackedRowWords(int width) { return (width + 1) / 2; }
 #endif
@@ -110,7 +113,10 @@ OBSCURA_CONST int kUpsampleBindingLowDepth = 1;  // guide linear depths of the l
 OBSCURA_CONST int kUpsampleBindingDepth = 2;     // width * height linear depths, +inf for sky
 OBSCURA_CONST int kUpsampleBindingOutput = 3;    // width * height * channels; sky 1 (1 channel) or 0; with
                                                  // kUpsampleSpecPackedOut, height rows of (width + 1) / 2 words
-OBSCURA_CONST int kUpsampleBindingCount = 4;
+// width * height view normals, read with 3 channels only, at a pixel none of whose taps is a surface (its
+// own normal is then its bent normal, as ssao::upsampleDepthAware gives it)
+OBSCURA_CONST int kUpsampleBindingNormal = 4;
+OBSCURA_CONST int kUpsampleBindingCount = 5;
 OBSCURA_CONST int kUpsamplePushConstantBytes = 32;
 
 // ---- gtao_temporal.comp: steps 2 or 3, and 4, of ssao::GtaoTemporal::frame ----

@@ -14,6 +14,7 @@ layout(local_size_x = kUpsampleWorkgroupX, local_size_y = kUpsampleWorkgroupY, l
 layout(constant_id = kUpsampleSpecChannels) const int kGridChannels = 1;
 layout(constant_id = kUpsampleSpecPackedLow) const int kPackedLow = 0;
 layout(constant_id = kUpsampleSpecPackedOut) const int kPackedOut = 0;
+layout(constant_id = kUpsampleSpecPackedNormals) const int kPackedNormals = 0;
 
 layout(push_constant, std430) uniform Constants { UpsampleConstants k; };
 // Words: floats' bits, or with kPackedLow the packed visibility of obscura/history_packing.h.
@@ -22,6 +23,8 @@ layout(std430, binding = kUpsampleBindingLowDepth) readonly buffer LowDepth { fl
 layout(std430, binding = kUpsampleBindingDepth) readonly buffer DepthPlane { float depthPlane[]; };
 // Words: floats' bits, or with kPackedOut two unorm16 visibilities (temporal_layouts.h).
 layout(std430, binding = kUpsampleBindingOutput) writeonly buffer Output { uint outWords[]; };
+// Words: normal_plane.glsl's, 3 floats' bits or with kPackedNormals an octahedral code.
+layout(std430, binding = kUpsampleBindingNormal) readonly buffer NormalPlane { uint normalWords[]; };
 
 // One invocation per 2x2 block of full-resolution pixels (2bx..2bx+1, 2by..2by+1): all four read the grid
 // pixels bx..bx+1 x by..by+1 (clamped at the grid's edge), so the invocation loads those once and the filter
@@ -43,6 +46,7 @@ float gridValue(int x, int y, int c) {
 float lowDepth(int x, int y) { return lowDepthPlane[uint(y * k.guideStep) * uint(k.guideWidth) + uint(x * k.guideStep)]; }
 
 #include "temporal_filters.glsl"
+#include "normal_plane.glsl"
 #include "obscura/history_packing.h"
 
 vec3 lowValues(int x, int y) {
@@ -93,7 +97,10 @@ void main() {
             float result[4];
             const float d = blockDepth[2 * j + i];
             const float fx = fx0 + 0.5 * float(i), fy = fy0 + 0.5 * float(j);
-            upsampleDepthAwareAt(gx0, gy0, x1, y1, fx, fy, d, k.depthSigma, result);
+            // A surface pixel with only sky among its taps (rare: a feature thinner than the grid's spacing)
+            // reads its own normal, which no other pixel does.
+            if (!upsampleDepthAwareAt(gx0, gy0, x1, y1, fx, fy, d, k.depthSigma, result))
+                setGridVector(result, normalize3(loadNormal(uint(y) * uint(k.width) + uint(x))));
             if (kPackedOut != 0) {
                 word |= packUnorm16(result[0]) << (16 * i);
                 continue;
