@@ -26,6 +26,15 @@ ErrorStats errorStats(const Image& estimate, const Image& reference, const GBuff
     double sum = 0, sumAbs = 0, sumSq = 0;
     for (std::size_t i = 0; i < estimate.pixels.size(); ++i) {
         if (!(g.depth.pixels[i] < 1e30f)) continue;
+        // std::max would drop a NaN from maxError while mae went NaN: refuse it, naming the pixel.
+        const bool badEstimate = !std::isfinite(estimate.pixels[i]);
+        if (badEstimate || !std::isfinite(reference.pixels[i])) {
+            const std::size_t w = std::size_t(g.width());
+            fail("error metrics", std::string(badEstimate ? "estimate" : "reference") + " at pixel (" +
+                                      std::to_string(i % w) + ", " + std::to_string(i / w) + ") is " +
+                                      numberText(badEstimate ? estimate.pixels[i] : reference.pixels[i]) +
+                                      ": must be finite");
+        }
         const double e = double(estimate.pixels[i]) - double(reference.pixels[i]);
         sum += e;
         sumAbs += std::fabs(e);
@@ -50,6 +59,9 @@ Vec3 signedErrorColor(float error, float range) {
 
 Image signedErrorImage(const Image& estimate, const Image& reference, const GBuffer& g, float range) {
     checkSizes(estimate, reference, g);
+    // range <= 0 would swap red and blue (or give 0/0 = NaN colours at e = 0).
+    if (!(range > 0.0f && std::isfinite(range)))
+        fail("signed error range", "must be positive and finite, got " + numberText(range));
     Image out(g.width(), g.height(), 3);
     for (std::size_t i = 0; i < estimate.pixels.size(); ++i) {
         const Vec3 c = g.depth.pixels[i] < 1e30f ? signedErrorColor(estimate.pixels[i] - reference.pixels[i], range)

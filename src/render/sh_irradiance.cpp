@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -128,6 +129,12 @@ SH9 projectEnvironment(const Image& equirect) {
         }
         for (std::size_t k = 0; k < 27; ++k) total[k] += rows[std::size_t(j)][k];
     }
+    // Finite texels can still sum past a float (a constant 3e38 gave L00 = inf, and an inf frame): irradiance()
+    // is at most about 6.2 max|L_lm| (the sum of A_l max|Y_lm|), so a margin of 8 keeps it finite.
+    for (std::size_t k = 0; k < 27; ++k)
+        if (!(std::fabs(total[k]) < double(std::numeric_limits<float>::max()) / 8.0))
+            fail("environment", "radiance is too large: its irradiance would overflow a float (SH coefficient " +
+                                    numberText(total[k]) + ")");
     SH9 sh;
     for (int k = 0; k < 9; ++k)
         for (int c = 0; c < 3; ++c) sh.coefficients[std::size_t(k)][c] = float(total[std::size_t(k * 3 + c)]);

@@ -13,6 +13,7 @@
 
 #include <unistd.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -264,4 +265,19 @@ TEST_F(AlchemyCli, CompareReportsMetricsAndWritesThePicture) {
     EXPECT_EQ(mae("--blur-normal-weight auto"), mae("--blur-normal-weight off"));
     expectFailure("compare corner --methods alchemy,nope --size 48x32 -o " + path("x.png"), {"nope", "alchemy"});
     expectFailure("compare corner --rays 0 --size 48x32 -o " + path("x.png"), {"--rays"});
+}
+
+// The error column is sRGB-encoded as the other three are: the plane's sky there is sRGB(0.2) = 124, not
+// 0.2 * 255 = 51, and the legend's blue end sRGB(0.05, 0.13, 0.71) = (64, 100, 219), not (13, 33, 181). A
+// small --range prints with the digits it needs (0.0040, not 0.00).
+TEST_F(AlchemyCli, CompareEncodesTheErrorColumnAndPrintsASmallRange) {
+    const Result r = run("compare plane --size 32x24 --rays 4 --range 0.004 -o " + path("c.png"));
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_NE(r.out.find("+-0.0040"), std::string::npos) << r.out;
+    const obscura::Image sheet = obscura::readPng(path("c.png"));
+    const int column = 4 + 3 * (32 + 4);
+    EXPECT_NEAR(sheet.at(column + 1, 5, 0) * 255.0f, 124.0f, 1.0f);
+    const int legendY = sheet.height - (12 * 2 + 3 * 4) + 4;  // scale 2, gap 4: the ramp's first row
+    for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(sheet.at(column, legendY, c) * 255.0f, (std::array<float, 3>{64, 100, 219}[c]), 1.5f) << c;
 }

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 namespace fs = std::filesystem;
@@ -112,6 +113,24 @@ TEST_F(Cli, RenderWritesFrameAndAovs) {
         EXPECT_TRUE(fs::is_regular_file(path("aov/") + f)) << f;
     for (const auto& e : fs::recursive_directory_iterator(dir))
         EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << e.path();
+}
+
+// --aov-dir never replaces an input or the -o output, as -o itself may not: the environment read from the AOV
+// folder stayed and exit 0 wrote the lighting AOV over it; -o into the folder as ao.exr held the colour frame.
+TEST_F(Cli, AovDirNeverOverwritesAnInputOrTheOutput) {
+    ASSERT_EQ(run("render plane" + kFast + "-o " + path("f.png") + " --aov-dir " + path("aov")).code, 0);
+    const std::string env = path("aov/lighting.exr");  // a 3-channel EXR: an environment the render reads
+    const auto bytes = [](const std::string& file) {
+        std::ifstream in(file, std::ios::binary);
+        return std::string((std::istreambuf_iterator<char>(in)), {});
+    };
+    const std::string before = bytes(env);
+    expectFailure("render corner --env " + env + kFast + "-o " + path("g.png") + " --aov-dir " + path("aov"),
+                  {"lighting.exr", "is the input file"});
+    EXPECT_EQ(bytes(env), before);
+    EXPECT_FALSE(fs::exists(path("g.png")));
+    expectFailure("render corner" + kFast + "-o " + path("aov/./ao.exr") + " --aov-dir " + path("aov"),
+                  {"ao.exr", "is the output"});
 }
 
 TEST_F(Cli, DegenerateTrianglesAreAWarning) {

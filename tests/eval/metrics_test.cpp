@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
 namespace obscura::eval {
 namespace {
@@ -70,6 +71,36 @@ TEST(Methods, RegistryFindsAndRejectsNames) {
         for (float v : ao.pixels) EXPECT_NEAR(v, 1.0f, tolerance) << m.name;
         EXPECT_GT(m.reference(MethodOptions{}, 64).radius, 0.0f) << m.name;
     }
+}
+
+// A NaN estimate on a surface pixel gave MAE NaN beside a finite max error (std::max drops the NaN); it is
+// refused, naming the pixel. On a sky pixel it is ignored like any sky value: max 0.2 exactly.
+TEST(Metrics, NonFiniteSurfaceValuesAreRefused) {
+    GBuffer g = flat(3, 1);
+    Image est(3, 1, 1, 0.5f), ref(3, 1, 1, 0.5f);
+    est.at(1, 0) = NAN;
+    est.at(2, 0) = 0.7f;
+    try {
+        errorStats(est, ref, g);
+        ADD_FAILURE() << "a NaN estimate was measured";
+    } catch (const Error& e) {
+        EXPECT_EQ(std::string(e.what()), "error metrics: estimate at pixel (1, 0) is nan: must be finite");
+    }
+    ref.at(2, 0) = INFINITY;
+    EXPECT_THROW(errorStats(ref, ref, g), Error);
+    g.depth.at(1, 0) = INFINITY;
+    ref.at(2, 0) = 0.5f;
+    EXPECT_NEAR(errorStats(est, ref, g).maxError, 0.2, 1e-6);
+}
+
+// A range of 0 or below swapped red and blue (or gave NaN colours at e = 0); it is refused. With 0.5 an error
+// of +0.25 (too light) is red.
+TEST(Metrics, SignedErrorImageRefusesABadRange) {
+    const GBuffer g = flat(1, 1);
+    const Image est(1, 1, 1, 0.75f), ref(1, 1, 1, 0.5f);
+    for (float range : {-0.5f, 0.0f, NAN, INFINITY}) EXPECT_THROW(signedErrorImage(est, ref, g, range), Error) << range;
+    const Image ok = signedErrorImage(est, ref, g, 0.5f);
+    EXPECT_GT(ok.at(0, 0, 0), ok.at(0, 0, 2));
 }
 
 } // namespace obscura::eval

@@ -279,5 +279,14 @@ TEST(ShSky, RejectsBadSettings) {
     EXPECT_THROW(proceduralSky(16, 8, s), Error);
 }
 
+// Finite radiance whose projection sums past a float (a constant 3e38, below the 1.7e38 a Radiance file holds
+// times the map's solid angle) is refused: it gave L00 = inf and an inf frame with exit status 0. 1e36 still
+// projects, to E = pi * 1e36 toward +Y (relative 1e-5).
+TEST(ShProjection, RefusesRadianceWhoseIrradianceOverflows) {
+    EXPECT_THROW(projectEnvironment(Image(16, 8, 3, 3e38f)), Error);
+    const Vec3 e = irradiance(projectEnvironment(Image(16, 8, 3, 1e36f)), {0, 1, 0});
+    EXPECT_NEAR(double(e.x) / 1e36, kPiD, 1e-5 * kPiD);
+}
+
 } // namespace
 } // namespace obscura::render

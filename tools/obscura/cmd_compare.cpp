@@ -18,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <map>
 #include <memory>
@@ -186,26 +187,35 @@ void run(const CompareOptions& o) {
     const int w = camera.width, h = camera.height, gap = 4, scale = std::max(2, h / 60);
     const int legendH = 12 * scale + 3 * gap;
     Image sheet(4 * w + 5 * gap, int(rows.size()) * (h + gap) + gap + legendH, 3, 0.12f);
+    render::ShadeSettings srgbOnly;
+    srgbOnly.tonemap = render::Tonemap::None;
     for (std::size_t i = 0; i < rows.size(); ++i) {
         const Row& r = rows[i];
         const int y0 = gap + int(i) * (h + gap);
         blit(sheet, render::toDisplay(render::shade(g, sh, r.ao, sky).color, shading), gap, y0);
         blit(sheet, aoPicture(r.ao), 2 * gap + w, y0);
         blit(sheet, aoPicture(r.reference), 3 * gap + 2 * w, y0);
-        blit(sheet, eval::signedErrorImage(r.ao, r.reference, g, o.range), 4 * gap + 3 * w, y0);
+        // signedErrorImage() is linear light, like the other columns before toDisplay: encode it the same way.
+        blit(sheet, render::toDisplay(eval::signedErrorImage(r.ao, r.reference, g, o.range), srgbOnly), 4 * gap + 3 * w, y0);
     }
     // Legend under the error column: the colour ramp from -range (too dark) to +range (too light).
     const int lx = 4 * gap + 3 * w, ly = sheet.height - legendH + gap, lw = w;
+    Image ramp(lw, 1, 3);
     for (int x = 0; x < lw; ++x) {
         const Vec3 c = eval::signedErrorColor((2.0f * (float(x) + 0.5f) / float(lw) - 1.0f) * o.range, o.range);
-        for (int y = 0; y < 5 * scale; ++y)
-            for (int k = 0; k < 3; ++k) sheet.at(lx + x, ly + y, k) = c[k];
+        for (int k = 0; k < 3; ++k) ramp.at(x, 0, k) = c[k];
     }
+    ramp = render::toDisplay(ramp, srgbOnly);
+    for (int x = 0; x < lw; ++x)
+        for (int y = 0; y < 5 * scale; ++y)
+            for (int k = 0; k < 3; ++k) sheet.at(lx + x, ly + y, k) = ramp.at(x, 0, k);
+    // Enough decimals that a small --range does not print as 0.00 (the glyphs have no 'e' for %g).
+    const int decimals = std::max(2, int(std::ceil(-std::log10(double(o.range)))) + 1);
     char label[32];
-    std::snprintf(label, sizeof label, "-%.2f", double(o.range));
+    std::snprintf(label, sizeof label, "-%.*f", decimals, double(o.range));
     drawText(sheet, lx, ly + 6 * scale, label, scale);
     drawText(sheet, lx + lw / 2 - 2 * scale, ly + 6 * scale, "0", scale);
-    std::snprintf(label, sizeof label, "+%.2f", double(o.range));
+    std::snprintf(label, sizeof label, "+%.*f", decimals, double(o.range));
     drawText(sheet, lx + lw - int(std::string(label).size()) * 4 * scale, ly + 6 * scale, label, scale);
     writePng(o.output, sheet);
 
@@ -223,8 +233,8 @@ void run(const CompareOptions& o) {
         std::printf("%-18s %8.4f %8.4f %+9.4f %8.4f %9.1f\n", r.method->name.c_str(), r.stats.mae, r.stats.rmse,
                     r.stats.bias, r.stats.maxError, r.ms);
     std::printf("\nwrote %s: rows = methods; columns = lit frame, method AO, ray-traced AO, signed error "
-                "(blue: too dark, red: too light, +-%.2f)\n",
-                o.output.c_str(), double(o.range));
+                "(blue: too dark, red: too light, +-%.*f)\n",
+                o.output.c_str(), decimals, double(o.range));
 }
 
 } // namespace
