@@ -39,8 +39,9 @@ class Buffer;              // src/gpu/buffer.h
 // obscura::Error).
 Image reconstructInterleaved(Context& context, const Image& values, const Image& depth, const Image& normal,
                              float depthSigma, int windowPhase = -1);
-// ssao::upsampleDepthAware: `low` 1 or 3 channels and `lowDepth` of the same, non-empty size; the G-buffer's
-// depth (1 channel) and normal (3) of its camera's size. The output has the G-buffer's size; sky 1 (1 channel)
+// ssao::upsampleDepthAware: the same checks and messages (ssao::checkUpsampleDepthAwareInputs): `low` 1 or 3
+// channels of the G-buffer's grid size and `lowDepth` of the same size; the G-buffer's depth (1 channel) and
+// normal (3) of its camera's size. The output has the G-buffer's size; sky 1 (1 channel)
 // or 0; a surface pixel none of whose taps is a surface gets 1, or its own normal, as on the CPU.
 Image upsampleDepthAware(Context& context, const Image& low, const Image& lowDepth, const GBuffer& full,
                          float depthSigma);

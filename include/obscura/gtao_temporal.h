@@ -74,6 +74,8 @@ void checkReconstructWindowPhase(int windowPhase);
 // surface (a feature thinner than the grid's spacing) gets an open surface's values: 1, or its own G-buffer
 // normal. Throws obscura::Error("upsample depth-aware: ...") for images of another size or channel count.
 Image upsampleDepthAware(const Image& low, const Image& lowDepth, const GBuffer& full, float depthSigma);
+// upsampleDepthAware's checks and messages (the CPU's and gpu::upsampleDepthAware both check with it).
+void checkUpsampleDepthAwareInputs(const Image& low, const Image& lowDepth, const GBuffer& full);
 
 class GtaoTemporal {
 public:

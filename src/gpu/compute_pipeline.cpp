@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <string>
 #include <vector>
 
 namespace obscura::gpu {
@@ -163,6 +164,15 @@ void ComputePipeline::dispatch(VkCommandBuffer cmd, std::initializer_list<Resour
     assert(resources.size() == kinds_.size() && pushBytes == layout_.pushConstantBytes);
     if (used_ == kSetsPerSubmit)
         fail("shader " + name_, "more than " + std::to_string(kSetsPerSubmit) + " dispatches in one submission");
+    // A storage buffer binding larger than the device's limit is invalid usage (VUID-VkWriteDescriptorSet-
+    // descriptorType-00333): the shader may see a truncated buffer. Fail cleanly instead (lavapipe: 128 MiB, a
+    // 4096x2736 plane of 3-float normals).
+    const VkDeviceSize maxRange = context_.properties.limits.maxStorageBufferRange;
+    for (const Resource& r : resources)
+        if (r.buffer && r.bytes > maxRange)
+            fail("Vulkan device '" + context_.info.name + "'",
+                 "binds at most " + std::to_string(maxRange) + " bytes as one storage buffer (maxStorageBufferRange), "
+                 "and shader " + name_ + " needs " + std::to_string(r.bytes) + ": the image is too large for it");
     const VkDescriptorSet set = sets_[used_++];
     std::vector<VkDescriptorBufferInfo> buffers(resources.size());
     std::vector<VkDescriptorImageInfo> images(resources.size());

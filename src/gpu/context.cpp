@@ -103,13 +103,15 @@ VkInstance createInstance(bool validation, const VkDebugUtilsMessengerCreateInfo
 int chooseDevice(const std::vector<VkPhysicalDevice>& devices, int asked, const std::string& askedName) {
     const int count = int(devices.size());
     std::string from = askedName;
+    if (asked < -1) fail(from, "must be a device index >= 0, or -1 for the default device, not " + std::to_string(asked));
     if (asked < 0)
         if (const char* env = std::getenv("OBSCURA_GPU_DEVICE"); env && *env) {
             char* end = nullptr;
             const long v = std::strtol(env, &end, 10);
             from = "OBSCURA_GPU_DEVICE";
-            asked = (*end == '\0' && v >= 0 && v < 1 << 20) ? int(v) : count;
-            if (asked == count) fail(from, std::string("'") + env + "' is not a device index");
+            // Not `count` as the marker of a bad value: an index equal to the count is a valid number, out of range.
+            if (*end != '\0' || v < 0 || v >= 1 << 20) fail(from, std::string("'") + env + "' is not a device index");
+            asked = int(v);
         }
     if (asked >= 0) {
         if (asked >= count)

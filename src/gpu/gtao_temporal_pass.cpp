@@ -376,15 +376,10 @@ Image reconstructInterleaved(Context& context, const Image& values, const Image&
 Image upsampleDepthAware(Context& context, const Image& low, const Image& lowDepth, const GBuffer& full,
                          float depthSigma) {
     const int w = full.width(), h = full.height();
-    if (low.channels != 1 && low.channels != 3)
-        fail("upsample depth-aware", "values must have 1 or 3 channels, not " + std::to_string(low.channels));
-    if (low.empty() || lowDepth.width != low.width || lowDepth.height != low.height || lowDepth.channels != 1)
-        fail("upsample depth-aware", "low-resolution depth (1 channel) must match the " + std::to_string(low.width) +
-                                         "x" + std::to_string(low.height) + " values, which must not be empty");
-    if (full.depth.width != w || full.depth.height != h || full.depth.channels != 1 || full.normal.width != w ||
-        full.normal.height != h || full.normal.channels != 3)
-        fail("upsample depth-aware", "G-buffer depth (1 channel) and normal (3 channels) must match its camera's " +
-                                         std::to_string(w) + "x" + std::to_string(h));
+    // The CPU's checks and messages: among them that `low` is the G-buffer's grid, which the shader (clamping its
+    // taps to low's size) would otherwise stretch over the image without a word.
+    ssao::checkUpsampleDepthAwareInputs(low, lowDepth, full);
+    if (w < 1 || h < 1) return Image(w, h, low.channels, low.channels == 1 ? 1.0f : 0.0f);  // no 0-byte buffers
     Context::Impl& c = context.impl();
     const Buffer in = uploadChannels(c, low, low.channels);
     const Buffer ld = uploadChannels(c, lowDepth, 1);

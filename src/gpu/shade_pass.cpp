@@ -77,6 +77,10 @@ namespace {
 // Uploads, records and downloads; `occlusion` has 0 (none), 1 or 3 channels, checked by the caller.
 render::Frame shadeOnGpu(Context& context, const GBuffer& g, const render::SH9& sh, const Image& occlusion,
                          const Image& environment) {
+    render::Frame frame{Image(g.width(), g.height(), 3), Image(g.width(), g.height(), 3)};
+    frame.color.channelNames = {"R", "G", "B"};
+    frame.lighting.channelNames = {"R", "G", "B"};
+    if (g.width() < 1 || g.height() < 1) return frame;  // as render::shade; Vulkan has no buffer of 0 bytes
     Context::Impl& c = context.impl();
     const int channels = occlusion.empty() ? 0 : occlusion.channels;
     const std::size_t pixels = g.depth.pixelCount();
@@ -93,9 +97,6 @@ render::Frame shadeOnGpu(Context& context, const GBuffer& g, const render::SH9& 
     const ShadeConstants k = shadeConstants(g.camera, channels, environment);
     c.submit([&](VkCommandBuffer cmd) { recordShade(c, cmd, {depth, normal, albedo, ao, irradiance, env, color, lighting}, k); },
              true);
-    render::Frame frame{Image(g.width(), g.height(), 3), Image(g.width(), g.height(), 3)};
-    frame.color.channelNames = {"R", "G", "B"};
-    frame.lighting.channelNames = {"R", "G", "B"};
     download(c, color, frame.color.pixels.data(), 3 * pixels * sizeof(float));
     download(c, lighting, frame.lighting.pixels.data(), 3 * pixels * sizeof(float));
     return frame;

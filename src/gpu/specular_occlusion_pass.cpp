@@ -81,6 +81,7 @@ Image specularOcclusionWith(Context& context, const GBuffer& g, const Image& ao,
     // ssao::computeSpecularOcclusion's checks and messages (tests/gpu compare them); they also keep the uploads
     // whole and NaN out of the table coordinates.
     ssao::checkSpecularOcclusionInputs(g, ao, bentNormal, roughness);
+    if (g.width() < 1 || g.height() < 1) return Image(g.width(), g.height(), 1, 1.0f);  // as the CPU; no 0-byte buffers
     Context::Impl& c = context.impl();
     const Texture table = specularTable(
         c, mode, lookup == kSpecularLookupHardware ? TextureFilter::Linear : TextureFilter::Nearest);

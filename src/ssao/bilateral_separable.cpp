@@ -107,7 +107,10 @@ OBSCURA_INLINE void addTap(Centres& q, const Segment& s, std::ptrdiff_t o, const
 
 // A centre on sky or with no weight (impossible for a surface: its own tap counts) keeps its input.
 OBSCURA_INLINE void finishCentres(const Centres& q, const Segment& s, std::ptrdiff_t x, float* out) {
-    const V8i keep = (q.d < splat(1e30f)) & (q.wsum > splat(0.0f));
+    // A depth below about 1e-19 m makes c = depthScale / d^2 infinite, and every tap's weight 0 * inf: the GPU's
+    // weights are then NaN and it keeps the input, where exp2Negative's clamp gave 2^-125 weights here (which
+    // flush to 0 with FTZ, so a constant 0.5 came out 0). Keep the input as the GPU does.
+    const V8i keep = (q.d < splat(1e30f)) & (q.wsum > splat(0.0f)) & (q.c <= splat(3.40282347e38f));
     store(out + x, keep ? q.sum / q.wsum : load(s.aoC + x));
 }
 

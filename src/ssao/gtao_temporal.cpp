@@ -117,7 +117,7 @@ Image reconstructInterleaved(const Image& values, const Image& depth, const Imag
     return out;
 }
 
-Image upsampleDepthAware(const Image& low, const Image& lowDepth, const GBuffer& full, float depthSigma) {
+void checkUpsampleDepthAwareInputs(const Image& low, const Image& lowDepth, const GBuffer& full) {
     const int w = full.width(), h = full.height(), channels = low.channels;
     // The filter sums at most 3 channels; it reads the full depth (and, for vectors, the normal) at every pixel of
     // the camera's size, and the low-resolution depth and values at the grid pixels (x / 2, y / 2) and next to them.
@@ -134,6 +134,11 @@ Image upsampleDepthAware(const Image& low, const Image& lowDepth, const GBuffer&
         full.normal.height != h || full.normal.channels != 3)
         fail("upsample depth-aware", "G-buffer depth (1 channel) and normal (3 channels) must match its camera's " +
                                          std::to_string(w) + "x" + std::to_string(h));
+}
+
+Image upsampleDepthAware(const Image& low, const Image& lowDepth, const GBuffer& full, float depthSigma) {
+    checkUpsampleDepthAwareInputs(low, lowDepth, full);
+    const int w = full.width(), h = full.height(), channels = low.channels;
     Image out(w, h, channels, channels == 1 ? 1.0f : 0.0f);
     forRows(h, [&](int y) {
         for (int x = 0; x < w; ++x) {
