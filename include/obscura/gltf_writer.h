@@ -28,11 +28,13 @@ struct InstanceAttributes {
 // every instance gets a mesh of its own (sharing the geometry's accessors) carrying its attributes.
 void writeGltf(const Scene& scene, const std::string& path, const InstanceAttributes* attributes = nullptr);
 
-// The glTF file `inputPath` as it is (nodes, meshes, materials, extras) plus the attributes on each triangle
-// primitive. `scene` must be loadGltf(inputPath): its instances are matched to the file's (node, primitive)
-// pairs in the loader's order. A mesh used by several nodes is cloned for the second and later nodes, so
-// each instance keeps its own values. An existing attribute of the same name is replaced. Images are not
-// rewritten: their URIs are kept as they are.
+// The glTF file `inputPath` as it is plus the attributes on each triangle primitive: its JSON is edited, so every
+// property the bake does not touch (extensions and extras included) is written as the input had it. `scene`
+// must be loadGltf(inputPath): its instances are matched to the file's (node, primitive) pairs in the loader's
+// order. A mesh used by several nodes (or by a node outside the baked scene) is cloned for the second and later
+// baked nodes, so each instance keeps its own values. An existing attribute of the same name is replaced, and
+// an earlier bake's _AO_SHORT and _AO_LONG are removed. Images are not rewritten: URIs (data URIs too) and
+// buffer views are kept as they are. Every buffer is embedded (.glb: buffer 0 as the binary chunk).
 void writeGltfWithAttributes(const std::string& inputPath, const Scene& scene, const std::string& path,
                              const InstanceAttributes& attributes);
 

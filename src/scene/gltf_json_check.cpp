@@ -137,7 +137,7 @@ std::string withoutDataUris(const std::string& text) {
     return out;
 }
 
-void checkGltfJson(const std::string& path, bool binary) {
+std::string readGltfJsonText(const std::string& path, bool binary) {
     std::ifstream in(path, std::ios::binary);
     if (!in) fail(path, "cannot be opened");
     std::string text;
@@ -157,6 +157,11 @@ void checkGltfJson(const std::string& path, bool binary) {
         in.seekg(0);
         if (!in.read(text.data(), std::streamsize(text.size()))) fail(path, "cannot be read");
     }
+    return text;
+}
+
+void checkGltfJson(const std::string& path, bool binary) {
+    const std::string text = readGltfJsonText(path, binary);
     // Duplicate keys and the like are tinygltf's to judge, which parsed the file already; here only types.
     const Json j = Json::parse(withoutDataUris(text), nullptr, false);
     if (j.is_discarded()) fail(path, "not valid JSON");

@@ -14,6 +14,10 @@ namespace obscura::loader {
 // its binary chunk. Properties the loader never reads are not checked.
 void checkGltfJson(const std::string& path, bool binary);
 
+// The JSON text of `path`: the whole .gltf, or with `binary` the JSON chunk of a .glb. Throws obscura::Error
+// naming `path` for a file that cannot be read or a .glb header that does not hold its JSON chunk.
+std::string readGltfJsonText(const std::string& path, bool binary);
+
 // `text` with the contents of every JSON string that starts with "data:" (a base64 data URI) left out, the quotes
 // kept: "uri": "data:...;base64,AAAA" becomes "uri": "". The scan follows the JSON's strings, escapes included,
 // so a "data:" inside another string is not taken for one. An unterminated string is copied as it is, with what follows it.

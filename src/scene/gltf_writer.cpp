@@ -1,25 +1,25 @@
-// glTF 2.0 writer on tinygltf: scenes from scratch (generated levels, baked OBJ/PLY) and a loaded file
-// with extra vertex attributes added (baked glTF), keeping everything else the file had.
+// glTF 2.0 writer on tinygltf for scenes written from scratch (generated levels, baked OBJ/PLY), and what both
+// glTF writers share (gltf_output.h). A loaded file with attributes added is gltf_attribute_writer.cpp's.
 #include "obscura/gltf_writer.h"
 
 #include "obscura/error.h"
 #include "obscura/image_io.h"
+#include "scene/gltf_output.h"
 
 #include <tiny_gltf.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <cstring>
-#include <map>
+#include <fstream>
+#include <sstream>
 
 namespace obscura {
 
 namespace {
 
-// Writes no image files; returning false tells tinygltf to keep each image's URI as it was.
+// Writes no image files (a scene from scratch has none).
 bool keepImage(const std::string*, const std::string*, const tinygltf::Image*, bool, std::string*, void*) { return false; }
-bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
-    return true;
-}
 
 class BufferWriter {
 public:
@@ -77,18 +77,27 @@ void addAttributes(BufferWriter& writer, tinygltf::Primitive& prim, const Instan
 }
 
 void save(tinygltf::Model& model, const std::string& path) {
-    const bool binary = fileExtension(path) == ".glb";
-    if (!binary && fileExtension(path) != ".gltf") fail(path, "unsupported glTF extension (expected .gltf or .glb)");
-    writeAtomically(path, [&](const std::string& temp) {
-        tinygltf::TinyGLTF gltf;
-        gltf.SetImageWriter(keepImage, nullptr);
-        // embedBuffers: a .gltf is written as one self-contained file, so the rename is the whole write.
-        if (!gltf.WriteGltfSceneToFile(&model, temp, false, true, !binary, binary))
-            fail(path, "cannot write the glTF file");
-    });
+    const bool binary = gltfOutputIsBinary(path);
+    tinygltf::TinyGLTF gltf;
+    gltf.SetImageWriter(keepImage, nullptr);
+    // Into memory first: a .glb states its length in 32 bits, which tinygltf truncates without a word.
+    std::ostringstream bytes;
+    if (!gltf.WriteGltfSceneToStream(&model, bytes, !binary, binary)) fail(path, "cannot write the glTF file");
+    const std::string data = std::move(bytes).str();
+    if (binary && data.size() > 0xffffffffu)
+        fail(path, "would be " + std::to_string(data.size()) + " bytes, past the 4 GiB a .glb can state; write .gltf");
+    writeGltfFile(path, [&](std::ostream& out) { out.write(data.data(), std::streamsize(data.size())); });
 }
 
-void checkAttributes(const Scene& scene, const InstanceAttributes* a, const std::string& path) {
+} // namespace
+
+bool gltfOutputIsBinary(const std::string& path) {
+    const std::string ext = fileExtension(path);
+    if (ext != ".glb" && ext != ".gltf") fail(path, "unsupported glTF extension (expected .gltf or .glb)");
+    return ext == ".glb";
+}
+
+void checkInstanceAttributes(const Scene& scene, const InstanceAttributes* a, const std::string& path) {
     if (!a) return;
     if (a->first.size() != scene.instances.size() + 1) fail(path, "attribute offsets do not match the scene's instances");
     for (std::size_t i = 0; i < scene.instances.size(); ++i)
@@ -99,10 +108,18 @@ void checkAttributes(const Scene& scene, const InstanceAttributes* a, const std:
             fail(path, "attribute " + attr.name + " has the wrong size");
 }
 
-} // namespace
+void writeGltfFile(const std::string& path, const std::function<void(std::ostream&)>& write) {
+    writeAtomically(path, [&](const std::string& temp) {
+        std::ofstream out(temp, std::ios::binary | std::ios::trunc);
+        if (!out) fail(path, "cannot write the glTF file");
+        write(out);
+        out.close();
+        if (out.fail()) fail(path, "write failed (disk full?)");
+    });
+}
 
 void writeGltf(const Scene& scene, const std::string& path, const InstanceAttributes* attributes) {
-    checkAttributes(scene, attributes, path);
+    checkInstanceAttributes(scene, attributes, path);
     tinygltf::Model model;
     model.asset.version = "2.0";
     model.asset.generator = "obscura";
@@ -113,7 +130,12 @@ void writeGltf(const Scene& scene, const std::string& path, const InstanceAttrib
     std::vector<Geometry> geometry;
     std::vector<int> sharedMesh(scene.meshes.size(), -1);
     for (const Mesh& mesh : scene.meshes) {
-        Geometry g;
+        Geometry g{-1, -1, -1, -1};
+        // A mesh whose every triangle was dropped: glTF has no accessor of count 0, and it would show nothing.
+        if (mesh.indices.empty()) {
+            geometry.push_back(g);
+            continue;
+        }
         g.positions = writer.addVec3(mesh.positions, true);
         g.normals = mesh.normals.size() == mesh.positions.size() ? writer.addVec3(mesh.normals, false) : -1;
         g.indices = writer.add(mesh.indices.data(), mesh.indices.size() * 4, mesh.indices.size(),
@@ -141,6 +163,7 @@ void writeGltf(const Scene& scene, const std::string& path, const InstanceAttrib
     tinygltf::Scene root;
     for (std::size_t i = 0; i < scene.instances.size(); ++i) {
         const Instance& inst = scene.instances[i];
+        if (geometry[inst.mesh].positions < 0) continue;
         int meshIndex;
         if (attributes) {
             meshIndex = makeMesh(inst.mesh, scene.meshes[inst.mesh].name);
@@ -165,84 +188,6 @@ void writeGltf(const Scene& scene, const std::string& path, const InstanceAttrib
     }
     model.scenes.push_back(root);
     model.defaultScene = 0;
-    save(model, path);
-}
-
-void writeGltfWithAttributes(const std::string& inputPath, const Scene& scene, const std::string& path,
-                             const InstanceAttributes& attributes) {
-    checkAttributes(scene, &attributes, path);
-    tinygltf::TinyGLTF gltf;
-    gltf.SetImageLoader(skipImage, nullptr);
-    tinygltf::Model model;
-    std::string err, warn;
-    const bool ok = fileExtension(inputPath) == ".glb" ? gltf.LoadBinaryFromFile(&model, &err, &warn, inputPath)
-                                                        : gltf.LoadASCIIFromFile(&model, &err, &warn, inputPath);
-    if (!ok) fail(inputPath, "not a valid glTF file");
-
-    // The loader's order: the default scene's roots, depth first, children in order; per node with a mesh,
-    // its triangle primitives. The loader has already rejected cycles and out-of-range references.
-    std::vector<int> roots;
-    if (!model.scenes.empty()) {
-        int s = model.defaultScene;
-        if (s < 0 || std::size_t(s) >= model.scenes.size()) s = 0;
-        roots = model.scenes[std::size_t(s)].nodes;
-    } else {
-        std::vector<char> isChild(model.nodes.size(), 0);
-        for (const tinygltf::Node& node : model.nodes)
-            for (int c : node.children) isChild[std::size_t(c)] = 1;
-        for (std::size_t i = 0; i < model.nodes.size(); ++i)
-            if (!isChild[i]) roots.push_back(int(i));
-    }
-    struct Target {
-        int node;
-        std::size_t primitive;
-    };
-    std::vector<Target> targets;
-    for (int r : roots) {
-        std::vector<int> stack{r};
-        while (!stack.empty()) {
-            int n = stack.back();
-            stack.pop_back();
-            const tinygltf::Node& node = model.nodes[std::size_t(n)];
-            if (node.mesh >= 0)
-                for (std::size_t p = 0; p < model.meshes[std::size_t(node.mesh)].primitives.size(); ++p)
-                    if (model.meshes[std::size_t(node.mesh)].primitives[p].mode == TINYGLTF_MODE_TRIANGLES)
-                        targets.push_back({n, p});
-            for (auto c = node.children.rbegin(); c != node.children.rend(); ++c) stack.push_back(*c);
-        }
-    }
-    if (targets.size() != scene.instances.size())
-        fail(inputPath, "has " + std::to_string(targets.size()) + " triangle primitives placed by nodes, the scene " +
-                            std::to_string(scene.instances.size()) + " instances (was it loaded from this file?)");
-
-    BufferWriter writer(model);
-    std::map<int, int> meshOfNode;  // node -> the mesh it writes into (its own clone after the first user)
-    std::map<int, int> firstUser;   // mesh -> the node that keeps the original
-    for (std::size_t i = 0; i < targets.size(); ++i) {
-        const int n = targets[i].node;
-        tinygltf::Node& node = model.nodes[std::size_t(n)];
-        if (!meshOfNode.count(n)) {
-            auto [it, first] = firstUser.try_emplace(node.mesh, n);
-            if (first) {
-                meshOfNode[n] = node.mesh;
-            } else {
-                tinygltf::Mesh clone = model.meshes[std::size_t(node.mesh)];
-                clone.name += clone.name.empty() ? "" : " (" + (node.name.empty() ? "node " + std::to_string(n) : node.name) + ")";
-                model.meshes.push_back(clone);
-                node.mesh = int(model.meshes.size() - 1);
-                meshOfNode[n] = node.mesh;
-            }
-        }
-        tinygltf::Primitive& prim = model.meshes[std::size_t(meshOfNode[n])].primitives[targets[i].primitive];
-        const std::size_t vertices = attributes.first[i + 1] - attributes.first[i];
-        const tinygltf::Accessor& positions = model.accessors[std::size_t(prim.attributes.at("POSITION"))];
-        if (positions.count != vertices)
-            fail(inputPath, "node " + std::to_string(n) + " primitive " + std::to_string(targets[i].primitive) + " has " +
-                                std::to_string(positions.count) + " positions, the scene " + std::to_string(vertices));
-        addAttributes(writer, prim, attributes, i);
-    }
-    // Our data now lives in buffer 0, which a .glb carries as its binary chunk.
-    model.buffers[0].uri.clear();
     save(model, path);
 }
 

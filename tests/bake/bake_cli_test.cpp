@@ -44,6 +44,23 @@ nlohmann::json glbJson(const std::string& path) {
 
 class BakeCli : public obscura::clitest::CliTest {};
 
+// `args` run with files limited to `bytes` (a full disk): a write past it fails with EFBIG, SIGXFSZ being
+// ignored in the child, which inherits both. The limit is lifted again before returning.
+Result runWithFileSizeLimit(const std::string& args, rlim_t bytes) {
+    struct rlimit before {};
+    if (getrlimit(RLIMIT_FSIZE, &before) != 0) return {};
+    struct rlimit small = before;
+    small.rlim_cur = bytes;
+    void (*oldHandler)(int) = signal(SIGXFSZ, SIG_IGN);
+    Result r;
+    if (setrlimit(RLIMIT_FSIZE, &small) == 0) {
+        r = run(args);
+        setrlimit(RLIMIT_FSIZE, &before);
+    }
+    signal(SIGXFSZ, oldHandler);
+    return r;
+}
+
 const std::string kFast = " --rays 8 --max-samples-per-face 4 -q ";
 
 } // namespace
@@ -213,15 +230,7 @@ TEST_F(BakeCli, FailedReportLeavesNoOutput) {
     expectFailure("bake plane" + args + "/proc/r.json" + fast, {"/proc/r.json", "cannot write"});
     // The report's write itself fails, after the output's (here: a 512-byte file size limit, which the 115-byte
     // CSV of the plane meets and the ~1 kB report does not): the output is removed again.
-    struct rlimit before {};
-    ASSERT_EQ(getrlimit(RLIMIT_FSIZE, &before), 0);
-    struct rlimit small = before;
-    small.rlim_cur = 512;
-    void (*oldHandler)(int) = signal(SIGXFSZ, SIG_IGN);  // inherited: the write fails with EFBIG instead
-    ASSERT_EQ(setrlimit(RLIMIT_FSIZE, &small), 0);
-    const Result r = run("bake plane" + args + path("r.json") + fast);
-    setrlimit(RLIMIT_FSIZE, &before);
-    signal(SIGXFSZ, oldHandler);
+    const Result r = runWithFileSizeLimit("bake plane" + args + path("r.json") + fast, 512);
     EXPECT_EQ(r.code, 1) << r.out;
     EXPECT_NE(r.out.find("r.json: write failed"), std::string::npos) << r.out;
     EXPECT_EQ(entries(), 0u) << "output or report left behind: " << r.out;
@@ -230,4 +239,107 @@ TEST_F(BakeCli, FailedReportLeavesNoOutput) {
     EXPECT_EQ(ok.code, 0) << ok.out;
     EXPECT_TRUE(fs::exists(path("x.csv")));
     EXPECT_TRUE(fs::exists(path("r.json")));
+}
+
+// The baked copy of a glTF file edits the file's JSON, so what the bake does not touch is the input's: tinygltf's
+// model, which it went through before, dropped extensions and extras on accessors, buffer views, buffers, skins,
+// samplers and animation targets, named samplers, gave an infinite perspective camera "zfar": 0 (invalid), and
+// wrote an image held as a data URI as {"bufferView": -1}. Every input property is compared, the meshes and the
+// nodes after the bake's own changes: new attributes, and clones for the second user of a mesh.
+TEST_F(BakeCli, GltfOutputKeepsWhatTheBakeDoesNotTouch) {
+    for (const char* name : {"bake_keeps_extras.gltf", "bake_keeps_complex.gltf", "bake_keeps_data_uri_image.gltf"})
+        for (const char* ext : {".gltf", ".glb"}) {
+            const std::string out = path(std::string("k") + ext), what = std::string(name) + " to " + ext;
+            const Result r = run("bake " + data(name) + " -o " + out + kFast);
+            ASSERT_EQ(r.code, 0) << what << ": " << r.out;
+            const nlohmann::json in = nlohmann::json::parse(readBytes(data(name)));
+            const nlohmann::json got = std::string(ext) == ".glb" ? glbJson(out) : nlohmann::json::parse(readBytes(out));
+            for (const auto& [key, value] : in.items()) {
+                if (key == "meshes" || key == "nodes" || key == "buffers") continue;
+                if (key == "accessors" || key == "bufferViews") {  // the bake appends its own
+                    ASSERT_GE(got[key].size(), value.size()) << what << ": " << key;
+                    for (std::size_t i = 0; i < value.size(); ++i) EXPECT_EQ(got[key][i], value[i]) << what << ": " << key << i;
+                    continue;
+                }
+                EXPECT_EQ(got[key], value) << what << ": " << key;
+            }
+            for (std::size_t b = 0; b < in["buffers"].size(); ++b) {
+                nlohmann::json kept = in["buffers"][b], written = got["buffers"][b];
+                for (const char* k : {"uri", "byteLength"}) {
+                    kept.erase(k);
+                    written.erase(k);
+                }
+                EXPECT_EQ(written, kept) << what << ": buffer " << b;
+            }
+            // Nodes: the same but for the mesh, which is the same mesh or a clone of it.
+            const nlohmann::json& meshes = got["meshes"];
+            for (std::size_t n = 0; n < in["nodes"].size(); ++n) {
+                nlohmann::json node = got["nodes"][n];
+                if (!in["nodes"][n].contains("mesh")) {
+                    EXPECT_EQ(node, in["nodes"][n]) << what << ": node " << n;
+                    continue;
+                }
+                const nlohmann::json& before = in["meshes"][in["nodes"][n]["mesh"].get<std::size_t>()];
+                nlohmann::json after = meshes[node["mesh"].get<std::size_t>()];
+                node["mesh"] = in["nodes"][n]["mesh"];
+                EXPECT_EQ(node, in["nodes"][n]) << what << ": node " << n;
+                after["name"] = before.value("name", "");
+                if (!before.contains("name")) after.erase("name");
+                for (auto& prim : after["primitives"])
+                    for (const char* k : {"COLOR_0", "_AO_SHORT", "_AO_LONG"}) prim["attributes"].erase(k);
+                nlohmann::json plain = before;
+                for (auto& prim : plain["primitives"])
+                    for (const char* k : {"COLOR_0", "_AO_SHORT", "_AO_LONG"}) prim["attributes"].erase(k);
+                EXPECT_EQ(after, plain) << what << ": node " << n << "'s mesh";
+            }
+        }
+    // The infinite camera stays infinite, and the node of the other scene ("other-scene", node 5) that shares
+    // mesh 0 with the baked nodes keeps the mesh as it was: no AO of theirs.
+    ASSERT_EQ(run("bake " + data("bake_keeps_complex.gltf") + " -o " + path("c.gltf") + kFast).code, 0);
+    const nlohmann::json c = nlohmann::json::parse(readBytes(path("c.gltf")));
+    EXPECT_FALSE(c["cameras"][0]["perspective"].contains("zfar"));
+    EXPECT_EQ(c["nodes"][5]["mesh"], 0);
+    for (const auto& prim : c["meshes"][0]["primitives"]) EXPECT_FALSE(prim["attributes"].contains("COLOR_0"));
+    EXPECT_NE(c["nodes"][1]["mesh"], 0);
+}
+
+// Baking a baked file with one distance wrote the new _AO_SHORT beside the old bake's _AO_LONG.
+TEST_F(BakeCli, RebakingWithOneDistanceLeavesNoOldChannel) {
+    ASSERT_EQ(run("bake " + data("hierarchy.gltf") + " -o " + path("two.gltf") + kFast).code, 0);
+    ASSERT_EQ(run("bake " + path("two.gltf") + " -o " + path("one.gltf") + " --distance 1" + kFast).code, 0);
+    const nlohmann::json two = nlohmann::json::parse(readBytes(path("two.gltf")));
+    const nlohmann::json one = nlohmann::json::parse(readBytes(path("one.gltf")));
+    EXPECT_TRUE(two["meshes"][0]["primitives"][0]["attributes"].contains("_AO_LONG"));
+    for (const auto& mesh : one["meshes"])
+        for (const auto& prim : mesh["primitives"]) {
+            EXPECT_TRUE(prim["attributes"].contains("_AO_SHORT")) << prim.dump();
+            EXPECT_FALSE(prim["attributes"].contains("_AO_LONG")) << prim.dump();
+        }
+}
+
+// A file without scenes whose node outside the tree names child 2000000000 (the loader never visits it)
+// crashed the writer; an object whose only triangle was dropped as degenerate was written as an accessor of
+// count 0 and a buffer view of 0 bytes, both invalid glTF.
+TEST_F(BakeCli, GltfOutputSurvivesNodesOutsideTheTreeAndEmptiedMeshes) {
+    const Result r = run("bake " + data("orphan_bad_child.gltf") + " -o " + path("o.gltf") + kFast);
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_EQ(obscura::loadScene(path("o.gltf")).triangleCount(), obscura::loadScene(data("orphan_bad_child.gltf")).triangleCount());
+    const Result d = run("bake " + data("dropped_object.obj") + " -o " + path("d.gltf") + kFast);
+    ASSERT_EQ(d.code, 0) << d.out;
+    const nlohmann::json j = nlohmann::json::parse(readBytes(path("d.gltf")));
+    for (const auto& a : j["accessors"]) EXPECT_GE(a["count"].get<int>(), 1) << a.dump();
+    for (const auto& v : j["bufferViews"]) EXPECT_GE(v["byteLength"].get<int>(), 1) << v.dump();
+    EXPECT_EQ(j["nodes"].size(), 1u);
+}
+
+// tinygltf never checks its writes: with the disk full (a 1 kB file size limit) a truncated .glb was renamed
+// into place and the bake exited 0. Both writers now fail, naming the file, and leave nothing.
+TEST_F(BakeCli, AFullDiskLeavesNoGltf) {
+    const Result fromGltf = runWithFileSizeLimit("bake " + data("hierarchy.gltf") + " -o " + path("h.glb") + kFast, 1024);
+    const Result fromObj = runWithFileSizeLimit("bake " + data("cube.obj") + " -o " + path("c.gltf") + kFast, 1024);
+    EXPECT_EQ(fromGltf.code, 1) << fromGltf.out;
+    EXPECT_NE(fromGltf.out.find("h.glb: write failed"), std::string::npos) << fromGltf.out;
+    EXPECT_EQ(fromObj.code, 1) << fromObj.out;
+    EXPECT_NE(fromObj.out.find("c.gltf: write failed"), std::string::npos) << fromObj.out;
+    EXPECT_EQ(entries(), 0u);
 }
