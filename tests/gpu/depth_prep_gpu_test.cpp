@@ -85,7 +85,13 @@ TEST(GpuDepthPrep, SameErrorsAsTheCpu) {
     nanDepth.at(2, 3) = NAN;
     Image zeroNormal = n;
     zeroNormal.at(6, 0, 2) = 0.0f;
-    for (const auto& [depth, normals] : {std::pair{nanDepth, n}, std::pair{z, zeroNormal}, std::pair{Image(8, 3, 1), n}})
+    // Finite, but its squared length overflows: it normalized to (0, 0, 0), which both passes took.
+    Image hugeNormal = n;
+    hugeNormal.at(5, 2, 0) = hugeNormal.at(5, 2, 1) = 1e30f;
+    EXPECT_EQ(testing::errorMessage([&] { ssao::prepareGBuffer(z, hugeNormal, cam, s, "f.exr"); }),
+              "f.exr: the normal at pixel (5, 2) is not a finite non-zero vector");
+    for (const auto& [depth, normals] : {std::pair{nanDepth, n}, std::pair{z, zeroNormal}, std::pair{z, hugeNormal},
+                                         std::pair{Image(8, 3, 1), n}})
         testing::expectSameError([&] { ssao::prepareGBuffer(depth, normals, cam, s, "f.exr"); },
                                  [&] { prepareGBuffer(context, depth, normals, cam, s, "f.exr"); });
     EXPECT_EQ(testing::validationReport(context), "");
