@@ -44,6 +44,27 @@ AlchemySettings chapter() {
     return s;
 }
 
+
+// The exact G-buffer of the world plane y = 0 (normal +Y, facing the camera above it) for `cam`.
+GBuffer openGround(const Camera& cam) {
+    GBuffer g;
+    g.camera = cam;
+    g.depth = Image(cam.width, cam.height, 1, INFINITY);
+    g.normal = Image(cam.width, cam.height, 3, 0.0f);
+    const Mat4 worldFromView = cam.worldFromView(), viewFromWorld = cam.viewFromWorld();
+    const Vec3 up = normalize(transformVector(viewFromWorld, Vec3{0, 1, 0}));
+    for (int y = 0; y < cam.height; ++y)
+        for (int x = 0; x < cam.width; ++x) {
+            const Vec3 dv = cam.viewRayDirection(float(x) + 0.5f, float(y) + 0.5f);
+            const Vec3 dw = normalize(transformVector(worldFromView, dv));
+            const double t = -double(cam.position.y) / double(dw.y);
+            if (!(t > 0.0) || t > 5000.0) continue;
+            g.depth.at(x, y) = float(t * double(-dv.z));
+            for (int c = 0; c < 3; ++c) g.normal.at(x, y, c) = up[c];
+        }
+    return g;
+}
+
 } // namespace
 
 // Acceptance: an open plane gives A = 1 everywhere, raw and filtered. On a plane every v lies in the
@@ -412,5 +433,37 @@ TEST(Alchemy, TracksTheRayTracedIntegralFromAbove) {
         }
     }
 }
+
+// A plane has no occlusion: with no bias every sample's v.n is 0 up to rounding, and a sample that lands on the
+// centre's own pixel is v = 0 exactly in alchemyPixel. The AVX2 row kernel computed that v with a fused
+// multiply-subtract, leaving c_x's rounding error, which the paper's epsilon (1e-4 m^2) turned into 0.74 at the
+// far pixels of this view (pixel (6, 10), 1230 m) and 0.986 at 20 m.
+TEST(Alchemy, OpenPlaneIsUnoccludedOnTheRowPathWithoutBias) {
+    Camera cam;
+    cam.position = {1, 1, 2};
+    cam.target = {0, 0, 0};
+    cam.up = {0.3f, 1, 0};
+    cam.fovY = 90;
+    cam.width = 41;
+    cam.height = 23;
+    const GBuffer g = openGround(cam);
+    for (AlchemyFormulation f : {AlchemyFormulation::Paper, AlchemyFormulation::Chapter}) {
+        AlchemySettings s;
+        s.formulation = f;
+        s.bias = 0.0f;
+        s.radius = 1.0f;
+        const Image ao = alchemyAO(g, s);  // the row kernels (AVX2 + FMA where the CPU has them)
+        const AlchemyConstants k = alchemyConstants(s, cam);
+        const AlchemyInput in = alchemyInput(g, false);
+        const SpiralTable spiral = alchemySpiral(k);
+        for (int y = 0; y < cam.height; ++y)
+            for (int x = 0; x < cam.width; ++x) {
+                if (g.isSky(x, y)) continue;
+                EXPECT_GT(ao.at(x, y), 0.999f) << x << "," << y << " depth " << g.depth.at(x, y);
+                EXPECT_NEAR(ao.at(x, y), alchemyPixel(k, in, spiral, x, y), 1e-4f) << x << "," << y;
+            }
+    }
+}
+
 
 } // namespace obscura::ssao
