@@ -14,8 +14,8 @@ namespace obscura {
 
 // Reads .exr, .png or .hdr by extension (case-insensitive). EXR channels come back with their names, layer by
 // layer (a name up to its last '.', in name order), and within a layer R G B A, then X Y Z, then the rest by
-// name: not the file's own order, which is alphabetical (B G R). PNG values are the 8-bit code values / 255 (no
-// colour-space conversion); HDR gives linear RGB.
+// name: not the file's own order, which is alphabetical (B G R). PNG values are the code values / 255 (8-bit) or
+// / 65535 (16-bit), no colour-space conversion; HDR gives linear RGB.
 Image readImage(const std::string& path);
 
 Image readExr(const std::string& path);

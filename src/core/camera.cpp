@@ -12,9 +12,16 @@ namespace obscura {
 
 namespace {
 // The view axes in world space: x right, y up, z backwards (the camera looks down -z).
+// up over its largest component: a hint of (0, 1e20, 0) or (0, 1e-25, 0) is a direction, but its squared length
+// overflows or underflows float and normalize() made it (0, 0, 0).
+Vec3 upDirection(Vec3 up) {
+    const float m = maxAbsComponent(up);
+    return m > 0.0f ? normalize(up / m) : Vec3{};
+}
+
 std::array<Vec3, 3> viewAxes(const Camera& c) {
     Vec3 back = normalize(c.position - c.target);
-    Vec3 right = normalize(cross(c.up, back));
+    Vec3 right = normalize(cross(upDirection(c.up), back));
     return {right, cross(back, right), back};
 }
 } // namespace
@@ -26,12 +33,14 @@ void Camera::validate() const {
         if (maxAbsComponent(p) > kMaxCameraCoordinate)
             fail("camera", std::string(name) + " lies beyond " + numberText(kMaxCameraCoordinate) + " m of the origin");
     if (!(length(target - position) > 0)) fail("camera", "position and target coincide");
-    if (!isFinite(up) || !(length(cross(normalize(target - position), normalize(up))) > 1e-6f))
+    if (!isFinite(up) || !(length(cross(normalize(target - position), upDirection(up))) > 1e-6f))
         fail("camera", "up is zero or parallel to the view direction");
     if (!(fovY >= kMinFovDegrees && fovY < 180.0f))
         fail("camera", "fov must be in [" + numberText(kMinFovDegrees) + ", 180) degrees, got " + numberText(fovY));
     if (!(nearZ > 0.0f) || !(farZ > nearZ) || !std::isfinite(nearZ))
         fail("camera", "near/far must satisfy 0 < near < far");
+    // An infinite far plane has no clipFromView (inf / -inf is NaN) and no JSON number ("far": null).
+    if (!std::isfinite(farZ)) fail("camera", "far must be finite, got " + numberText(farZ));
     if (width < 1 || height < 1)
         fail("camera", "image size must be at least 1x1, got " + std::to_string(width) + "x" + std::to_string(height));
     if (width > kMaxImageSide || height > kMaxImageSide)
@@ -73,8 +82,10 @@ Mat4 Camera::clipFromView() const {
     Mat4 r;
     r.m[0][0] = f / aspect();
     r.m[1][1] = f;
-    r.m[2][2] = (farZ + nearZ) / (nearZ - farZ);
-    r.m[2][3] = 2.0f * farZ * nearZ / (nearZ - farZ);
+    // In double: 2 * far * near overflows float for far beyond 1.7e38 / near, and the terms are far smaller.
+    const double n = nearZ, fz = farZ;
+    r.m[2][2] = float((fz + n) / (n - fz));
+    r.m[2][3] = float(2.0 * fz * n / (n - fz));
     r.m[3][2] = -1.0f;
     r.m[3][3] = 0.0f;
     return r;

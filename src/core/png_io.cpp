@@ -1,5 +1,6 @@
 // PNG reading and writing through stb_image / stb_image_write, and Radiance .hdr reading (own RGBE
 // decoder, see HdrReader).
+#include "obscura/camera.h"
 #include "obscura/error.h"
 #include "obscura/image_io.h"
 
@@ -72,6 +73,20 @@ Image readPng(const std::string& path) {
         fail(path, "not a PNG file (bad signature)");
 
     int width = 0, height = 0, channels = 0;
+    // The size from the header first: Obscura reads no image larger than kMaxImageSide (camera.h) on a side.
+    if (stbi_info_from_memory(bytes.data(), int(bytes.size()), &width, &height, &channels) &&
+        (width > kMaxImageSide || height > kMaxImageSide))
+        fail(path, "PNG size " + std::to_string(width) + "x" + std::to_string(height) + " is too large (at most " +
+                       std::to_string(kMaxImageSide) + " on a side)");
+    // A 16-bit PNG is read as 16 bits: stbi_load would cut it to its high byte (0x00FF became 0, not 1/255).
+    if (stbi_is_16_bit_from_memory(bytes.data(), int(bytes.size()))) {
+        std::unique_ptr<stbi_us, StbFree> data(
+            stbi_load_16_from_memory(bytes.data(), int(bytes.size()), &width, &height, &channels, 0));
+        if (!data) fail(path, "cannot read PNG: " + stbReason());
+        Image image(width, height, channels);
+        for (std::size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] = float(data.get()[i]) / 65535.0f;
+        return image;
+    }
     std::unique_ptr<stbi_uc, StbFree> data(
         stbi_load_from_memory(bytes.data(), int(bytes.size()), &width, &height, &channels, 0));
     if (!data) fail(path, "cannot read PNG: " + stbReason());

@@ -133,6 +133,30 @@ TEST_F(Cli, AovDirNeverOverwritesAnInputOrTheOutput) {
                   {"ao.exr", "is the output"});
 }
 
+// --far inf wrote g.camera.json with "far": null, which `obscura ao --camera` then refused.
+TEST_F(Cli, InfiniteFarIsRefused) {
+    expectFailure("gbuffer plane --size 16x8 -q --far inf -o " + path("g.exr"), {"far"});
+}
+
+// 0 was the "not given" sentinel: --fov 0 ran at the scene's 60 degrees, --near 0 / --far 0 at 0.01 / 1e4.
+TEST_F(Cli, ZeroFovNearFarAreRefusedNotDefaulted) {
+    expectFailure("gbuffer plane --size 16x8 -q --fov 0 -o " + path("g.exr"), {"--fov"});
+    expectFailure("gbuffer plane --size 16x8 -q --near 0 -o " + path("g.exr"), {"near"});
+    expectFailure("gbuffer plane --size 16x8 -q --far 0 -o " + path("g.exr"), {"far"});
+}
+
+// A failing gbuffer left its output directory (nested ones too) or half its files behind.
+TEST_F(Cli, FailedGBufferLeavesNothing) {
+    expectFailure("gbuffer nosuchscene.obj -q -o " + path("out"), {"nosuchscene.obj"});
+    expectFailure("gbuffer plane --fov 200 -q -o " + path("a/b/c"), {"--fov"});
+    std::filesystem::create_directories(path("g.camera.json"));
+    expectFailure("gbuffer plane --size 16x8 -q -o " + path("g.exr"), {"g.camera.json", "directory"});
+    EXPECT_FALSE(std::filesystem::exists(path("g.exr")));
+    std::filesystem::create_directories(path("d/normal.exr"));
+    expectFailure("gbuffer plane --size 16x8 -q -o " + path("d"), {"normal.exr", "directory"});
+    EXPECT_FALSE(std::filesystem::exists(path("d/depth.exr")));
+}
+
 TEST_F(Cli, DegenerateTrianglesAreAWarning) {
     Result r = run("render " + data("degenerate.obj") + kFast + "-o " + path("f.png"));
     ASSERT_EQ(r.code, 0) << r.out;

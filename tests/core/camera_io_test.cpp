@@ -81,3 +81,18 @@ TEST(CameraIo, SizesMustBeWholeNumbersInRange) {
         }
     }
 }
+
+// "far": 1e39 read as a float is inf; it was accepted and written back as "far": null.
+TEST(CameraIo, FarBeyondFloatIsRefused) {
+    EXPECT_THROW(cameraFromJson(R"({"position":[0,0,5],"target":[0,0,0],"fovY":60,"far":1e39,"width":4,"height":4})",
+                                "c.json"),
+                 Error);
+}
+
+TEST(CameraIo, EveryValidCameraRoundTrips) {
+    Camera c;
+    c.farZ = 3e38f;
+    const std::string text = cameraToJson(c);
+    EXPECT_EQ(text.find("null"), std::string::npos) << text;
+    EXPECT_EQ(cameraFromJson(text, "c.json").farZ, c.farZ);
+}

@@ -135,3 +135,35 @@ TEST(Camera, TurnedAboutTargetRotatesThePositionAboutTheVertical) {
     EXPECT_NEAR(full.position.x, c.position.x, 1e-5f);
     EXPECT_NEAR(full.position.z, c.position.z, 1e-5f);
 }
+
+// An infinite far plane passed validate; clipFromView then held NaN (inf / -inf) and the camera file
+// written for it said "far": null, which readCameraJson refuses.
+TEST(Camera, InfiniteFarIsRefused) {
+    Camera c;
+    c.farZ = INFINITY;
+    EXPECT_THROW(c.validate(), Error);
+}
+
+// 2.0f * far * near overflowed float for a finite far of 3e38: clipFromView[2][3] was -inf.
+TEST(Camera, ClipFromViewIsFiniteForAValidCamera) {
+    Camera c;
+    c.farZ = 3e38f;
+    ASSERT_NO_THROW(c.validate());
+    const Mat4 p = c.clipFromView();
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) EXPECT_TRUE(std::isfinite(p.m[i][j])) << i << "," << j;
+    EXPECT_NEAR(p.m[2][3], -2.0f * c.nearZ, 1e-6f);
+}
+
+// An up hint is a direction; its length overflowing or underflowing float made it (0, 0, 0).
+TEST(Camera, UpHintOfAnyMagnitudeIsADirection) {
+    for (float s : {1e20f, 1e-25f}) {
+        Camera c;
+        c.up = {0, s, 0};
+        EXPECT_NO_THROW(c.validate()) << s;
+        Camera unit;
+        const Mat4 a = c.viewFromWorld(), b = unit.viewFromWorld();
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 4; ++j) EXPECT_NEAR(a.m[i][j], b.m[i][j], 1e-6f) << s;
+    }
+}

@@ -1,4 +1,5 @@
 // Tests for image_io.h: EXR/PNG/HDR round trips, files written by other writers, errors and atomic writes.
+#include "obscura/camera.h"
 #include "obscura/error.h"
 #include "obscura/image_io.h"
 #include "obscura/parallel.h"
@@ -818,3 +819,27 @@ TEST_F(ImageIoTest, AtomicWriteFailureLeavesExistingTargetUntouched) {
 }
 
 } // namespace
+
+// A PNG wider than kMaxImageSide was read (camera.h: "the image readers all hold to it").
+TEST_F(ImageIoTest, PngLargerThanTheLimitIsRefused) {
+    const std::string path = file("wide.png");
+    obscura::writePng(path, Image(obscura::kMaxImageSide + 1, 1, 1, 0.5f));
+    EXPECT_THROW(obscura::readPng(path), obscura::Error);
+}
+
+// A 16-bit grey PNG 3x1 with values 0x8000, 0xFFFF, 0x00FF: read through stbi_load it came back cut to 8 bits,
+// 0.501961, 1, 0 (0x00FF's 1/257 lost).
+TEST_F(ImageIoTest, SixteenBitPngKeepsSixteenBits) {
+    const unsigned char png[] = {
+        0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a, 0x00, 0x00, 0x00, 0x0d, 0x49, 0x48, 0x44, 0x52, 0x00, 0x00,
+        0x00, 0x03, 0x00, 0x00, 0x00, 0x01, 0x10, 0x00, 0x00, 0x00, 0x00, 0x6e, 0x1b, 0x97, 0x2b, 0x00, 0x00, 0x00,
+        0x0f, 0x49, 0x44, 0x41, 0x54, 0x78, 0x9c, 0x63, 0x68, 0x60, 0xf8, 0xff, 0x9f, 0xe1, 0x3f, 0x00, 0x0a, 0xff,
+        0x03, 0x7e, 0x54, 0x86, 0xfe, 0xaf, 0x00, 0x00, 0x00, 0x00, 0x49, 0x45, 0x4e, 0x44, 0xae, 0x42, 0x60, 0x82};
+    const std::string path = file("g16.png");
+    std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(png), sizeof png);
+    const Image im = obscura::readPng(path);
+    ASSERT_EQ(im.pixels.size(), 3u);
+    EXPECT_NEAR(im.pixels[0], 32768.0f / 65535.0f, 1e-6f);
+    EXPECT_NEAR(im.pixels[1], 1.0f, 1e-6f);
+    EXPECT_NEAR(im.pixels[2], 255.0f / 65535.0f, 1e-6f);
+}

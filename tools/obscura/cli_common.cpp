@@ -134,9 +134,9 @@ void CameraOptions::add(CLI::App& app) {
     app.add_option("--camera-from", from, "Camera position \"x,y,z\" in world meters (default: the scene's)");
     app.add_option("--camera-to", to, "Point the camera looks at, \"x,y,z\" (default: the scene's)");
     app.add_option("--camera-up", up, "Up direction \"x,y,z\" (default 0,1,0)");
-    app.add_option("--fov", fov, "Vertical field of view in degrees, [0.001, 180) (default: the scene's, usually 60)");
-    app.add_option("--near", nearZ, "Near plane distance in meters (default: the scene's)");
-    app.add_option("--far", farZ, "Far plane distance in meters (default: the scene's)");
+    fovOption = app.add_option("--fov", fov, "Vertical field of view in degrees, [0.001, 180) (default: the scene's, usually 60)");
+    nearOption = app.add_option("--near", nearZ, "Near plane distance in meters (default: the scene's)");
+    farOption = app.add_option("--far", farZ, "Far plane distance in meters (default: the scene's)");
 }
 
 Camera CameraOptions::apply(const LoadedScene& scene) const {
@@ -145,18 +145,23 @@ Camera CameraOptions::apply(const LoadedScene& scene) const {
     if (!from.empty()) c.position = parseVec3("--camera-from", from);
     if (!to.empty()) c.target = parseVec3("--camera-to", to);
     if (!up.empty()) c.up = parseVec3("--camera-up", up);
-    if (fov != 0.0f) {
+    // Given or not is the option's count, not a value of 0: `--fov 0` was taken as "the scene's" (60 degrees),
+    // and `--near 0` / `--far 0` likewise, where the help promises [0.001, 180) and 0 < near < far.
+    const bool fovGiven = fovOption && fovOption->count() > 0;
+    const bool nearGiven = nearOption && nearOption->count() > 0;
+    const bool farGiven = farOption && farOption->count() > 0;
+    if (fovGiven) {
         if (!(fov >= kMinFovDegrees && fov < 180.0f))
             fail("--fov", "must be in [" + numberText(kMinFovDegrees) + ", 180) degrees, got " + numberText(fov));
         c.fovY = fov;
     }
-    if (nearZ != 0.0f) c.nearZ = nearZ;
-    if (farZ != 0.0f) c.farZ = farZ;
+    if (nearGiven) c.nearZ = nearZ;
+    if (farGiven) c.farZ = farZ;
     try {
         c.validate();
     } catch (const Error& e) {
         const std::string problem = std::string(e.what()).substr(8);  // drop the "camera: " prefix
-        if (from.empty() && to.empty() && up.empty() && fov == 0.0f && nearZ == 0.0f && farZ == 0.0f)
+        if (from.empty() && to.empty() && up.empty() && !fovGiven && !nearGiven && !farGiven)
             fail(scene.name, "cannot be framed by the default camera (its bounds span " +
                                  numberText(length(scene.scene.bounds().size())) + " m; " + problem +
                                  "): give --camera-from, --camera-to, --near and --far");

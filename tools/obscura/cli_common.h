@@ -43,8 +43,8 @@ std::vector<float> parseBakeDistances(const std::string& flag, const std::string
 // Camera flags common to render and gbuffer.
 struct CameraOptions {
     std::string from, to, up, size = "1280x720";
-    float fov = 0.0f;  // 0: the scene's
-    float nearZ = 0.0f, farZ = 0.0f;
+    float fov = 0.0f, nearZ = 0.0f, farZ = 0.0f;  // the scene's unless the flag was given (0 included)
+    CLI::Option *fovOption = nullptr, *nearOption = nullptr, *farOption = nullptr;
     void add(CLI::App& app);
     // The scene's camera with the flags given on top. A camera that fails Camera::validate is blamed on the flags
     // when one was given, else on the scene (a file too large or too small for float to frame by default).

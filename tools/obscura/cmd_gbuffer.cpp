@@ -13,6 +13,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <string>
+#include <system_error>
+#include <vector>
 
 namespace obscura::cli {
 
@@ -46,27 +49,57 @@ Image combined(const GBuffer& g) {
 void run(const GBufferOptions& o) {
     auto start = std::chrono::steady_clock::now();
     const bool toDirectory = fileExtension(o.output).empty();
-    if (toDirectory)
-        checkOutputDirectory("-o", o.output, true);
-    else
-        checkOutputPath("-o", o.output, {".exr"});
+    // Every file this run writes, checked before any work; the directory is made only once there is something
+    // to put in it, so that a failure (bad flag, missing scene, an output that is a directory) leaves nothing.
+    const fs::path dir(o.output);
+    const std::vector<std::string> outputs =
+        toDirectory ? std::vector<std::string>{(dir / "depth.exr").string(), (dir / "normal.exr").string(),
+                                               (dir / "albedo.exr").string(), (dir / "camera.json").string()}
+                    : std::vector<std::string>{o.output, fs::path(o.output).replace_extension(".camera.json").string()};
+    std::error_code ec;
+    if (toDirectory) {
+        if (o.output.empty()) fail("-o", "directory is empty");
+        if (fs::exists(dir, ec) && !fs::is_directory(dir, ec)) fail(o.output, "exists and is not a directory");
+        for (const std::string& path : outputs)
+            if (fs::is_directory(path, ec)) fail(path, "is a directory");
+    } else {
+        checkOutputPath("-o", outputs[0], {".exr"});
+        checkOutputPath("-o", outputs[1], {".json"});
+    }
     ThreadLimit limit(o.threads, "--threads");
     LoadedScene loaded = loadSceneArgument(o.scene);
     Camera camera = o.camera.apply(loaded);
     trace::Tracer tracer(loaded.scene);
-    Progress p("primary rays", progressWanted(o.quiet));
+    Progress progress("primary rays", progressWanted(o.quiet));
     trace::GBufferSettings gs;
     gs.supersample = o.supersample;
-    GBuffer g = trace::renderGBuffer(tracer, camera, gs, [&](double f) { p(f); });
+    GBuffer g = trace::renderGBuffer(tracer, camera, gs, [&](double f) { progress(f); });
 
-    if (toDirectory) {
-        writeExr((fs::path(o.output) / "depth.exr").string(), g.depth);
-        writeExr((fs::path(o.output) / "normal.exr").string(), g.normal);
-        writeExr((fs::path(o.output) / "albedo.exr").string(), g.albedo);
-        writeCameraJson((fs::path(o.output) / "camera.json").string(), camera);
-    } else {
-        writeExr(o.output, combined(g));
-        writeCameraJson(fs::path(o.output).replace_extension(".camera.json").string(), camera);
+    // The first directory of the output's path that is not there yet: removed again if a write fails.
+    fs::path created;
+    if (toDirectory)
+        for (fs::path p = fs::absolute(dir, ec); !p.empty() && !fs::exists(p, ec); p = p.parent_path()) created = p;
+    std::size_t written = 0;
+    try {
+        if (toDirectory) {
+            checkOutputDirectory("-o", o.output, true);
+            writeExr(outputs[0], g.depth);
+            ++written;
+            writeExr(outputs[1], g.normal);
+            ++written;
+            writeExr(outputs[2], g.albedo);
+            ++written;
+            writeCameraJson(outputs[3], camera);
+        } else {
+            writeExr(outputs[0], combined(g));
+            ++written;
+            writeCameraJson(outputs[1], camera);
+        }
+    } catch (...) {
+        // Half a G-buffer (an EXR without its camera) is worse than none: ao would need a camera guessed.
+        for (std::size_t i = 0; i < written; ++i) fs::remove(outputs[i], ec);
+        if (!created.empty()) fs::remove_all(created, ec);
+        throw;
     }
     std::printf("wrote %s: %dx%d G-buffer of %s, %.2f s\n", o.output.c_str(), camera.width, camera.height,
                 loaded.name.c_str(), secondsSince(start));
