@@ -82,8 +82,8 @@ BuiltinScene corner() {
     const float size = 20.0f, height = 10.0f;
     Mesh m = named("corner", {0.75f, 0.72f, 0.68f});
     addQuad(m, {0, 0, size}, {size, 0, size}, {size, 0, 0}, {0, 0, 0});             // floor, +Y
-    addQuad(m, {0, 0, 0}, {0, 0, size}, {0, height, size}, {0, height, 0});         // wall x = 0, +X
-    addQuad(m, {0, 0, 0}, {0, height, 0}, {size, height, 0}, {size, 0, 0});         // wall z = 0, +Z
+    addQuad(m, {0, 0, 0}, {0, height, 0}, {0, height, size}, {0, 0, size});         // wall x = 0, +X
+    addQuad(m, {0, 0, 0}, {size, 0, 0}, {size, height, 0}, {0, height, 0});         // wall z = 0, +Z
     s.scene.add(std::move(m));
     s.camera = view({4, 4, 4}, {0.5f, 0, 0.5f});
     return s;

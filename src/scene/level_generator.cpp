@@ -60,14 +60,17 @@ Scene generateLevel(std::size_t triangles, std::uint32_t seed) {
         float y0 = terrainHeight(cx, cz) - 0.5f, t = 0.25f, storey = 3.0f;
         for (int f = 0; f < floors; ++f) {
             float y = y0 + storey * float(f);
-            build::addBox(buildings, {cx - w / 2, y, cz - d / 2}, {cx + w / 2, y + t, cz + d / 2});          // slab
-            build::addBox(buildings, {cx - w / 2, y, cz - d / 2}, {cx - w / 2 + t, y + storey, cz + d / 2});  // walls
-            build::addBox(buildings, {cx + w / 2 - t, y, cz - d / 2}, {cx + w / 2, y + storey, cz + d / 2});
-            build::addBox(buildings, {cx - w / 2, y, cz - d / 2}, {cx + w / 2, y + storey, cz - d / 2 + t});
-            build::addBox(buildings, {cx - w / 2, y, cz + d / 2 - t}, {cx - 0.5f, y + storey, cz + d / 2});  // door gap
-            build::addBox(buildings, {cx + 0.5f, y, cz + d / 2 - t}, {cx + w / 2, y + storey, cz + d / 2});
-            build::addBox(buildings, {cx - t / 2, y, cz - d / 2}, {cx + t / 2, y + storey, cz});              // partition
+            build::addBox(buildings, {cx - w / 2, y, cz - d / 2}, {cx + w / 2, y + t, cz + d / 2});  // slab
         }
+        // Walls and partition rise through every storey in one box each: boxes stacked per storey would
+        // leave coincident, opposite-facing faces (duplicate triangles) at every storey boundary.
+        const float top = y0 + storey * float(floors);
+        build::addBox(buildings, {cx - w / 2, y0, cz - d / 2}, {cx - w / 2 + t, top, cz + d / 2});  // walls
+        build::addBox(buildings, {cx + w / 2 - t, y0, cz - d / 2}, {cx + w / 2, top, cz + d / 2});
+        build::addBox(buildings, {cx - w / 2, y0, cz - d / 2}, {cx + w / 2, top, cz - d / 2 + t});
+        build::addBox(buildings, {cx - w / 2, y0, cz + d / 2 - t}, {cx - 0.5f, top, cz + d / 2});  // door gap
+        build::addBox(buildings, {cx + 0.5f, y0, cz + d / 2 - t}, {cx + w / 2, top, cz + d / 2});
+        build::addBox(buildings, {cx - t / 2, y0, cz - d / 2}, {cx + t / 2, top, cz});              // partition
         build::addBox(buildings, {cx - w / 2, y0 + storey * float(floors), cz - d / 2},
                       {cx + w / 2, y0 + storey * float(floors) + t, cz + d / 2});  // roof
     }

@@ -1,11 +1,15 @@
 // Tests for the Mesh and Scene data functions: bounds, counts, smooth normals, degenerate removal, sanitizeScene.
+#include "obscura/builtin_scenes.h"
 #include "obscura/error.h"
 #include "obscura/scene.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <set>
 #include <string>
 
 namespace obscura {
@@ -293,6 +297,30 @@ TEST(SceneSanitize, InstancesMustPointAtMeshesAndBeFinite) {
     bad.m[0][3] = std::numeric_limits<float>::infinity();
     t.add(quadXY(), bad);
     EXPECT_EQ(messageOf(t, "a.glb"), "a.glb: instance 0 has a non-finite transform");
+}
+
+// The generated level built walls and partitions as one box per storey, each box's top face on the next one's
+// bottom face with opposite winding: 960 of 50,634 triangles (seed 1) were duplicates, hidden in the walls,
+// 2% of the budget and of the bake's samples. No two triangles of a mesh may share their three corners.
+TEST(LevelGenerator, NoTwoTrianglesShareTheirCorners) {
+    for (std::uint32_t seed : {1u, 7u}) {
+        const Scene level = generateLevel(50000, seed);
+        std::size_t duplicates = 0;
+        for (const Mesh& m : level.meshes) {
+            std::set<std::array<std::array<float, 3>, 3>> seen;
+            for (std::size_t t = 0; t < m.indices.size() / 3; ++t) {
+                std::array<std::array<float, 3>, 3> corners;
+                for (int k = 0; k < 3; ++k) {
+                    const Vec3 p = m.positions[m.indices[3 * t + std::size_t(k)]];
+                    corners[std::size_t(k)] = {p.x, p.y, p.z};
+                }
+                std::sort(corners.begin(), corners.end());
+                if (!seen.insert(corners).second) ++duplicates;
+            }
+        }
+        EXPECT_EQ(duplicates, 0u) << "seed " << seed;
+        EXPECT_NEAR(double(level.triangleCount()), 50000.0, 0.02 * 50000.0) << "seed " << seed;
+    }
 }
 
 } // namespace

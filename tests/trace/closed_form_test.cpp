@@ -78,6 +78,29 @@ double polygonFormFactor(const std::vector<Vec3>& v) {
 }
 } // namespace
 
+// The built-in `corner`: a point on the wall x = 0 half a metre above the floor, its normal +X as the wall's
+// winding gives it (the bake takes a face's normal from its winding). Binary occlusion within d = 2: the floor
+// blocks the cosine-weighted directions with d_y < -0.25, the circular segment of the projected unit disk
+// (acos(0.25) - 0.25 sqrt(1 - 0.0625)) / pi = 0.3425, so the value is 0.6575 (Simpson in double). Both walls
+// were wound to face away from the floor: the wall point read 1, and the floor at the corner baked 0.948
+// with 5 of 32 samples invalid.
+TEST(ClosedForm, CornerWallsFaceTheFloorQuadrant) {
+    const BuiltinScene s = makeBuiltinScene("corner");
+    const Mesh& m = s.scene.meshes[0];
+    for (std::size_t t = 0; t < m.indices.size() / 3; ++t) {
+        const Vec3 a = m.positions[m.indices[3 * t]], b = m.positions[m.indices[3 * t + 1]],
+                   c = m.positions[m.indices[3 * t + 2]];
+        EXPECT_GT(dot(cross(b - a, c - a), Vec3{1, 1, 1}), 0.0f) << "triangle " << t << " faces out of the corner";
+    }
+    Tracer tracer(s.scene);
+    Hit hit;
+    ASSERT_TRUE(tracer.intersect({5, 0.5f, 5}, {-1, 0, 0}, 0.0f, kInfinity, hit));
+    EXPECT_NEAR(hit.geometricNormal.x, 1.0f, 1e-6f);
+    const double expected = 1.0 - (std::acos(0.25) - 0.25 * std::sqrt(1.0 - 0.0625)) / 3.14159265358979323846;
+    const double mean = meanOver(tracer, {0, 0.5f, 5}, hit.geometricNormal, occlusion(2.0f), 8);
+    EXPECT_NEAR(mean, expected, 3 * sigma(expected) / std::sqrt(8.0));
+}
+
 TEST(ClosedForm, FloorCentreOfAWell) {
     // Round well of radius a, depth h: the opening subtends a cone of half-angle atan(a/h), whose
     // cosine-weighted measure is sin^2 = a^2 / (a^2 + h^2) = 0.2 for a = 1, h = 2.
