@@ -170,6 +170,21 @@ if "$src/scripts/gpu-ab" --obscura "$tool" embedded "gone=$work/missing" >"$work
   fail "gpu-ab ran with a missing folder"
 fi
 grep -q "gone: $work/missing is not a folder" "$work/ab.err" || fail "$(cat "$work/ab.err")"
+# A variant whose run fails (a shader the driver refuses) is named and left out; the others' rounds are kept and
+# written, and the exit status says one failed. It used to throw every variant's timings away.
+mkdir -p "$work/broken"
+head -c 64 /dev/zero >"$work/broken/alchemy.spv"
+if "$src/scripts/gpu-ab" --obscura "$tool" --rounds 2 --json "$work/broken.json" embedded "cand=$work/spv/$first" \
+  "broken=$work/broken" -- --sizes 64x32 --cases alchemy --frames 2 --warmup 0 --inputs 1 >"$work/ab" 2>"$work/ab.err"; then
+  fail "gpu-ab succeeded with a broken variant"
+fi
+grep -q "broken left out" "$work/ab.err" || fail "no word of the broken variant: $(cat "$work/ab.err")"
+python3 - "$work/broken.json" <<'EOF' || fail "gpu-ab's JSON with a broken variant: $(cat "$work/broken.json")"
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert [v["name"] for v in d["variants"]] == ["embedded", "cand"]
+assert all(len(v["rounds_ms"]) == 2 for v in d["variants"])
+EOF
 # The probes: each built into its folder, with the shaders its patch edits.
 probes=("$src"/bench/gpu-probes/*.patch)
 if [ ${#probes[@]} -gt 0 ]; then
@@ -373,4 +388,12 @@ printf 'a-mixed: mixed\n\nb-pays: pays\n\nc-loses: loses\n' >"$work/w8/candidate
 [ "$(sed -n 's/.*gpu-verify with \([a-z-]*\)$/\1/p' "$work/waiting.err" | tr '\n' ' ')" = "b-pays a-mixed " ] ||
   fail "gpu-verify's order: $(grep 'gpu-verify with' "$work/waiting.err")"
 grep -q "gpu-verify with c-loses left out: loses" "$work/waiting.err" || fail "no word of c-loses left out"
+# Without candidates.txt (no timing part ran, or every one failed) a candidate has no verdict and is verified:
+# a failed read of the file ended the script under set -e before any verify, with no word.
+mkdir -p "$work/nov/only" "$work/w9"
+cp "$build/shaders/gtao.spv" "$work/nov/only/"
+"$src/scripts/gpu-waiting" --obscura "$tool" --candidates "$work/nov" --parts verify --small "$work/w9" \
+  2>"$work/waiting.err" || fail "gpu-waiting --parts verify without candidates.txt: $(cat "$work/waiting.err")"
+[ -s "$work/w9/verify-only.txt" ] && [ -s "$work/w9/verify.txt" ] ||
+  fail "gpu-waiting without candidates.txt wrote: $(ls "$work/w9"); $(cat "$work/waiting.err")"
 echo "gpu_candidates_check: ok ($count candidates)"

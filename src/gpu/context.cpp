@@ -276,6 +276,8 @@ Context::Context(const ContextSettings& settings) : impl_(std::make_unique<Impl>
         query.queryCount = Context::Impl::kMaxTimestamps;
         c.check(vkCreateQueryPool(c.device, &query, nullptr, &c.timestamps), "creating timestamp queries");
         c.info.timestampPeriodNs = double(c.properties.limits.timestampPeriod);
+        const std::uint32_t bits = families[c.queueFamily].timestampValidBits;
+        c.timestampMask = timestampMask(bits);
     }
     c.allocator = std::make_unique<Allocator>(c.physical, c.device, c.info.name);
 }
@@ -333,7 +335,7 @@ void Context::Impl::submit(const std::function<void(VkCommandBuffer)>& record, b
                                     VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
               "reading timestamps");
         const auto ms = [&](std::uint32_t from, std::uint32_t to) {
-            return double(ticks[to] - ticks[from]) * info.timestampPeriodNs * 1e-6;
+            return timestampDeltaMs(ticks[from], ticks[to], timestampMask, info.timestampPeriodNs);
         };
         lastPassMs = ms(0, last);
         lastMarks.clear();

@@ -33,6 +33,8 @@ struct Context::Impl {
     VkCommandBuffer commandBuffer = VK_NULL_HANDLE;
     VkFence fence = VK_NULL_HANDLE;
     VkQueryPool timestamps = VK_NULL_HANDLE;  // null when the queue has no timestamps
+    // The queue family's timestampValidBits as a mask: a counter of fewer than 64 bits wraps at 2^bits.
+    std::uint64_t timestampMask = ~std::uint64_t(0);
     VkPhysicalDeviceProperties properties{};
     DeviceInfo info;
     // Mesa's lavapipe (llvmpipe): it ends a shader invocation's loops after 65535 iterations in all, with no
@@ -136,6 +138,17 @@ void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags srcStage, VkAccessF
 // The barrier between two compute passes of one submission: the earlier one's writes are visible to the
 // later one's reads and writes.
 void computeBarrier(VkCommandBuffer cmd);
+
+// The mask of a timestamp counter with `validBits` bits (VkQueueFamilyProperties::timestampValidBits, 1..64).
+inline std::uint64_t timestampMask(std::uint32_t validBits) {
+    return validBits >= 64 ? ~std::uint64_t(0) : (std::uint64_t(1) << validBits) - 1;
+}
+// Milliseconds from timestamp `from` to `to` of a counter with `mask` (timestampMask) ticking every `periodNs`:
+// taken modulo the counter's width, a wrap between the two reads as the ticks between them (a plain 64-bit
+// difference of a 36-bit counter's wrap read 52 us as 9.6e14 ms).
+inline double timestampDeltaMs(std::uint64_t from, std::uint64_t to, std::uint64_t mask, double periodNs) {
+    return double((to - from) & mask) * periodNs * 1e-6;
+}
 
 // vkCreate<T>(device, &info) wrapped in a Unique; throws obscura::Error saying what was `doing`.
 template <class T, class Info>

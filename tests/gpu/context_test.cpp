@@ -102,6 +102,17 @@ TEST(GpuShaders, ReflectionReadsTheWorkgroupSizeADeviceRuns) {
     EXPECT_EQ(size(testing::withWorkgroupSize(gtaoWords, 24, 3)), (std::vector<std::uint32_t>{24, 3, 1}));
 }
 
+// A counter of fewer than 64 valid bits (36 on some GPUs) wraps: the plain 64-bit difference of ticks
+// 2^36 - 500 and 500 read 9.6e14 ms; modulo the counter it is 1000 ticks, 0.052083 ms at 52.083 ns a tick.
+TEST(GpuContext, TimestampsWrapAtTheCounterWidth) {
+    const double periodNs = 52.083;
+    const std::uint64_t before = (std::uint64_t(1) << 36) - 500, after = 500;
+    EXPECT_NEAR(timestampDeltaMs(before, after, timestampMask(36), periodNs), 1000 * periodNs * 1e-6, 1e-12);
+    EXPECT_NEAR(timestampDeltaMs(10, 1010, timestampMask(64), periodNs), 1000 * periodNs * 1e-6, 1e-12);
+    EXPECT_EQ(timestampMask(64), ~std::uint64_t(0));
+    EXPECT_EQ(timestampMask(1), 1u);
+}
+
 TEST(GpuContext, DeviceInfo) {
     OBSCURA_GPU_CONTEXT(context);
     EXPECT_FALSE(context.device().name.empty());
