@@ -9,12 +9,12 @@ command -v python3 >/dev/null || { echo "gpu_verify_check: no python3"; exit 77;
 skip_without_vulkan
 
 "$src/scripts/gpu-verify" "$tool" --small --jobs 2 >"$work/out" 2>&1 || fail "gpu-verify failed: $(cat "$work/out")"
-[ "$(grep -c 'values > 2e-3: 0 of' "$work/out")" -eq 28 ] || fail "expected 28 planes within 2e-3: $(cat "$work/out")"
+[ "$(grep -c 'values > 2e-3: 0 of' "$work/out")" -eq 29 ] || fail "expected 29 planes within 2e-3: $(cat "$work/out")"
 # Its cases run side by side (--jobs, two at least here), yet print in the list's order, each bent-normal line
 # under its own case.
 sed -n "/^done <<'LIST'$/,/^LIST$/p" "$src/scripts/gpu-verify" | sed '1d;$d' |
   sed 's/1280x720/128x72/g; s/1333x757/133x77/g; s/ | \(.*\)/ (GPU: \1)/' >"$work/cases"
-[ "$(wc -l <"$work/cases")" -eq 23 ] || fail "read $(wc -l <"$work/cases") cases from gpu-verify's list, not 23"
+[ "$(wc -l <"$work/cases")" -eq 24 ] || fail "read $(wc -l <"$work/cases") cases from gpu-verify's list, not 24"
 grep -v '^  bent normal' "$work/out" | sed 's/ *mean |diff|.*//' | diff "$work/cases" - >"$work/order" ||
   fail "gpu-verify's lines are not in its list's order: $(cat "$work/order")"
 [ "$(grep -A1 -e '--ao-output all' -e '--ao-output bent-normal' "$work/out" | grep -c '^  bent normal')" -eq 5 ] ||
