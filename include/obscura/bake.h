@@ -43,6 +43,7 @@ enum class LinearSolver {
 bool cholmodAvailable();
 
 struct BakeSettings {
+    static constexpr float kMaxDistance = 1e6f;  // the largest d, m
     Mode mode = Mode::Obscurance;
     std::vector<float> distances{2.0f, 300.0f};  // d per channel: m, (0, 1e6]; 1 or 2 (short, long); the seed's 2 and 300
     int rays = 256;                   // directions per sample: [1, 65536]; the seed traces 256
@@ -102,6 +103,7 @@ struct SampleSet {
     std::vector<Vec3> positions;            // world, m
     std::vector<Vec3> normals;              // unit geometric normal of the face's front (counter-clockwise) side
     std::vector<std::uint32_t> triangles;   // welded triangle of each sample
+    std::vector<float> offsets;             // per welded triangle: its rays' self-hit offset, m (trace::selfHitOffset)
     std::vector<Vec2> barycentrics;         // (lambda1, lambda2); lambda0 = 1 - both
     std::vector<std::uint32_t> triangleFirst;  // per triangle + 1
 

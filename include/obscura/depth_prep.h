@@ -37,6 +37,12 @@ DepthPrepConstants depthPrepConstants(const DepthPrepSettings& settings, const C
 void checkDepthPrepInputs(const Image& deviceDepth, const Image& normals, const Camera& camera,
                           const DepthPrepSettings& settings, const std::string& what);
 
+// Throws obscura::Error("<what>: the normal at pixel (x, y) is not a finite non-zero vector") unless `n`, a
+// normal as the preparation writes it, is a unit vector: a zero, non-finite or overflowing input normalizes to
+// zero or NaN ((1e30, 1e30, 0): 1 / sqrt(inf) = 0), which a finiteness test alone let through. The CPU and
+// GPU passes both check with it.
+void checkPreparedNormal(Vec3 n, int x, int y, const std::string& what);
+
 // The G-buffer (depth and normal; no albedo) of `camera` from the engine's buffers. `normals` may be empty
 // with NormalSource::FromDepth.
 GBuffer prepareGBuffer(const Image& deviceDepth, const Image& normals, const Camera& camera,

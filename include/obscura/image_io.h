@@ -36,5 +36,7 @@ std::string fileExtension(const std::string& path);
 // Runs write(tempPath), then renames tempPath to path. On any exception the temporary is removed and
 // the exception rethrown. Used by every writer in the library.
 void writeAtomically(const std::string& path, const std::function<void(const std::string& tempPath)>& write);
+// Fails as writeAtomically would, before any work, if `path`'s directory takes no new file; leaves nothing.
+void checkWritable(const std::string& path);
 
 } // namespace obscura

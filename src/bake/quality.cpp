@@ -121,7 +121,8 @@ QualityResult compareWithDense(const Scene& scene, const BakeSettings& settings,
     const auto start = std::chrono::steady_clock::now();
     QualityResult q;
     q.referenceRays = referenceRays;
-    const WeldedMesh mesh = weldScene(scene, settings.weldDistance(scene.bounds()), settings.creaseAngle);
+    const float weldDistance = settings.weldDistance(scene.bounds());  // welded vertices lie up to it off
+    const WeldedMesh mesh = weldScene(scene, weldDistance, settings.creaseAngle);
     const SampleSet samples = generateSamples(mesh, settings);
     const trace::Tracer tracer(scene);
     const RayResults rays = traceSamples(tracer, samples, settings);
@@ -182,7 +183,6 @@ QualityResult compareWithDense(const Scene& scene, const BakeSettings& settings,
     {
         const trace::HitStream stream(tracer);
         const CosineHemisphereSet set(256);
-        const float weldDistance = settings.weldDistance(tracer.bounds());  // welded vertices lie up to it off
         const auto limit = int(std::floor(double(settings.backFaceLimit) * 256));
         parallelFor(mesh.positions.size(), [&](std::size_t b, std::size_t e) {
             std::vector<Vec3> dirs(256);

@@ -22,7 +22,8 @@ void BakeSettings::validate() const {
     if (distances.empty() || distances.size() > 2)
         fail("--distances", "expected 1 or 2 distances, got " + std::to_string(distances.size()));
     for (float d : distances)
-        if (!(d > 0.0f && d <= 1e6f)) fail("--distances", "each distance must be in (0, 1e6] m, got " + numberText(d));
+        if (!(d > 0.0f && d <= kMaxDistance))
+            fail("--distances", "each distance must be in (0, 1e6] m, got " + numberText(d));
     if (rays < 1 || rays > 65536) fail("--rays", "must be in [1, 65536], got " + std::to_string(rays));
     if (!(alpha >= 0.0f && alpha <= 1e6f)) fail("--alpha", "must be in [0, 1e6], got " + numberText(alpha));
     if (maxSamplesPerFace < 1 || maxSamplesPerFace > 4096)
@@ -82,8 +83,9 @@ SampleFrame SampleTracer::frame(const SampleSet& samples, std::size_t s) const {
     const Vec3 p = samples.positions[s];
     f.n = samples.normals[s];
     orthonormalBasis(f.n, f.t, f.b);
-    // Welding moved vertices by up to its distance, so a sample may lie that far off the surface traced.
-    f.origin = p + f.n * (tracer_.selfHitOffset(p, f.n) + weldDistance_);
+    // Welding moved vertices by up to its distance, so a sample may lie that far off the surface traced (and its
+    // face's shape differ from the traced one's by as little).
+    f.origin = p + f.n * (samples.offsets[samples.triangles[s]] + weldDistance_);
     f.shift = CosineHemisphereSet::shift(hashCombine(settings_.seed, std::uint32_t(s)));
     return f;
 }

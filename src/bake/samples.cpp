@@ -6,6 +6,7 @@
 #include "obscura/error.h"
 #include "obscura/parallel.h"
 #include "obscura/sampling.h"
+#include "obscura/trace.h"
 
 #include "core/face_geometry.h"
 
@@ -43,6 +44,7 @@ SampleSet generateSamples(const WeldedMesh& mesh, const BakeSettings& settings) 
     s.normals.resize(total);
     s.triangles.resize(total);
     s.barycentrics.resize(total);
+    s.offsets.resize(triangles);
 
     parallelFor(triangles, [&](std::size_t begin, std::size_t end) {
         for (std::size_t t = begin; t < end; ++t) {
@@ -50,6 +52,8 @@ SampleSet generateSamples(const WeldedMesh& mesh, const BakeSettings& settings) 
                        p2 = mesh.positions[mesh.indices[3 * t + 2]];
             // In double, as the weld's area test: a sliver it keeps can have a float cross product of zero.
             const Vec3 n = geometry::unitNormal(p0, p1, p2);
+            // Once per face, not per sample: no sample's coordinates exceed its face's largest.
+            s.offsets[t] = trace::selfHitOffset(p0, p1, p2, p0);
             // The first N points of a scrambled Sobol sequence are stratified for any N; the warp
             // (1 - sqrt u, sqrt u (1 - v), sqrt u v) maps equal areas of the square to equal areas of the face.
             const OwenSobol2D sequence(hashCombine(settings.seed, std::uint32_t(t)));

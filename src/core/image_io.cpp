@@ -58,6 +58,13 @@ void createEmptyFile(const std::string& path, const std::string& tempPath) {
 
 } // namespace
 
+void checkWritable(const std::string& path) {
+    const std::string temp = temporaryPathFor(path);
+    createEmptyFile(path, temp);
+    std::error_code ignored;
+    fs::remove(temp, ignored);
+}
+
 void writeAtomically(const std::string& path, const std::function<void(const std::string& tempPath)>& write) {
     const std::string tempPath = temporaryPathFor(path);
     createEmptyFile(path, tempPath);

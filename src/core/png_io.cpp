@@ -79,20 +79,17 @@ Image readPng(const std::string& path) {
         fail(path, "PNG size " + std::to_string(width) + "x" + std::to_string(height) + " is too large (at most " +
                        std::to_string(kMaxImageSide) + " on a side)");
     // A 16-bit PNG is read as 16 bits: stbi_load would cut it to its high byte (0x00FF became 0, not 1/255).
-    if (stbi_is_16_bit_from_memory(bytes.data(), int(bytes.size()))) {
-        std::unique_ptr<stbi_us, StbFree> data(
-            stbi_load_16_from_memory(bytes.data(), int(bytes.size()), &width, &height, &channels, 0));
+    const auto decode = [&](auto* pixels, float maxValue) {
+        std::unique_ptr<std::remove_pointer_t<decltype(pixels)>, StbFree> data(pixels);
         if (!data) fail(path, "cannot read PNG: " + stbReason());
         Image image(width, height, channels);
-        for (std::size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] = float(data.get()[i]) / 65535.0f;
+        for (std::size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] = float(data.get()[i]) / maxValue;
         return image;
-    }
-    std::unique_ptr<stbi_uc, StbFree> data(
-        stbi_load_from_memory(bytes.data(), int(bytes.size()), &width, &height, &channels, 0));
-    if (!data) fail(path, "cannot read PNG: " + stbReason());
-
-    Image image(width, height, channels);
-    for (std::size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] = float(data.get()[i]) / 255.0f;
+    };
+    const int size = int(bytes.size());
+    if (stbi_is_16_bit_from_memory(bytes.data(), size))
+        return decode(stbi_load_16_from_memory(bytes.data(), size, &width, &height, &channels, 0), 65535.0f);
+    Image image = decode(stbi_load_from_memory(bytes.data(), size, &width, &height, &channels, 0), 255.0f);
     return image;
 }
 

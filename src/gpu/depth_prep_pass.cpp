@@ -64,16 +64,14 @@ GBuffer prepareGBuffer(Context& context, const Image& deviceDepth, const Image& 
     g.normal = Image(k.width, k.height, 3);
     download(c, depth, g.depth.pixels.data(), pixels * sizeof(float));
     download(c, normal, g.normal.pixels.data(), 3 * pixels * sizeof(float));
-    // Unusable normals (zero-length, not finite, or so long that their length overflowed, which normalizes to
-    // zero) are the CPU reference's error too: the pass writes a unit vector for every other.
+    // Unusable normals are the CPU reference's error too: the pass writes a unit vector for every other.
     if (readsNormals)
-        for (std::size_t i = 0; i < pixels; ++i) {
-            const float* n = &g.normal.pixels[3 * i];
-            const float l2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
-            if (g.depth.pixels[i] < 1e30f && !(l2 > 0.5f && l2 < 2.0f))
-                fail(what, "the normal at pixel (" + std::to_string(i % std::size_t(k.width)) + ", " +
-                               std::to_string(i / std::size_t(k.width)) + ") is not a finite non-zero vector");
-        }
+        for (std::size_t i = 0; i < pixels; ++i)
+            if (g.depth.pixels[i] < 1e30f) {
+                const float* n = &g.normal.pixels[3 * i];
+                ssao::checkPreparedNormal({n[0], n[1], n[2]}, int(i % std::size_t(k.width)),
+                                          int(i / std::size_t(k.width)), what);
+            }
     return g;
 }
 

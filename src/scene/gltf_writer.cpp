@@ -12,7 +12,6 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
-#include <sstream>
 
 namespace obscura {
 
@@ -80,13 +79,13 @@ void save(tinygltf::Model& model, const std::string& path) {
     const bool binary = gltfOutputIsBinary(path);
     tinygltf::TinyGLTF gltf;
     gltf.SetImageWriter(keepImage, nullptr);
-    // Into memory first: a .glb states its length in 32 bits, which tinygltf truncates without a word.
-    std::ostringstream bytes;
-    if (!gltf.WriteGltfSceneToStream(&model, bytes, !binary, binary)) fail(path, "cannot write the glTF file");
-    const std::string data = std::move(bytes).str();
-    if (binary && data.size() > 0xffffffffu)
-        fail(path, "would be " + std::to_string(data.size()) + " bytes, past the 4 GiB a .glb can state; write .gltf");
-    writeGltfFile(path, [&](std::ostream& out) { out.write(data.data(), std::streamsize(data.size())); });
+    writeGltfFile(path, [&](std::ostream& out) {
+        if (!gltf.WriteGltfSceneToStream(&model, out, !binary, binary)) fail(path, "cannot write the glTF file");
+        // A .glb states its length in 32 bits, which tinygltf truncates without a word; the temporary goes.
+        if (binary && std::uint64_t(out.tellp()) > 0xffffffffu)
+            fail(path, "would be " + std::to_string(std::uint64_t(out.tellp())) +
+                           " bytes, past the 4 GiB a .glb can state; write .gltf");
+    });
 }
 
 } // namespace

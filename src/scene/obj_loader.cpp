@@ -340,7 +340,7 @@ private:
         const double x = bad_.real(t[1], "normal component"), y = bad_.real(t[2], "normal component"),
                      z = bad_.real(t[3], "normal component");
         // In double: float squares of components beyond 1e19 overflow, and a valid normal would become zero.
-        // A zero normal stays zero, as it did before (sanitizeScene accepts it).
+        // A zero normal stays zero here; sanitizeScene refuses it on a triangle it keeps.
         const double length = std::sqrt(x * x + y * y + z * z);
         obj_.normals.push_back(length > 0 ? Vec3{float(x / length), float(y / length), float(z / length)} : Vec3{});
     }

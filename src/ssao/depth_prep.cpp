@@ -71,14 +71,14 @@ Vec3 viewNormal(const float* in, const DepthPrepConstants& k) {
     return n * (1.0f / std::sqrt(dot(n, n)));
 }
 
-// viewNormal's result is a unit vector unless the input was zero, not finite, or so long that dot(n, n)
-// overflowed: then 1 / sqrt(inf) = 0 and (1e30, 1e30, 0) came out (0, 0, 0), which a finiteness test passed.
-bool usableNormal(Vec3 n) {
-    const float l2 = dot(n, n);
-    return l2 > 0.5f && l2 < 2.0f;
-}
-
 } // namespace
+
+void checkPreparedNormal(Vec3 n, int x, int y, const std::string& what) {
+    const float l2 = dot(n, n);
+    if (!(l2 > 0.5f && l2 < 2.0f))
+        fail(what, "the normal at pixel (" + std::to_string(x) + ", " + std::to_string(y) +
+                       ") is not a finite non-zero vector");
+}
 
 GBuffer prepareGBuffer(const Image& deviceDepth, const Image& normals, const Camera& camera, const DepthPrepSettings& s,
                        const std::string& what) {
@@ -101,9 +101,7 @@ GBuffer prepareGBuffer(const Image& deviceDepth, const Image& normals, const Cam
             const float* in = &normals.pixels[(std::size_t(y) * std::size_t(k.width) + std::size_t(x)) *
                                               std::size_t(k.normalChannels)];
             const Vec3 n = viewNormal(in, k);
-            if (!usableNormal(n))
-                fail(what, "the normal at pixel (" + std::to_string(x) + ", " + std::to_string(y) +
-                               ") is not a finite non-zero vector");
+            checkPreparedNormal(n, x, y, what);
             for (int c = 0; c < 3; ++c) g.normal.at(x, y, c) = n[c];
         }
     if (k.normals == kNormalsFromDepth) {

@@ -1,6 +1,7 @@
 // Argument helpers shared by the subcommands.
 #include "cli_common.h"
 
+#include "obscura/bake.h"
 #include "obscura/error.h"
 #include "obscura/image_io.h"
 #include "obscura/scene_io.h"
@@ -100,7 +101,7 @@ float parseRadius(const std::string& flag, const std::string& text) {
 
 // BakeSettings::validate's bound on a distance, checked here too so that the message names the flag the user
 // gave (--distance or --distances) and does not offer "inf", which the bake refuses.
-constexpr float kMaxBakeDistance = 1e6f;
+constexpr float kMaxBakeDistance = bake::BakeSettings::kMaxDistance;
 
 float parseBakeDistance(const std::string& flag, const std::string& text) {
     float d = 0.0f;
@@ -219,8 +220,16 @@ void checkOutputPath(const std::string& flag, const std::string& path, const std
     std::error_code ec;
     if (fs::is_directory(path, ec)) fail(path, "is a directory");
     for (const std::string& input : inputs)
-        if (!input.empty() && fs::exists(path, ec) && fs::exists(input, ec) && fs::equivalent(path, input, ec))
+        if (samePath(path, input))
             fail(path, "is the input file " + input + "; the input is never overwritten, choose another output");
+}
+
+bool samePath(const std::string& a, const std::string& b) {
+    if (a.empty() || b.empty()) return false;
+    std::error_code ea, eb;
+    if (fs::exists(a, ea) && fs::exists(b, eb)) return fs::equivalent(a, b, ea) && !ea;
+    const fs::path ca = fs::weakly_canonical(a, ea), cb = fs::weakly_canonical(b, eb);
+    return !ea && !eb && ca == cb;
 }
 
 void checkInputFormat(const std::string& flag, const std::string& path, const std::vector<std::string>& extensions,

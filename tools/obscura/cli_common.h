@@ -69,6 +69,9 @@ void refuseEmptyValues(CLI::App& app);
 // output would replace.
 void checkOutputPath(const std::string& flag, const std::string& path, const std::vector<std::string>& extensions,
                      const std::vector<std::string>& inputs = {});
+// True if `a` and `b` name the same file: one existing file (a link or another spelling), or two paths that do
+// not exist yet but resolve alike ("d/./ao.exr" and "d/ao.exr"). False for an empty name.
+bool samePath(const std::string& a, const std::string& b);
 void checkOutputDirectory(const std::string& flag, const std::string& dir, bool create);
 
 // Fails early if an input (skipped when empty) is not one of `extensions`, where readImage would read other

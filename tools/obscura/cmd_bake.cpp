@@ -13,9 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
-#include <cerrno>
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -44,16 +42,6 @@ struct BakeOptions {
     long long rawCheck = 0;  // signed, so that -1 is refused as -1, not taken as 2^64 - 1
     bool quiet = false;
 };
-
-// Fails naming `path` if its directory takes no new file, by creating (exclusively, so nothing is reused)
-// and removing an empty one beside it, as writeAtomically's temporary will be.
-void checkWritable(const std::string& path) {
-    const std::string probe = path + ".probe-" + std::to_string(getpid());
-    std::FILE* f = std::fopen(probe.c_str(), "wbx");
-    if (!f) fail(path, std::string("cannot write: ") + std::strerror(errno));
-    std::fclose(f);
-    std::remove(probe.c_str());
-}
 
 // Removes a written output unless kept, when a later step of the command fails.
 struct OutputGuard {

@@ -116,21 +116,13 @@ void run(const RenderOptions& o) {
     if (o.tiledBlur && o.fusedBlur) fail("--gpu-tiled-blur", "and --gpu-fused-blur are two ways to run the blur: give one");
 
     // An AOV must not replace an input (the environment read above) or the -o output, as -o itself may not.
-    if (!o.aovDir.empty()) {
-        namespace fs = std::filesystem;
-        auto same = [](const std::string& a, const std::string& b) {
-            std::error_code ec1, ec2;
-            if (fs::exists(a, ec1) && fs::exists(b, ec2) && fs::equivalent(a, b, ec1)) return true;
-            const fs::path ca = fs::weakly_canonical(a, ec1), cb = fs::weakly_canonical(b, ec2);
-            return !ec1 && !ec2 && ca == cb;
-        };
-        for (const char* name : {"ao.exr", "depth.exr", "normal.exr", "albedo.exr", "lighting.exr", "camera.json"}) {
-            const std::string aov = (fs::path(o.aovDir) / name).string();
-            for (const auto& [what, other] : {std::pair<const char*, std::string>{"the input file", o.env},
-                                              {"the input file", o.scene}, {"the output", o.output}})
-                if (!other.empty() && same(aov, other))
-                    fail(aov, std::string("is ") + what + " " + other + "; --aov-dir never overwrites it, choose another");
-        }
+    for (const char* name : {"ao.exr", "depth.exr", "normal.exr", "albedo.exr", "lighting.exr", "camera.json"}) {
+        if (o.aovDir.empty()) break;
+        const std::string aov = (std::filesystem::path(o.aovDir) / name).string();
+        for (const auto& [what, other] : {std::pair<const char*, std::string>{"the input file", o.env},
+                                          {"the input file", o.scene}, {"the output", o.output}})
+            if (samePath(aov, other))
+                fail(aov, std::string("is ") + what + " " + other + "; --aov-dir never overwrites it, choose another");
     }
     // Made once every flag has passed, so that a bad one leaves no directory behind.
     if (!o.aovDir.empty()) checkOutputDirectory("--aov-dir", o.aovDir, true);
