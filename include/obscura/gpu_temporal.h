@@ -33,8 +33,8 @@ namespace obscura::gpu {
 class GtaoTemporalPasses;  // src/gpu/gtao_temporal_pass.h
 class Buffer;              // src/gpu/buffer.h
 
-// ssao::reconstructInterleaved: `values` 1 or 3 channels, `depth` and `normal` (at least 3 channels) of the
-// same size; the first 1 and 3 channels are read, as the CPU does. Sky pixels keep their value.
+// ssao::reconstructInterleaved: the same checks and messages (ssao::checkReconstructInterleavedInputs):
+// `values` 1 or 3 channels, `depth` 1 and `normal` 3 channels of the same size. Sky pixels keep their value.
 // windowPhase as the CPU's (-1: the 5x5 window; 0..3: a 4x4 window; 4..7: a 2x2 window; other values throw
 // obscura::Error).
 Image reconstructInterleaved(Context& context, const Image& values, const Image& depth, const Image& normal,

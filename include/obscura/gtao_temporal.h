@@ -66,6 +66,10 @@ int reconstructWindowPhase(const GtaoTemporalSettings& settings, int frameIndex)
 // Throws obscura::Error("reconstruct interleaved: ...") for a windowPhase outside -1..7 (both
 // reconstructInterleaved, the CPU's and gpu::reconstructInterleaved, check with it).
 void checkReconstructWindowPhase(int windowPhase);
+// reconstructInterleaved's checks and messages, window phase included (the CPU's and
+// gpu::reconstructInterleaved both check with it).
+void checkReconstructInterleavedInputs(const Image& values, const Image& depth, const Image& normal,
+                                       int windowPhase);
 
 // Depth-aware upsampling of a half-resolution image (pixel (x, y) taken at full-resolution (2x, 2y)) to the
 // G-buffer's size: bilinear weights times the depth weight of each low-resolution tap. `low` has 1 or 3

@@ -352,13 +352,7 @@ std::size_t GtaoTemporalPasses::bytesPerFrame() const {
 Image reconstructInterleaved(Context& context, const Image& values, const Image& depth, const Image& normal,
                              float depthSigma, int windowPhase) {
     const int w = values.width, h = values.height;
-    if (values.channels != 1 && values.channels != 3)
-        fail("reconstruct interleaved", "values must have 1 or 3 channels, not " + std::to_string(values.channels));
-    if (depth.width != w || depth.height != h || depth.channels != 1 || normal.width != w || normal.height != h ||
-        normal.channels < 3)
-        fail("reconstruct interleaved", "depth (1 channel) and normal (3 channels) must match the " +
-                                            std::to_string(w) + "x" + std::to_string(h) + " values");
-    ssao::checkReconstructWindowPhase(windowPhase);  // the CPU's check and message
+    ssao::checkReconstructInterleavedInputs(values, depth, normal, windowPhase);  // the CPU's checks and messages
     if (values.empty()) return values;
     Context::Impl& c = context.impl();
     const Buffer in = uploadChannels(c, values, values.channels);

@@ -67,8 +67,8 @@ void checkReconstructWindowPhase(int windowPhase) {
                                             std::to_string(windowPhase));
 }
 
-Image reconstructInterleaved(const Image& values, const Image& depth, const Image& normal, float depthSigma,
-                             int windowPhase) {
+void checkReconstructInterleavedInputs(const Image& values, const Image& depth, const Image& normal,
+                                       int windowPhase) {
     // The gather sums at most 3 channels, and reads depth and normal at every pixel of the values.
     if (values.channels != 1 && values.channels != 3)
         fail("reconstruct interleaved", "values must have 1 or 3 channels, not " + std::to_string(values.channels));
@@ -78,6 +78,11 @@ Image reconstructInterleaved(const Image& values, const Image& depth, const Imag
                                             std::to_string(values.width) + "x" + std::to_string(values.height) +
                                             " values, not " + imageShape(depth) + " and " + imageShape(normal));
     checkReconstructWindowPhase(windowPhase);
+}
+
+Image reconstructInterleaved(const Image& values, const Image& depth, const Image& normal, float depthSigma,
+                             int windowPhase) {
+    checkReconstructInterleavedInputs(values, depth, normal, windowPhase);
     Image out = values;
     const int w = values.width, h = values.height, channels = values.channels;
     const int side = reconstructWindowSide(windowPhase);

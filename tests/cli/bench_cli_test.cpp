@@ -63,6 +63,9 @@ TEST_F(BenchCli, BadArgumentsFailWithOneLine) {
     expectFailure("bench alchemy --repeats 0", {"--repeats"});
     expectFailure("bench alchemy --size 0x10", {"--size"});
     expectFailure("bench alchemy --blur-normal-weight maybe", {"--blur-normal-weight"}, 2);  // a usage error
+    expectFailure("bench alchemy --threads -1", {"--threads", "-1"});  // once timed all cores without a word
+    expectFailure("bench alchemy --threads 100000", {"--threads"});
+    expectFailure("bench gtao --threads -1", {"--threads"});
     expectFailure("bench gtao --repeats 101", {"--repeat"});
     expectFailure("bench gtao --radius -1", {"--radius"});
 }

@@ -1,8 +1,8 @@
 // Input the public GPU functions once took without a word, or crashed on, where their CPU twins answer: an
 // image past the device's storage-buffer range, a depth of another channel count in the benchmark, 0x0
-// G-buffers, a low-resolution image that is not the G-buffer's grid, depths so small that the blur's depth
-// scale is infinite, and device indices out of range. On lavapipe with validation on; each test failed before
-// its fix (a validation error, a crash, no error, or a difference of 0.68).
+// G-buffers, a low-resolution image that is not the G-buffer's grid, 4-channel normals in the reconstruction,
+// depths so small that the blur's depth scale is infinite, and device indices out of range. On lavapipe with
+// validation on; each test failed before its fix (a validation error, a crash, no error, or a difference of 0.68).
 #include "gpu_test_util.h"
 #include "scoped_env.h"
 
@@ -91,6 +91,23 @@ TEST(GpuInputs, TheUpsamplingRefusesAnImageThatIsNotTheGrid) {
     const GBuffer e = facingPlane(0, 0);
     testing::expectSameError([&] { ssao::upsampleDepthAware(Image(1, 1, 1), Image(1, 1, 1, 2.0f), e, 0.05f); },
                              [&] { upsampleDepthAware(context, Image(1, 1, 1), Image(1, 1, 1, 2.0f), e, 0.05f); });
+    EXPECT_EQ(testing::validationReport(context), "");
+}
+
+// The GPU's reconstruction once kept its own copy of the CPU's checks, which had drifted: it took 4-channel
+// normals (the CPU refuses them) and its message named neither image's shape. Both check with the CPU's now.
+TEST(GpuInputs, TheReconstructionRefusesWhatTheCpuRefuses) {
+    OBSCURA_GPU_CONTEXT(context);
+    const Image values(4, 4, 1, 0.5f), depth(4, 4, 1, 2.0f), normal4(4, 4, 4, 0.5f), normal3(4, 4, 3, 0.5f);
+    testing::expectSameError([&] { ssao::reconstructInterleaved(values, depth, normal4, 0.05f); },
+                             [&] { reconstructInterleaved(context, values, depth, normal4, 0.05f); });
+    EXPECT_EQ(testing::errorMessage([&] { reconstructInterleaved(context, values, depth, normal4, 0.05f); }),
+              "reconstruct interleaved: depth (1 channel) and normal (3 channels) must match the 4x4 values, not "
+              "4x4x1 and 4x4x4");
+    testing::expectSameError([&] { ssao::reconstructInterleaved(values, Image(4, 3, 1, 2.0f), normal3, 0.05f); },
+                             [&] { reconstructInterleaved(context, values, Image(4, 3, 1, 2.0f), normal3, 0.05f); });
+    testing::expectSameError([&] { ssao::reconstructInterleaved(values, depth, normal3, 0.05f, 8); },
+                             [&] { reconstructInterleaved(context, values, depth, normal3, 0.05f, 8); });
     EXPECT_EQ(testing::validationReport(context), "");
 }
 

@@ -38,6 +38,8 @@ struct AlchemyBenchOptions {
 void runAlchemy(const AlchemyBenchOptions& o) {
     if (o.samples < 1 || o.samples > 1024) fail("--samples", "must be in [1, 1024]");
     if (o.repeats < 1 || o.repeats > 100) fail("--repeats", "must be in [1, 100]");
+    // Checked before the scene loads (-1 once meant all cores without a word); it also bounds the set-up.
+    ThreadLimit limitAll(o.threads, "--threads");
     const int all = o.threads > 0 ? o.threads : hardwareThreads();
     std::vector<std::pair<int, int>> sizes = {{1280, 720}, {1920, 1080}};
     if (!o.size.empty()) {
