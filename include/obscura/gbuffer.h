@@ -35,6 +35,9 @@ struct GBuffer {
     // channel counts (throws), and whether every pixel of rows [y0, y1) x columns [x0, x1) has a valid
     // depth and normal (branch-free; validate() then names the first bad pixel).
     void validateShape(const std::string& what) const;
+    // validateShape's checks of the depth (1 channel) and normal (3) alone, at any size, 0x0 included: for a
+    // pass that reads only those two and answers an empty G-buffer with empty images.
+    void validateDepthNormalShape(const std::string& what) const;
     bool pixelsValid(int x0, int x1, int y0, int y1) const;
     // validate()'s scan of the depths and normals alone (in parallel; throws naming the first bad pixel), for a
     // caller that has checked the sizes its own way.

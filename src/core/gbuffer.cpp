@@ -24,10 +24,14 @@ void checkImage(const Image& image, const Camera& camera, int channels, const st
 
 void GBuffer::validateShape(const std::string& what) const {
     if (camera.width < 1 || camera.height < 1) fail(what, "G-buffer has zero size");
-    checkImage(depth, camera, 1, what, "depth");
-    checkImage(normal, camera, 3, what, "normal");
+    validateDepthNormalShape(what);
     if (!albedo.empty()) checkImage(albedo, camera, 3, what, "albedo");
     if (!motion.empty()) checkImage(motion, camera, 2, what, "motion");
+}
+
+void GBuffer::validateDepthNormalShape(const std::string& what) const {
+    checkImage(depth, camera, 1, what, "depth");
+    checkImage(normal, camera, 3, what, "normal");
 }
 
 bool GBuffer::pixelsValid(int x0, int x1, int y0, int y1) const {

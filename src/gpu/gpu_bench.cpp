@@ -320,11 +320,12 @@ GpuBenchCase benchGpuCase(Context& context, const std::string& name, const std::
     if (!found) fail("gpu bench", "unknown case '" + name + "' (known: " + known + ")");
     if (inputs.empty()) fail("gpu bench", "no input G-buffers");
     const int w = inputs[0].width(), h = inputs[0].height();
-    for (const GBuffer& g : inputs)
-        if (g.width() != w || g.height() != h || g.depth.width != w || g.depth.height != h || g.depth.channels != 1 ||
-            g.normal.width != w || g.normal.height != h || g.normal.channels != 3 || w < 1 || h < 1)
-            fail("gpu bench", "input G-buffers must all be " + std::to_string(w) + "x" + std::to_string(h) +
-                                  " with 1-channel depth and 3-channel normals");
+    for (const GBuffer& g : inputs) {
+        g.validateShape("gpu bench");
+        if (g.width() != w || g.height() != h)
+            fail("gpu bench", "input G-buffers must all be " + std::to_string(w) + "x" + std::to_string(h) + ", not " +
+                                  std::to_string(g.width()) + "x" + std::to_string(g.height()));
+    }
     Context::Impl& c = context.impl();
     if (c.timestamps == VK_NULL_HANDLE) fail(c.info.name, "the compute queue has no timestamp queries to time passes with");
 

@@ -415,9 +415,7 @@ GtaoTemporal& GtaoTemporal::operator=(GtaoTemporal&&) noexcept = default;
 const ssao::GtaoResult& GtaoTemporal::frame(const GBuffer& g) {
     const int w = g.width(), h = g.height();
     // ssao::GtaoTemporal::frame's checks and messages.
-    if (g.depth.width != w || g.depth.height != h || g.depth.channels != 1 || g.normal.width != w ||
-        g.normal.height != h || g.normal.channels != 3)
-        fail("gtao temporal", "G-buffer images do not match its camera's size");
+    g.validateDepthNormalShape("gtao temporal");
     g.validatePixels("gtao temporal");  // the CPU's check of the depths and normals; the shaders check nothing
     if (frame_ > 0 && (w != passes_->width() || h != passes_->height()))
         fail("gtao temporal", "frame size changed from " + std::to_string(passes_->width()) + "x" +

@@ -135,10 +135,7 @@ void checkUpsampleDepthAwareInputs(const Image& low, const Image& lowDepth, cons
     if (lowDepth.width != low.width || lowDepth.height != low.height || lowDepth.channels != 1)
         fail("upsample depth-aware", "low-resolution depth (1 channel) must match the " + std::to_string(low.width) +
                                          "x" + std::to_string(low.height) + " values, not " + imageShape(lowDepth));
-    if (full.depth.width != w || full.depth.height != h || full.depth.channels != 1 || full.normal.width != w ||
-        full.normal.height != h || full.normal.channels != 3)
-        fail("upsample depth-aware", "G-buffer depth (1 channel) and normal (3 channels) must match its camera's " +
-                                         std::to_string(w) + "x" + std::to_string(h));
+    full.validateDepthNormalShape("upsample depth-aware");
 }
 
 Image upsampleDepthAware(const Image& low, const Image& lowDepth, const GBuffer& full, float depthSigma) {
@@ -199,9 +196,7 @@ GtaoTemporal::GtaoTemporal(const GtaoSettings& settings, const GtaoTemporalSetti
 
 const GtaoResult& GtaoTemporal::frame(const GBuffer& g) {
     const int w = g.width(), h = g.height();
-    if (g.depth.width != w || g.depth.height != h || g.depth.channels != 1 || g.normal.width != w ||
-        g.normal.height != h || g.normal.channels != 3)
-        fail("gtao temporal", "G-buffer images do not match its camera's size");
+    g.validateDepthNormalShape("gtao temporal");
     g.validatePixels("gtao temporal");  // computeGtao's check of the depths and normals
     if (frame_ > 0 && (w != previousCamera_.width || h != previousCamera_.height))
         fail("gtao temporal", "frame size changed from " + std::to_string(previousCamera_.width) + "x" +

@@ -240,10 +240,6 @@ float specularOcclusion(SpecularOcclusionMode mode, float ao, Vec3 bentNormal, V
 
 namespace {
 
-std::string shapeText(const Image& image) {
-    return std::to_string(image.width) + "x" + std::to_string(image.height) + "x" + std::to_string(image.channels);
-}
-
 bool finiteAt(const Image& image, int x, int y) {
     bool finite = true;
     for (int c = 0; c < image.channels; ++c) finite &= std::isfinite(image.at(x, y, c));
@@ -259,11 +255,7 @@ void checkSpecularOcclusionInputs(const GBuffer& g, const Image& ao, const Image
         fail("specular occlusion", "AO and bent-normal images must match the " + std::to_string(g.width()) + "x" +
                                        std::to_string(g.height()) + " G-buffer (1 and 3 channels)");
     // Every pixel's depth and normal is read at the camera's size: smaller planes were read past their end.
-    if (g.depth.width != g.width() || g.depth.height != g.height() || g.depth.channels != 1 ||
-        g.normal.width != g.width() || g.normal.height != g.height() || g.normal.channels != 3)
-        fail("specular occlusion", "G-buffer depth (" + shapeText(g.depth) + ") and normal (" + shapeText(g.normal) +
-                                       ") must match its camera's " + std::to_string(g.width()) + "x" +
-                                       std::to_string(g.height()) + " (1 and 3 channels)");
+    g.validateDepthNormalShape("specular occlusion");
     g.validatePixels("specular occlusion");
     // A NaN AO or bent normal would make a NaN table coordinate; name it as a NaN depth is named. Sky pixels
     // are not read, so what they hold does not matter. The scan is branch-free; only a bad image takes the

@@ -600,7 +600,7 @@ TEST(GtaoTemporal, FrameRejectsADepthImageOfAnotherChannelCount) {
             t.halfResolution = half;
             GtaoTemporal temporal(GtaoSettings{}, t);
             EXPECT_EQ(test::errorOf([&] { temporal.frame(bad); }),
-                      "gtao temporal: G-buffer images do not match its camera's size")
+                      "gtao temporal: depth has " + std::to_string(channels) + " channels, expected 1")
                 << channels << " channels, half " << half;
             EXPECT_EQ(temporal.framesRendered(), 0);
         }
@@ -652,10 +652,9 @@ TEST(GtaoTemporal, FiltersRejectImagesTheyCannotRead) {
               "upsample depth-aware: low-resolution depth (1 channel) must match the 4x3 values, not 4x3x2");
     GBuffer smallDepth = g;
     smallDepth.depth = Image(3, 3, 1, 2.0f);
-    EXPECT_EQ(upsampleError(low, lowDepth, smallDepth),
-              "upsample depth-aware: G-buffer depth (1 channel) and normal (3 channels) must match its camera's 7x5");
+    EXPECT_EQ(upsampleError(low, lowDepth, smallDepth), "upsample depth-aware: depth is 3x3 but the camera is 7x5");
     GBuffer smallNormal = g;
     smallNormal.normal = Image(3, 3, 3, 0.0f);
     EXPECT_EQ(upsampleError(Image(4, 3, 3, 0.5f), lowDepth, smallNormal),
-              "upsample depth-aware: G-buffer depth (1 channel) and normal (3 channels) must match its camera's 7x5");
+              "upsample depth-aware: normal is 3x3 but the camera is 7x5");
 }
