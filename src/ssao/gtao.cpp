@@ -61,8 +61,8 @@ float fract(float v) { return v - std::floor(v); }
 // border. Across an edge or a silhouette, and always where `planar` is false (gtaoSamplingPlanarAt: NEAREST
 // and MIP, and PLANAR_NEAREST from 2 / mipTexelScale pixels out), the nearest pixel's own point is used.
 // With GTAO_SAMPLING_MIP and PLANAR_MIP, from level 1 the point is that of the chain's texel holding the
-// nearest pixel (obscura/gtao_mips.h); below, MIP reads as NEAREST and PLANAR_MIP as PLANAR. False for sky or
-// for (sx, sy) in the centre pixel (cx, cy).
+// nearest pixel (obscura/gtao_mips.h); below, MIP reads as NEAREST and PLANAR_MIP as PLANAR. False for sky, for
+// (sx, sy) past the vanishing line of the plane a quad finds there, or for (sx, sy) in the centre pixel (cx, cy).
 bool samplePosition(const GtaoConstants& c, const GBuffer& g, const GtaoDepthMips* mips, int level, bool planar,
                     float sx, float sy, int cx, int cy, Vec3& out) {
     const int ix = int(sx), iy = int(sy);
@@ -94,7 +94,9 @@ bool samplePosition(const GtaoConstants& c, const GBuffer& g, const GtaoDepthMip
             if (cross > 1e-4f * std::max(std::max(w00, w10), std::max(w01, w11))) continue;
             const float fx = gx - float(x0), fy = gy - float(y0);
             const float w = (w00 * (1.0f - fx) + w10 * fx) * (1.0f - fy) + (w01 * (1.0f - fx) + w11 * fx) * fy;
-            if (!(w > 0.0f)) continue;
+            // The nearest pixel's own plane puts (sx, sy) past its vanishing line: that is sky, and the
+            // nearest pixel's centre, off the slice line, once made a false horizon on open ground.
+            if (!(w > 0.0f)) return false;
             out = viewPosition(c, sx, sy, 1.0f / w);
             return true;
         }
@@ -340,7 +342,8 @@ GtaoPixel gtaoPixel(const GtaoConstants& c, const GBuffer& g, const GtaoDepthMip
                     continue;
                 }
                 const float lowCos = side == 0 ? lowCos0 : lowCos1;
-                float sampleCos = mix(lowCos, dot(delta, v) / distance, weight);
+                const float rawCos = dot(delta, v) / distance;
+                float sampleCos = mix(lowCos, rawCos, weight);
                 if (c.beyondRadius == GTAO_BEYOND_COLUMN && distance > c.falloffFrom) {
                     // The column behind the sample, sp + u t for t >= 0 (u = its view ray), enters the sphere
                     // of full weight about p where |delta + u t| = falloffFrom: the smaller root of
@@ -357,8 +360,12 @@ GtaoPixel gtaoPixel(const GtaoConstants& c, const GBuffer& g, const GtaoDepthMip
                 float& horizonCos = side == 0 ? horizonCos0 : horizonCos1;
                 if (sampleCos >= horizonCos)
                     horizonCos = sampleCos;
-                else  // eq. 9: past a thin occluder the horizon decays towards the lower samples
-                    horizonCos = mix(horizonCos, sampleCos, c.thicknessBlend);
+                else if (rawCos < horizonCos)  // eq. 9: past a thin occluder the horizon decays towards lower samples
+                    // Whether a sample is lower is a matter of its direction, not of its falloff, and it pulls by
+                    // as much as it counts: samples past r (weight 0, faded to the low horizon) and the faded
+                    // samples of a soft falloff once read as lower ones, and wiped out a wall's occlusion as the
+                    // step count grew.
+                    horizonCos = mix(horizonCos, rawCos, c.thicknessBlend * weight);
             }
         }
 

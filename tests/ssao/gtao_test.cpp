@@ -318,6 +318,80 @@ TEST(Gtao, FarEdgeOfAFinitePlaneStaysOpen) {
     }
 }
 
+// An infinite plane seen up to its vanishing line at a slant (view normal (0.98, 0.2, 0), 1 m away): near the
+// line a sample's own quad holds sky, and the quads that hold the nearest pixel extrapolate its plane to an
+// inverse depth <= 0 there, that is past the line, into the sky. Those samples fell back to the nearest
+// pixel's centre, off the slice line, and made false horizons: 1 - A up to 0.081 (cosine) and 0.237
+// (uniform). They are sky now. Bound: 1e-4, the open-plane tests' float noise.
+TEST(Gtao, OpenPlanePastItsVanishingLineStaysOpen) {
+    Camera cam;
+    cam.position = {0.0f, 0.0f, 0.0f};
+    cam.target = {0.0f, 0.0f, -1.0f};
+    cam.width = 256;
+    cam.height = 192;
+    cam.fovY = 60.0f;
+    const Vec3 n = normalize(Vec3{1.0f, 0.2f, 0.0f});  // the plane n.p = -1, in view space
+    GBuffer g;
+    g.camera = cam;
+    g.depth = Image(cam.width, cam.height, 1, INFINITY);
+    g.normal = Image(cam.width, cam.height, 3, 0.0f);
+    int surface = 0;
+    for (int y = 0; y < cam.height; ++y)
+        for (int x = 0; x < cam.width; ++x) {
+            const Vec3 dir = cam.viewFromPixel(float(x) + 0.5f, float(y) + 0.5f, 1.0f);  // at depth 1
+            const float along = dot(n, dir);
+            if (!(along < 0.0f)) continue;
+            g.depth.at(x, y) = -1.0f / along;
+            for (int c = 0; c < 3; ++c) g.normal.at(x, y, c) = n[c];
+            ++surface;
+        }
+    ASSERT_GT(surface, 1000);
+    ASSERT_LT(surface, cam.width * cam.height);  // the vanishing line is in view
+    for (GtaoWeighting weighting : {GtaoWeighting::Cosine, GtaoWeighting::Uniform}) {
+        GtaoSettings s;
+        s.radius = 10.0f;
+        s.sliceCount = 4;
+        s.stepsPerSide = 16;
+        s.weighting = weighting;
+        const GtaoResult r = computeGtao(g, s);
+        float worst = 0.0f;
+        for (int y = 0; y < g.height(); ++y)
+            for (int x = 0; x < g.width(); ++x)
+                if (!g.isSky(x, y)) worst = std::max(worst, 1.0f - r.visibility.at(x, y));
+        EXPECT_LT(worst, 1e-4f) << "weighting " << int(weighting);
+    }
+}
+
+// Eq. 9's thickness heuristic "has the property of not biasing the occlusion results for simple corners (e.g.
+// walls)". A sample past r has weight 0 and is pulled to the low horizon; the heuristic read it as a lower
+// sample and decayed the wall's horizon towards it, so the more steps landed past r, the less the wall
+// occluded: A at the wall's foot (r = 0.5 m) was 0.538, 0.727, 0.856, 0.959 at 4, 16, 64, 128 steps, and with
+// a soft falloff from r / 2 (faded samples inside r read as lower ones too) 0.771, 0.954, 0.999, 1.000. A
+// sample now counts as lower by its direction and pulls by its weight. Measured after the fix (2026-11-28):
+// the same as without the heuristic, 0.535-0.538 (soft: 0.570-0.583). Bounds: within 0.01 of the run without
+// the heuristic, and that within 0.04 of the closed form's 1/2 (the wall is 2 cm off and r is finite).
+TEST(Gtao, ThicknessHeuristicKeepsAWallAsStepsGrow) {
+    const GBuffer g = wallFootView();
+    const int x = 128, y = footRow(g, x);
+    ASSERT_GE(y, 0);
+    for (int steps : {4, 16, 64, 128}) {
+        GtaoSettings s = dense(0.5f, 32, steps);
+        s.stepPower = GtaoSettings{}.stepPower;
+        const float none = gtaoPixel(gtaoConstants(s, g.camera), g, x, y).visibility;
+        s.thickness = GtaoThickness::Heuristic;
+        const float heuristic = gtaoPixel(gtaoConstants(s, g.camera), g, x, y).visibility;
+        s.falloffStart = 0.5f;  // a soft band: samples in it count in part
+        const float softHeuristic = gtaoPixel(gtaoConstants(s, g.camera), g, x, y).visibility;
+        s.thickness = GtaoThickness::None;
+        const float soft = gtaoPixel(gtaoConstants(s, g.camera), g, x, y).visibility;
+        std::printf("wall foot, %d steps: A %.4f, heuristic %.4f; falloff from r / 2: %.4f, heuristic %.4f\n", steps,
+                    double(none), double(heuristic), double(soft), double(softHeuristic));
+        EXPECT_NEAR(none, 0.5f, 0.04f) << steps << " steps";
+        EXPECT_NEAR(heuristic, none, 0.01f) << steps << " steps";
+        EXPECT_NEAR(softHeuristic, soft, 0.01f) << steps << " steps, falloff from r / 2";
+    }
+}
+
 // Nearest-pixel horizon samples (GtaoSampling::Nearest, one depth read per sample as XeGTAO's) against the
 // same closed forms: the foot of an infinite wall (1/2) and the floor centre of a well from above
 // (a^2 / (a^2 + h^2) = 0.2). Both scenes are planes seen away from grazing angles, where a pixel centre's

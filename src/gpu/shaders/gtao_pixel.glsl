@@ -101,7 +101,7 @@ bool samplePosition(int level, bool planar, float sx, float sy, int cx, int cy, 
             if (crossTerm > 1e-4 * max(max(w00, w10), max(w01, w11))) continue;
             const float fx = gx - float(x0), fy = gy - float(y0);
             const float w = (w00 * (1.0 - fx) + w10 * fx) * (1.0 - fy) + (w01 * (1.0 - fx) + w11 * fx) * fy;
-            if (!(w > 0.0)) continue;
+            if (!(w > 0.0)) return false;  // past the plane's vanishing line: sky, as the CPU's
             result = viewPosition(sx, sy, 1.0 / w);
             return true;
         }
@@ -221,7 +221,8 @@ GtaoPixel gtaoPixel(int x, int y, int interleave) {
                     continue;
                 }
                 const float lowCos = side == 0 ? lowCos0 : lowCos1;
-                float sampleCos = lerp(lowCos, dot3(delta, v) * invDistance, weight);
+                const float rawCos = dot3(delta, v) * invDistance;
+                float sampleCos = lerp(lowCos, rawCos, weight);
                 if (kBeyondRadius == GTAO_BEYOND_COLUMN && distance > k.falloffFrom) {
                     const vec3 u = sp * inversesqrt(dot3(sp, sp));
                     const float du = dot3(delta, u);
@@ -239,8 +240,8 @@ GtaoPixel gtaoPixel(int x, int y, int interleave) {
                     horizonCos = max(horizonCos, sampleCos);
                 else if (sampleCos >= horizonCos)
                     horizonCos = sampleCos;
-                else
-                    horizonCos = lerp(horizonCos, sampleCos, k.thicknessBlend);
+                else if (rawCos < horizonCos)  // the CPU's: lower by direction, pulling as much as it counts
+                    horizonCos = lerp(horizonCos, rawCos, k.thicknessBlend * weight);
                 if (side == 0) horizonCos0 = horizonCos;
                 else horizonCos1 = horizonCos;
             }
