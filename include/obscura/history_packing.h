@@ -5,8 +5,8 @@
 // - visibility and history length in one word: visibility as unorm16 (steps of 1/65535), the length in
 //   steps of 1/32 frame (whole frames exact, up to 2047);
 // - a unit vector (world normal, world bent normal) in one word: octahedral (Cigolle et al. 2014, "A Survey
-//   of Efficient Representations for Independent Unit Vectors"), two snorm16, within 6.4e-5 rad of the
-//   vector (the worst of 200000 random directions, tests/ssao/history_packing_test.cpp).
+//   of Efficient Representations for Independent Unit Vectors"), two snorm16, within 6.5e-5 rad of the
+//   vector (the worst of 4 million random directions; tests/ssao/history_packing_test.cpp bounds it by 7.0e-5).
 // Each is a history plane of one word where the float layout takes 2 or 3.
 //
 // Only exactly rounded operations are used (+, -, * and / of floats, floor, comparisons, integer bit

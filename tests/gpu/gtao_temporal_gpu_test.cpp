@@ -843,7 +843,7 @@ TEST(GpuGtaoTemporal, RejectsBadInputAsTheCpuPassDoes) {
 // (test::poleAgainstTheSky, normal (0, 0.6, 0.8)): every upsampling, the filter alone and in each frame that
 // runs it, gives its pixels visibility 1 and their own normal as the bent normal, as the CPU does. Before, the
 // GPU wrote (0, 0, 0) there (a difference of 0.8). Float normals within 1e-6; packed ones within 1e-4 of the
-// CPU's frame of the same floats (the octahedral code's 6.4e-5 rad).
+// CPU's frame of the same floats (the octahedral code's 6.5e-5 rad).
 TEST(GpuGtaoTemporal, ThinFeatureAgainstTheSkyKeepsItsNormal) {
     OBSCURA_GPU_CONTEXT(context);
     const Vec3 n{0.0f, 0.6f, 0.8f};

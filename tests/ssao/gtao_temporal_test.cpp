@@ -227,7 +227,7 @@ TEST(GtaoTemporal, AccumulatedMatchesRayTraced) {
 // The packed history (GtaoTemporalSettings::packedHistory) against the float one over 6 frames of a static
 // camera: each frame stores visibility to 1/65535, so over n frames of running mean the two drift apart by
 // at most about n / 2 steps (6 frames: 4.6e-5); the octahedral normals move the
-// rejection tests by at most 6.4e-5 rad, which may flip a pixel on the edge of one. The error against ray
+// rejection tests by at most 6.5e-5 rad, which may flip a pixel on the edge of one. The error against ray
 // tracing must not move at the digits the quality tables show.
 TEST(GtaoTemporal, PackedHistoryKeepsTheAccuracy) {
     for (const char* name : {"well", "stairs", "corner"}) {

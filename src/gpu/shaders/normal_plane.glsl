@@ -1,6 +1,6 @@
 // The G-buffer's view normals as the passes read them: 3 floats per pixel, or, with the including shader's
 // packed-normals specialization constant, one word per pixel, the octahedral code of obscura/history_packing.h
-// (two snorm16, within 6.4e-5 rad of the vector), as an engine's G-buffer keeps its normals compactly. A
+// (two snorm16, within 6.5e-5 rad of the vector), as an engine's G-buffer keeps its normals compactly. A
 // pass that reads the normals at every other pixel (the half-resolution grid) touches every cache line of
 // the rows it reads either way, so the packed plane moves a third of the float plane's bytes.
 //
