@@ -61,7 +61,8 @@ struct BakeSettings {
     void validate() const;  // throws obscura::Error naming the flag-style field ("--rays: ...")
     int channels() const { return int(distances.size()); }
     // The weld distance in m for a scene of these bounds: weldTolerance of its diagonal. Welding moves a vertex
-    // by up to it, so the bake's rays also leave their samples that much further off the surface.
+    // by up to it; the bake's rays leave each face's samples as far off as welding really moved its corners
+    // (WeldedMesh::weldShift), not this far.
     float weldDistance(const Bounds& sceneBounds) const { return weldTolerance * length(sceneBounds.size()); }
 };
 
@@ -84,8 +85,12 @@ struct WeldedMesh {
     std::vector<std::uint32_t> indices;     // 3 per kept triangle, into positions, the file's winding
     std::vector<std::size_t> instanceFirst; // per instance + 1: offset of its vertices in vertexMap
     std::vector<std::uint32_t> vertexMap;   // per (instance, mesh vertex): its welded vertex (copy, see above)
+    std::vector<float> weldShift;           // per welded vertex: m, the farthest a file vertex moved to join it
+                                            // (0 where none moved; empty: 0 everywhere)
     std::size_t inputTriangles = 0;
-    std::size_t droppedTriangles = 0;       // degenerate after welding (repeated vertex or zero area)
+    std::size_t droppedTriangles = 0;       // degenerate after welding (repeated vertex, or twice the area at most
+                                            // 1e-12 of the square of its instance's diagonal, sanitizeScene's
+                                            // rule, so a small part is not judged by a large scene)
 
     std::size_t triangleCount() const { return indices.size() / 3; }
 };
@@ -103,7 +108,8 @@ struct SampleSet {
     std::vector<Vec3> positions;            // world, m
     std::vector<Vec3> normals;              // unit geometric normal of the face's front (counter-clockwise) side
     std::vector<std::uint32_t> triangles;   // welded triangle of each sample
-    std::vector<float> offsets;             // per welded triangle: its rays' self-hit offset, m (trace::selfHitOffset)
+    std::vector<float> offsets;             // per welded triangle: its rays' self-hit offset (trace::selfHitOffset)
+                                            // plus how far welding moved its corners (WeldedMesh::weldShift), m
     std::vector<Vec2> barycentrics;         // (lambda1, lambda2); lambda0 = 1 - both
     std::vector<std::uint32_t> triangleFirst;  // per triangle + 1
 

@@ -121,8 +121,7 @@ QualityResult compareWithDense(const Scene& scene, const BakeSettings& settings,
     const auto start = std::chrono::steady_clock::now();
     QualityResult q;
     q.referenceRays = referenceRays;
-    const float weldDistance = settings.weldDistance(scene.bounds());  // welded vertices lie up to it off
-    const WeldedMesh mesh = weldScene(scene, weldDistance, settings.creaseAngle);
+    const WeldedMesh mesh = weldScene(scene, settings.weldDistance(scene.bounds()), settings.creaseAngle);
     const SampleSet samples = generateSamples(mesh, settings);
     const trace::Tracer tracer(scene);
     const RayResults rays = traceSamples(tracer, samples, settings);
@@ -202,7 +201,8 @@ QualityResult compareWithDense(const Scene& scene, const BakeSettings& settings,
                     dirs[std::size_t(i)] = tx * l.x + bx * l.y + n * l.z;
                 }
                 const Vec3 p = at[v];
-                stream.closestHits(p + n * (tracer.selfHitOffset(p, n) + weldDistance), dirs.data(), 256, trace::kInfinity,
+                // A welded vertex lies up to its weldShift off the surface traced.
+                stream.closestHits(p + n * (tracer.selfHitOffset(p, n) + mesh.weldShift[v]), dirs.data(), 256, trace::kInfinity,
                                    t.data(), back.data());
                 int backs = 0;
                 for (std::uint8_t x : back) backs += x;

@@ -48,7 +48,6 @@ private:
     trace::HitStream stream_;
     float a_[2] = {0, 0}, d_[2] = {0, 0};
     float tfar_ = 0;
-    float weldDistance_ = 0;  // m: BakeSettings::weldDistance of the scene traced
 };
 
 } // namespace obscura::bake::detail

@@ -44,8 +44,7 @@ void BakeSettings::validate() const {
 namespace detail {
 
 SampleTracer::SampleTracer(const trace::Tracer& tracer, const BakeSettings& settings)
-    : tracer_(tracer), settings_(settings), directions_(settings.rays), stream_(tracer),
-      weldDistance_(settings.weldDistance(tracer.bounds())) {
+    : tracer_(tracer), settings_(settings), directions_(settings.rays), stream_(tracer) {
     for (std::size_t c = 0; c < settings.distances.size(); ++c) {
         d_[c] = settings.distances[c];
         a_[c] = std::log(0.5f) / d_[c];
@@ -83,9 +82,8 @@ SampleFrame SampleTracer::frame(const SampleSet& samples, std::size_t s) const {
     const Vec3 p = samples.positions[s];
     f.n = samples.normals[s];
     orthonormalBasis(f.n, f.t, f.b);
-    // Welding moved vertices by up to its distance, so a sample may lie that far off the surface traced (and its
-    // face's shape differ from the traced one's by as little).
-    f.origin = p + f.n * (samples.offsets[samples.triangles[s]] + weldDistance_);
+    // The face's offset holds how far welding moved its corners (generateSamples).
+    f.origin = p + f.n * samples.offsets[samples.triangles[s]];
     f.shift = CosineHemisphereSet::shift(hashCombine(settings_.seed, std::uint32_t(s)));
     return f;
 }

@@ -118,19 +118,27 @@ void splitCreases(WeldedMesh& out, const std::vector<std::uint32_t>& fileCorner,
     // New vertices in welded-vertex order, then the order of each group's first corner: deterministic.
     std::vector<std::uint32_t> copyOf(corners, 0xffffffffu), firstCopy(vertices, 0xffffffffu);
     std::vector<Vec3> positions;
+    std::vector<float> shift;
     positions.reserve(vertices);
+    shift.reserve(vertices);
     for (std::size_t v = 0; v < vertices; ++v) {
         for (std::uint32_t i = first[v]; i < first[v + 1]; ++i) {
             const std::uint32_t root = findRoot(parent, around[i]);
             if (copyOf[root] == 0xffffffffu) {
                 copyOf[root] = std::uint32_t(positions.size());
                 positions.push_back(out.positions[v]);
+                shift.push_back(out.weldShift[v]);
             }
             copyOf[around[i]] = copyOf[root];
         }
         // A welded vertex no kept face uses stays as one (unused) vertex, so every file vertex maps somewhere.
-        if (first[v] == first[v + 1]) positions.push_back(out.positions[v]), firstCopy[v] = std::uint32_t(positions.size() - 1);
-        else firstCopy[v] = copyOf[around[first[v]]];
+        if (first[v] == first[v + 1]) {
+            positions.push_back(out.positions[v]);
+            shift.push_back(out.weldShift[v]);
+            firstCopy[v] = std::uint32_t(positions.size() - 1);
+        } else {
+            firstCopy[v] = copyOf[around[first[v]]];
+        }
     }
     // File vertex -> the copy of the first kept face that uses it, else its welded vertex's first copy.
     std::vector<std::uint32_t> fileCopy(out.vertexMap.size(), 0xffffffffu);
@@ -140,6 +148,7 @@ void splitCreases(WeldedMesh& out, const std::vector<std::uint32_t>& fileCorner,
         out.vertexMap[f] = fileCopy[f] != 0xffffffffu ? fileCopy[f] : firstCopy[out.vertexMap[f]];
     for (std::size_t c = 0; c < corners; ++c) out.indices[c] = copyOf[c];
     out.positions = std::move(positions);
+    out.weldShift = std::move(shift);
 }
 
 } // namespace
@@ -153,7 +162,6 @@ WeldedMesh weldScene(const Scene& scene, float tolerance, float creaseAngle) {
     const float cell = std::max(tolerance, 1e-6f * std::max(diagonal, 1e-30f));
     CellGrid grid{bounds.lo, 1.0f / cell};
     const float tolerance2 = tolerance * tolerance;
-    const double minTwiceArea = 2.0 * 1e-12 * double(diagonal) * double(diagonal);
 
     std::size_t totalVertices = 0;
     for (const Instance& inst : scene.instances) totalVertices += scene.meshes[inst.mesh].positions.size();
@@ -193,12 +201,21 @@ WeldedMesh weldScene(const Scene& scene, float tolerance, float creaseAngle) {
             if (found == kNone) {
                 found = std::uint32_t(out.positions.size());
                 out.positions.push_back(p);
+                out.weldShift.push_back(0.0f);
                 auto [it, inserted] = head.try_emplace(CellGrid::key(cx, cy, cz), found);
                 next.push_back(inserted ? kNone : it->second);
                 if (!inserted) it->second = found;
+            } else {
+                out.weldShift[found] = std::max(out.weldShift[found], length(out.positions[found] - p));
             }
             out.vertexMap.push_back(found);
         }
+        // removeDegenerateTriangles' rule, per instance in world space: a face of a 12 mm part beside a 3 km
+        // level is no sliver. (The scene's diagonal once dropped every face of a 4 m room baked beside an
+        // object 100 km away, and its vertices baked as open.)
+        Bounds used;
+        for (std::uint32_t i : mesh.indices) used.extend(out.positions[out.vertexMap[first + i]]);
+        const double minTwiceArea = geometry::minTwiceArea(used.size());
         // A mirroring transform turns counter-clockwise into clockwise; swap two corners to keep the front.
         const bool mirrored = determinant3(inst.worldFromObject) < 0.0f;
         out.inputTriangles += mesh.triangleCount();

@@ -35,6 +35,12 @@ inline double longestEdge2(Vec3 a, Vec3 b, Vec3 c) {
     return std::max({length2(a, b), length2(a, c), length2(b, c)});
 }
 
+// A face is degenerate where twice its area is at most this, for a mesh whose used vertices span `size`:
+// relative to the mesh's own extent, so a millimetre part and a kilometre terrain are judged alike.
+inline double minTwiceArea(Vec3 size) {
+    return 2.0 * 1e-12 * (double(size.x) * double(size.x) + double(size.y) * double(size.y) + double(size.z) * double(size.z));
+}
+
 // The unit normal of the counter-clockwise side, rounded to float only at the end (so its length is 1 to
 // float precision for any face the weld keeps); zero for a face that is degenerate in double too.
 inline Vec3 unitNormal(Vec3 a, Vec3 b, Vec3 c) {

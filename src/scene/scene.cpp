@@ -103,8 +103,7 @@ std::size_t removeDegenerateTriangles(Mesh& mesh) {
     Bounds finite;
     for (std::uint32_t i : mesh.indices)
         if (i < n && isFinite(mesh.positions[i])) finite.extend(mesh.positions[i]);
-    const Vec3 diag = finite.size();
-    const double minTwiceArea = 2.0 * 1e-12 * double(dot(diag, diag));
+    const double minTwiceArea = geometry::minTwiceArea(finite.size());
     std::size_t kept = 0;
     for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
         std::uint32_t a = mesh.indices[t], b = mesh.indices[t + 1], c = mesh.indices[t + 2];

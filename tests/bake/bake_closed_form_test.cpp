@@ -85,6 +85,34 @@ TEST(BakeClosedForm, OcclusionUnderCeilingIsHSquaredOverDSquared) {
     expectFloorMatches(scene, settings, expected);
 }
 
+// One small object 100 km away makes the scene's diagonal 1e5 m, and every sample rose by the weld tolerance
+// of it (0.1 m, under a ceiling 0.25 m up) whether or not welding moved any vertex: the floor baked
+// 0.09 and 0.0225 for (h / d)^2 = 0.25 and 0.0625. Now a face's samples rise by how far welding moved its
+// corners, 0 here. (Weld.ASmallPartBesideAFarObjectKeepsItsFaces has the other rule that scaled with the
+// scene.) The same bounds as the closed forms above.
+TEST(BakeClosedForm, AFarObjectChangesNothingUnderTheCeiling) {
+    Scene scene;
+    scene.add(fixtures::grid(-4, 4, -4, 4, 0, 16));
+    scene.add(fixtures::grid(-100, 100, -100, 100, 0.25f, 1, true));
+    Mesh far;
+    far.positions = {{1e5f, 0, 1}, {1e5f + 1, 0, 1}, {1e5f + 1, 0, 0}, {1e5f, 0, 0}};
+    far.indices = {0, 1, 2, 0, 2, 3};
+    scene.add(far);
+    BakeSettings settings;
+    settings.mode = Mode::Occlusion;
+    settings.distances = {0.5f, 1.0f};
+    settings.rays = 512;
+    ASSERT_GT(settings.weldDistance(scene.bounds()), 0.09f);
+    const BakeResult r = bakeScene(scene, settings);
+    EXPECT_EQ(r.droppedTriangles, 0u);
+    const double expected[2] = {0.25, 0.0625};  // (h / d)^2
+    const FloorStats s = floorErrors(scene, r, expected, 1.0f);
+    for (int c = 0; c < 2; ++c) {
+        EXPECT_LT(s.worst[c], 0.005) << "d " << settings.distances[std::size_t(c)];
+        EXPECT_LT(std::fabs(s.mean[c]), 0.001) << "d " << settings.distances[std::size_t(c)];
+    }
+}
+
 TEST(BakeClosedForm, ExponentialObscuranceUnderCeiling) {
     // A = (1/pi) Integral (1 - exp(a t(w))) cos dw with t = h / mu (mu = cos theta) and dw = 2 pi mu-measure:
     // A = 1 - 2 Integral_0^1 mu exp(a h / mu) dmu, a = ln(0.5)/d. The integrand is smooth on (0, 1] and

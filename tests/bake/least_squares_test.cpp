@@ -178,6 +178,28 @@ TEST(Weld, SoupWeldsAndCountsNewlyDegenerateFaces) {
     EXPECT_EQ(w.positions.size(), 4u);          // (1,0,0) twice and (1,0,-1) twice collapse
     EXPECT_EQ(w.vertexMap[1], w.vertexMap[3]);  // file order kept in the map
     EXPECT_EQ(w.vertexMap[4], w.vertexMap[5]);
+    // How far each welded vertex's file vertices moved to join it: exact duplicates not at all.
+    ASSERT_EQ(w.weldShift.size(), w.positions.size());
+    EXPECT_EQ(w.weldShift[w.vertexMap[0]], 0.0f);
+    EXPECT_EQ(w.weldShift[w.vertexMap[1]], 0.0f);
+    EXPECT_EQ(w.weldShift[w.vertexMap[4]], m.positions[5].z - m.positions[4].z);
+}
+
+// Faces are judged degenerate against their own instance's extent, as removeDegenerateTriangles judges a
+// mesh: against the scene's diagonal, a 12 mm part of 3 mm cells lost all 32 of its faces beside a 1 m^2
+// quad 1000 km away, and the quad its 2 (its vertices then bake as open), even with no weld tolerance.
+TEST(Weld, ASmallPartBesideAFarObjectKeepsItsFaces) {
+    Scene scene;
+    scene.add(fixtures::grid(-0.006f, 0.006f, -0.006f, 0.006f, 0.0f, 4));
+    Mesh far;
+    far.positions = {{1e6f, 0, 1}, {1e6f + 1, 0, 1}, {1e6f + 1, 0, 0}, {1e6f, 0, 0}};
+    far.indices = {0, 1, 2, 0, 2, 3};
+    scene.add(far);
+    for (float tolerance : {0.0f, 1e-6f}) {
+        const WeldedMesh w = weldScene(scene, tolerance);
+        EXPECT_EQ(w.droppedTriangles, 0u) << "tolerance " << tolerance;
+        EXPECT_EQ(w.triangleCount(), 34u);
+    }
 }
 
 TEST(Samples, CountsAreClampedAndAreaProportional) {
