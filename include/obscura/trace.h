@@ -72,11 +72,16 @@ public:
     // True if anything is hit in (tnear, tfar). No checks.
     bool occluded(Vec3 origin, Vec3 direction, float tnear, float tfar) const;
 
-    // Interpolated vertex normal at a hit, world space, unit. Not flipped: a file's normals may disagree
-    // with its winding, so callers orient both normals to the side they need (e.g. towards the camera).
+    // Interpolated vertex normal at a hit, world space, unit; the geometric normal for a mesh without one normal
+    // per position. Not flipped: a file's normals may disagree with its winding, so callers orient both normals
+    // to the side they need (e.g. towards the camera).
     Vec3 shadingNormal(const Hit& hit) const;
     Vec3 albedo(const Hit& hit) const;
     Vec3 hitPoint(Vec3 origin, Vec3 direction, const Hit& hit) const { return origin + direction * hit.t; }
+    // The hit's point from its barycentrics on the world-space triangle: on the triangle's plane to the
+    // rounding of its own coordinates, where hitPoint is off it by the rounding of the ray's origin (a camera
+    // 100 km out puts that a centimetre or more off).
+    Vec3 surfacePoint(const Hit& hit) const;
     // Distance to move a ray origin along the geometric normal so that the ray does not hit the triangle it starts
     // on (see trace::selfHitOffset). For a point p on hit's triangle, found by a ray from `origin`.
     float selfHitOffset(const Hit& hit, Vec3 origin, Vec3 p) const;

@@ -38,7 +38,8 @@ GBuffer renderGBuffer(const Tracer& tracer, const Camera& camera, const GBufferS
                 Hit hit;
                 Vec3 albedoSum{};
                 int covered = 0;
-                if (tracer.intersect(ray.origin, dir, ray.tnear, ray.tfar, hit)) {
+                const bool surface = tracer.intersect(ray.origin, dir, ray.tnear, ray.tfar, hit);
+                if (surface) {
                     // Surfaces are two-sided: both normals face the camera, the shading one following the
                     // geometric one so a file whose winding disagrees with its normals still shades right.
                     bool flip = dot(hit.geometricNormal, dir) > 0.0f;
@@ -55,7 +56,8 @@ GBuffer renderGBuffer(const Tracer& tracer, const Camera& camera, const GBufferS
                         covered = 1;
                     }
                 }
-                for (int sy = 0; n > 1 && sy < n; ++sy)
+                // A sky pixel keeps albedo (0, 0, 0), as GBuffer says, though sub-samples near an edge hit.
+                for (int sy = 0; n > 1 && surface && sy < n; ++sy)
                     for (int sx = 0; sx < n; ++sx) {
                         PrimaryRay sr = primaryRay(camera, worldFromView, float(x) + (float(sx) + 0.5f) / float(n),
                                                    float(y) + (float(sy) + 0.5f) / float(n));

@@ -201,9 +201,21 @@ bool Tracer::occluded(Vec3 o, Vec3 d, float tnear, float tfar) const {
 
 Vec3 Tracer::shadingNormal(const Hit& hit) const {
     const Mesh& mesh = scene_.meshes[scene_.instances[hit.instance].mesh];
+    // Normals are optional in a Scene (empty until computed or loaded): a mesh without them once crashed here.
+    if (mesh.normals.size() != mesh.positions.size()) return hit.geometricNormal;
     const std::uint32_t* tri = &mesh.indices[3 * std::size_t(hit.primitive)];
     Vec3 n = mesh.normals[tri[0]] * (1.0f - hit.u - hit.v) + mesh.normals[tri[1]] * hit.u + mesh.normals[tri[2]] * hit.v;
     return normalize(transformVector(impl_->normalFromObject[hit.instance], n));
+}
+
+Vec3 Tracer::surfacePoint(const Hit& hit) const {
+    const Instance& inst = scene_.instances[hit.instance];
+    const Mesh& mesh = scene_.meshes[inst.mesh];
+    const std::uint32_t* tri = &mesh.indices[3 * std::size_t(hit.primitive)];
+    const Vec3 a = transformPoint(inst.worldFromObject, mesh.positions[tri[0]]);
+    const Vec3 b = transformPoint(inst.worldFromObject, mesh.positions[tri[1]]);
+    const Vec3 c = transformPoint(inst.worldFromObject, mesh.positions[tri[2]]);
+    return a * (1.0f - hit.u - hit.v) + b * hit.u + c * hit.v;
 }
 
 Vec3 Tracer::albedo(const Hit& hit) const { return scene_.meshes[scene_.instances[hit.instance].mesh].baseColor; }

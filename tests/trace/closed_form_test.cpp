@@ -123,6 +123,39 @@ TEST(ClosedForm, FloorCentreOfAWell) {
     EXPECT_NEAR(meanOver(tracer, floor, kUp, occlusion(kInfinity), 16), expected, 3 * sigma(expected) / 4);
 }
 
+// The same floor through the per-pixel path (G-buffer, then ambientObscurance of the image), seen straight
+// down from 3 m to 100 km above: the point was the ray's origin + t d, off the floor by the rounding of the
+// camera's coordinates, and the offset that covered it scaled with the camera's distance times the fan
+// triangle's aspect ratio (about 41): 1 m at 100 km, where the floor read 0.51 (0.217 at 10 km). The point
+// is now the hit's barycentric one. The centre pixel of 3x3 (its ray is the axis) over 64 seeds: within
+// 3 sigma / 8.
+TEST(ClosedForm, FloorCentreOfAWellSeenFromFarAway) {
+    BuiltinScene s = makeBuiltinScene("well");
+    Tracer tracer(s.scene);
+    const double a = builtin::kWellRadius, h = builtin::kWellDepth;
+    const double expected = a * a / (a * a + h * h);
+    for (float height : {3.0f, 1e4f, 1e5f}) {
+        Camera c;
+        c.position = {0.0f, height, 0.0f};
+        c.target = {0.0f, -float(h), 0.0f};
+        c.up = {0.0f, 0.0f, -1.0f};
+        c.width = c.height = 3;
+        // A 0.2 m square of floor, or the narrowest view a camera takes (0.35 m at 10 km, 3.5 m at 100 km).
+        c.fovY = std::max(0.002f, float(2.0 * std::atan(0.1 / (double(height) + h)) * 180.0 / M_PI));
+        c.nearZ = 1.0f;
+        c.farZ = height + 100.0f;
+        const GBuffer g = renderGBuffer(tracer, c);
+        ObscuranceSettings os = occlusion(kInfinity);
+        ASSERT_FALSE(g.isSky(1, 1)) << "camera " << height << " m up";
+        double sum = 0;
+        for (std::uint32_t seed = 0; seed < 64; ++seed) {
+            os.seed = seed;
+            sum += double(ambientObscurance(tracer, g, os).at(1, 1));
+        }
+        EXPECT_NEAR(sum / 64, expected, 3 * sigma(expected) / 8) << "camera " << height << " m up";
+    }
+}
+
 TEST(ClosedForm, UnderAnInfiniteCeiling) {
     // Ceiling at height h over the point: a ray at angle theta hits at t = h / cos(theta). Within radius d,
     // the unoccluded directions are cos(theta) < h / d, whose cosine-weighted measure is (h/d)^2 for d > h,
