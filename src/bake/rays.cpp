@@ -28,9 +28,12 @@ void BakeSettings::validate() const {
     if (!(alpha >= 0.0f && alpha <= 1e6f)) fail("--alpha", "must be in [0, 1e6], got " + numberText(alpha));
     if (maxSamplesPerFace < 1 || maxSamplesPerFace > 4096)
         fail("--max-samples-per-face", "must be in [1, 4096], got " + std::to_string(maxSamplesPerFace));
-    if (minSamplesPerFace < 1 || minSamplesPerFace > maxSamplesPerFace)
-        fail("--min-samples-per-face", "must be in [1, max-samples-per-face = " + std::to_string(maxSamplesPerFace) +
-                                           "], got " + std::to_string(minSamplesPerFace));
+    if (minSamplesPerFace < 1 || minSamplesPerFace > 4096)
+        fail("--min-samples-per-face", "must be in [1, 4096], got " + std::to_string(minSamplesPerFace));
+    // Named as the pair: a cap of 2 under the default minimum of 3 once blamed the flag not given.
+    if (minSamplesPerFace > maxSamplesPerFace)
+        fail("--min-samples-per-face", std::to_string(minSamplesPerFace) + " is above --max-samples-per-face " +
+                                           std::to_string(maxSamplesPerFace) + "; the minimum may not exceed the cap");
     if (!(sampleDensity > 0.0f && sampleDensity <= 1e6f))
         fail("--sample-density", "must be in (0, 1e6] samples per m^2, got " + numberText(sampleDensity));
     if (!(backFaceLimit >= 0.0f && backFaceLimit <= 1.0f))

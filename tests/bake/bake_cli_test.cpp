@@ -167,6 +167,10 @@ TEST_F(BakeCli, BadInputIsOneLineAndNoOutput) {
     expectFailure("bake " + data("cube.obj") + out + " --threads -1 -q", {"--threads: must be in [0, 1024]", "got -1"});
     expectFailure("bake " + data("cube.obj") + out + " --threads 1025 -q", {"--threads: must be in [0, 1024]", "got 1025"});
     expectFailure("bake " + data("cube.obj") + out + " --mode fuzzy -q", {"--mode"});
+    // A cap under the default minimum names both flags and their values.
+    expectFailure("bake " + data("cube.obj") + out + " --max-samples-per-face 2 -q",
+                  {"--min-samples-per-face: 3 is above --max-samples-per-face 2"});
+    expectFailure("bake " + data("cube.obj") + out + " --min-samples-per-face 0 -q", {"--min-samples-per-face", "got 0"});
     expectFailure("bake " + data("cube.obj") + out + " --crease-angle 200 -q", {"--crease-angle"});
     expectFailure("bake " + data("cube.obj") + out + " --linear-solver qr -q", {"--linear-solver"});
     expectFailure("bake " + data("cube.obj") + " -o " + path("o.png") + kFast, {"o.png", "unsupported output format"});

@@ -86,6 +86,51 @@ TEST_F(AlchemyCli, NormalsNamedRgbAreReadAsXyz) {
                   {"rgbw-normal.exr", "normal needs 3 channels, has 4"});
 }
 
+// What `ao` once took or refused without reason: --method alchemy-chapter with --ao-formulation paper ran the
+// chapter's formulation without a word (and --method alchemy with chapter printed "alchemy"); a NaN normal
+// under a sky pixel, which is never read, was refused, and a NaN under a surface was named by a linear index;
+// a guard band wider than the buffers was refused without naming its flag.
+TEST_F(AlchemyCli, AoRefusesContradictionsAndReadsOnlySurfaceNormals) {
+    Result r = run("render demo --size 48x32 -q --ao alchemy --ao-samples 8 --blur none -o " + path("f.png") +
+                   " --aov-dir " + path("aov"));
+    ASSERT_EQ(r.code, 0) << r.out;
+    const std::string in = "ao --depth " + path("aov/depth.exr") + " --camera " + path("aov/camera.json") +
+                           " --ao-samples 8 --blur none ";
+    expectFailure(in + "--method alchemy-chapter --ao-formulation paper -o " + path("x.exr"),
+                  {"--ao-formulation", "contradicts --method alchemy-chapter"});
+    expectFailure(in + "--method alchemy --ao-formulation chapter -o " + path("x.exr"),
+                  {"--ao-formulation", "contradicts --method alchemy"});
+    r = run(in + "--method alchemy-chapter --ao-formulation chapter --normal " + path("aov/normal.exr") + " -o " +
+            path("a.exr"));
+    ASSERT_EQ(r.code, 0) << r.out;
+    r = run(in + "--method alchemy-chapter --normal " + path("aov/normal.exr") + " -o " + path("b.exr"));
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_EQ(obscura::readExr(path("a.exr")).pixels, obscura::readExr(path("b.exr")).pixels);
+
+    const obscura::Image depth = obscura::readExr(path("aov/depth.exr"));
+    obscura::Image normal = obscura::readExr(path("aov/normal.exr"));
+    int skyX = -1, skyY = -1, surfaceX = -1, surfaceY = -1;
+    for (int y = 0; y < depth.height; ++y)
+        for (int x = 0; x < depth.width; ++x)
+            (std::isinf(depth.at(x, y)) ? skyX : surfaceX) = x, (std::isinf(depth.at(x, y)) ? skyY : surfaceY) = y;
+    ASSERT_GE(skyX, 0) << "the demo view has sky";
+    ASSERT_GE(surfaceX, 0);
+    normal.at(skyX, skyY, 1) = std::nanf("");
+    obscura::writeExr(path("sky-nan.exr"), normal);
+    r = run(in + "--normal " + path("sky-nan.exr") + " -o " + path("c.exr"));
+    ASSERT_EQ(r.code, 0) << r.out;
+    r = run(in + "--normal " + path("aov/normal.exr") + " -o " + path("d.exr"));
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_EQ(obscura::readExr(path("c.exr")).pixels, obscura::readExr(path("d.exr")).pixels);
+    normal.at(surfaceX, surfaceY, 0) = std::nanf("");
+    obscura::writeExr(path("surface-nan.exr"), normal);
+    expectFailure(in + "--normal " + path("surface-nan.exr") + " -o " + path("x.exr"),
+                  {"surface-nan.exr", "normal at pixel (" + std::to_string(surfaceX) + ", " + std::to_string(surfaceY) +
+                                          ") is not finite"});
+    expectFailure(in + "--ao-guard-band 16 -o " + path("x.exr"), {"--ao-guard-band", "depth.exr", "48x32"});
+    EXPECT_FALSE(fs::exists(path("x.exr")));
+}
+
 // --blur-normal-weight: auto is off for the separable blur and on for the 2-D one, so "on" changes the
 // separable result near the room's creases and "off" the 2-D one, and the matching setting changes nothing.
 TEST_F(AlchemyCli, BlurNormalWeightFlag) {

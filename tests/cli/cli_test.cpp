@@ -1,6 +1,7 @@
 // The obscura command line: each bad-input class gives one line naming the file or flag, a non-zero exit
 // and no output file; good runs write what they promise.
 #include "cli/cli_harness.h"
+#include "obscura/image_io.h"
 
 #include <gtest/gtest.h>
 
@@ -228,9 +229,34 @@ TEST_F(Cli, OutputIsNeverAnInput) {
 TEST_F(Cli, FailedRenderLeavesNoAovs) {
     expectFailure("render corner" + kFast + "--aov-dir " + path("new/a/b") + " --exposure 99 -o " + path("f.png"),
                   {"--exposure"});
+    EXPECT_FALSE(std::filesystem::exists(path("new")));
     std::filesystem::create_directory(path("f.png"));
     expectFailure("render corner" + kFast + "--aov-dir " + path("aov") + " -o " + path("f.png"),
                   {"f.png", "is a directory"});
+    // Nor on its inputs: the directory was made before the scene and the environment were read.
+    expectFailure("render " + path("nosuch.glb") + kFast + "--aov-dir " + path("aov2") + " -o " + path("g.png"),
+                  {"nosuch.glb"});
+    EXPECT_FALSE(std::filesystem::exists(path("aov2")));
+    expectFailure("render corner" + kFast + "--env " + path("nosuch.hdr") + " --aov-dir " + path("aov3") + " -o " +
+                      path("g.png"),
+                  {"nosuch.hdr"});
+    EXPECT_FALSE(std::filesystem::exists(path("aov3")));
+}
+
+// --exposure and --tonemap shape a PNG's display values; an .exr output is linear radiance and took them without
+// a word. They are warned about there, and the EXR is the one written without them.
+TEST_F(Cli, DisplayFlagsOnAnExrOutputAreWarnedAbout) {
+    const auto plain = run("render corner" + kFast + "-o " + path("a.exr"));
+    ASSERT_EQ(plain.code, 0) << plain.out;
+    const auto flagged = run("render corner" + kFast + "--exposure 2 --tonemap reinhard -o " + path("b.exr"));
+    ASSERT_EQ(flagged.code, 0) << flagged.out;
+    EXPECT_NE(flagged.out.find("warning: --exposure: applies to a PNG"), std::string::npos) << flagged.out;
+    EXPECT_NE(flagged.out.find("warning: --tonemap: applies to a PNG"), std::string::npos) << flagged.out;
+    EXPECT_EQ(plain.out.find("warning"), std::string::npos) << plain.out;
+    EXPECT_EQ(obscura::readExr(path("a.exr")).pixels, obscura::readExr(path("b.exr")).pixels);
+    const auto png = run("render corner" + kFast + "--exposure 2 -o " + path("c.png"));
+    ASSERT_EQ(png.code, 0) << png.out;
+    EXPECT_EQ(png.out.find("warning"), std::string::npos) << png.out;
 }
 
 // A scene file that float cannot frame by default (a triangle 1e-30 m across) is named with what went wrong;

@@ -243,8 +243,7 @@ void checkInputFormat(const std::string& flag, const std::string& path, const st
 void checkOutputDirectory(const std::string& flag, const std::string& dir, bool create) {
     if (dir.empty()) fail(flag, "directory is empty");
     if (fs::exists(dir) && !fs::is_directory(dir)) fail(dir, "exists and is not a directory");
-    if (!fs::exists(dir)) {
-        if (!create) fail(dir, "no such directory");
+    if (!fs::exists(dir) && create) {
         std::error_code ec;
         fs::create_directories(dir, ec);
         if (ec) fail(dir, "cannot create directory: " + ec.message());

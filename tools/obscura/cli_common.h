@@ -72,6 +72,8 @@ void checkOutputPath(const std::string& flag, const std::string& path, const std
 // True if `a` and `b` name the same file: one existing file (a link or another spelling), or two paths that do
 // not exist yet but resolve alike ("d/./ao.exr" and "d/ao.exr"). False for an empty name.
 bool samePath(const std::string& a, const std::string& b);
+// `dir` names a directory or none yet (not a file); with `create`, one that is not there is made. A command
+// checks without `create` first and creates once its inputs have loaded, so a failure leaves no directory.
 void checkOutputDirectory(const std::string& flag, const std::string& dir, bool create);
 
 // Fails early if an input (skipped when empty) is not one of `extensions`, where readImage would read other

@@ -87,6 +87,9 @@ void checkUnitNormals(const GBuffer& g, const std::string& path) {
             // isSky, as the passes read it: a writer's finite "far" of 1e30 or more is sky too, and its normal
             // is never read (checking only +inf refused such a buffer's zero sky normals).
             if (g.isSky(x, y)) continue;
+            if (!std::isfinite(g.normal.at(x, y, 0)) || !std::isfinite(g.normal.at(x, y, 1)) ||
+                !std::isfinite(g.normal.at(x, y, 2)))
+                fail(path, "normal at pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") is not finite");
             const float length = std::sqrt(g.normal.at(x, y, 0) * g.normal.at(x, y, 0) +
                                            g.normal.at(x, y, 1) * g.normal.at(x, y, 1) +
                                            g.normal.at(x, y, 2) * g.normal.at(x, y, 2));
@@ -105,6 +108,13 @@ void run(const AoOptions& o) {
     const eval::AoMethod& method = eval::findAoMethod(o.method, "--method");
     const ssao::BilateralSettings blur = o.blur.settings();
     ssao::AlchemySettings alchemy = o.alchemy.settings("");
+    if (o.alchemy.formulationOption->count() > 0 && o.method.starts_with("alchemy")) {
+        // --method alchemy-chapter is --ao-formulation chapter: a contradiction once ran the chapter's silently.
+        const std::string implied = o.method == "alchemy-chapter" ? "chapter" : "paper";
+        if (o.alchemy.formulation != implied)
+            fail("--ao-formulation", o.alchemy.formulation + " contradicts --method " + o.method + " (whose formulation is " +
+                                         implied + "); give one of the two");
+    }
     if (o.method == "alchemy-chapter") alchemy.formulation = ssao::AlchemyFormulation::Chapter;
     const bool radiusGiven = o.alchemy.radiusOption->count() > 0;
     if (!o.method.starts_with("alchemy")) {
@@ -133,6 +143,9 @@ void run(const AoOptions& o) {
     g.camera = readCameraJson(o.camera);
     g.depth = channels(readImage(o.depth), {"Z"}, o.depth, "depth");
     checkSize(g.depth, g.camera, o.depth, o.camera);
+    if (o.method.starts_with("alchemy") && (g.width() <= 2 * alchemy.guardBand || g.height() <= 2 * alchemy.guardBand))
+        fail("--ao-guard-band", std::to_string(alchemy.guardBand) + " px on every side leaves nothing of " + o.depth +
+                                    "'s " + std::to_string(g.width()) + "x" + std::to_string(g.height()) + " pixels");
     for (int y = 0; y < g.height(); ++y)
         for (int x = 0; x < g.width(); ++x) {
             const float d = g.depth.at(x, y);
@@ -146,10 +159,12 @@ void run(const AoOptions& o) {
     } else {
         g.normal = channels(readImage(o.normal), {"N.X", "N.Y", "N.Z"}, o.normal, "normal");
         checkSize(g.normal, g.camera, o.normal, o.camera);
-        for (std::size_t i = 0; i < g.normal.pixels.size(); ++i)
-            if (!std::isfinite(g.normal.pixels[i]))
-                fail(o.normal, "normal at pixel index " + std::to_string(i / 3) + " is not finite");
-        checkUnitNormals(g, o.normal);
+        checkUnitNormals(g, o.normal);  // surface pixels only: a sky pixel's normal is never read
+        // A G-buffer holds (0, 0, 0) under the sky (GBuffer::normal); whatever the file holds there goes.
+        for (int y = 0; y < g.height(); ++y)
+            for (int x = 0; x < g.width(); ++x)
+                if (g.isSky(x, y))
+                    for (int c = 0; c < 3; ++c) g.normal.at(x, y, c) = 0.0f;
     }
 
     Image ao;
@@ -188,8 +203,8 @@ void addAoCommand(CLI::App& app) {
                     "Linear view depth EXR: 1 channel, or a channel named Z; meters along -Z, +inf for sky")
         ->required();
     cmd->add_option("--normal", o->normal,
-                    "View-space unit normal EXR: 3 channels (R G B A: the alpha is left out), or N.X N.Y N.Z; default: "
-                    "rebuilt from depth");
+                    "View-space unit normal EXR: 3 channels (R G B A: the alpha is left out), or N.X N.Y N.Z. Required "
+                    "by the gtao methods; the alchemy methods rebuild normals from depth without it");
     cmd->add_option("--camera", o->camera, "Camera JSON of the buffers (as `obscura gbuffer` writes it)")->required();
     cmd->add_option("-o,--output", o->output, "Output AO EXR (1 channel Y, 1 = unoccluded)")->required();
     cmd->add_option("--method", o->method, "AO method: " + eval::aoMethodNames() + " (see `obscura compare --help`)")->capture_default_str();

@@ -231,8 +231,8 @@ void addBakeCommand(CLI::App& app) {
     o->distanceOption = cmd->add_option("--distance", o->distance, "One distance d in m (same as --distances d)");
     cmd->add_option("--rays", o->settings.rays, "Rays per sample, [1, 65536]")->capture_default_str();
     cmd->add_option("--alpha", o->settings.alpha, "Regulariser weight, unitless, [0, 1e6]")->capture_default_str();
-    cmd->add_option("--max-samples-per-face", o->settings.maxSamplesPerFace, "Sample cap per face, [1, 4096]")->capture_default_str();
-    cmd->add_option("--min-samples-per-face", o->settings.minSamplesPerFace, "Samples at least per face")->capture_default_str();
+    cmd->add_option("--max-samples-per-face", o->settings.maxSamplesPerFace, "Sample cap per face, [1, 4096], at least --min-samples-per-face")->capture_default_str();
+    cmd->add_option("--min-samples-per-face", o->settings.minSamplesPerFace, "Samples at least per face, [1, 4096], at most --max-samples-per-face")->capture_default_str();
     cmd->add_option("--sample-density", o->settings.sampleDensity, "Samples per m^2 between the two caps")->capture_default_str();
     cmd->add_option("--back-face-limit", o->settings.backFaceLimit, "Invalidate samples with more back-facing hits, [0, 1]")
         ->capture_default_str();

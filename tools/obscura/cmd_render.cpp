@@ -53,6 +53,7 @@ struct RenderOptions {
     // The flags of one --ao method each: the others ignore them, and say so when one is given.
     std::vector<const CLI::Option*> raytracedFlags, alchemyFlags, gtaoFlags;
     std::vector<const CLI::Option*> screenSpaceFlags;  // --gpu-packed-normals: alchemy's and gtao's
+    std::vector<const CLI::Option*> displayFlags;      // --exposure, --tonemap: a PNG's
 };
 
 const std::map<std::string, trace::Falloff> kFalloffs = {
@@ -71,6 +72,7 @@ void run(const RenderOptions& o) {
     if (o.ao != "alchemy") warnIgnored(o.alchemyFlags, "applies to --ao alchemy" + notThis);
     if (o.ao != "gtao") warnIgnored(o.gtaoFlags, "applies to --ao gtao" + notThis);
     if (o.ao != "alchemy" && o.ao != "gtao") warnIgnored(o.screenSpaceFlags, "applies to --ao alchemy or gtao" + notThis);
+    if (fileExtension(o.output) == ".exr") warnIgnored(o.displayFlags, "applies to a PNG; an .exr output is linear radiance");
     trace::ObscuranceSettings aoSettings;
     aoSettings.falloff = kFalloffs.at(o.falloff);
     aoSettings.radius = parseRadius("--ao-radius", o.radius);
@@ -124,8 +126,8 @@ void run(const RenderOptions& o) {
             if (samePath(aov, other))
                 fail(aov, std::string("is ") + what + " " + other + "; --aov-dir never overwrites it, choose another");
     }
-    // Made once every flag has passed, so that a bad one leaves no directory behind.
-    if (!o.aovDir.empty()) checkOutputDirectory("--aov-dir", o.aovDir, true);
+    // Made once the scene and the environment have loaded (below), so that a bad one leaves no directory.
+    if (!o.aovDir.empty()) checkOutputDirectory("--aov-dir", o.aovDir, false);
 
     ThreadLimit limit(o.threads, "--threads");
     const std::unique_ptr<gpu::Context> context = o.gpu.open();
@@ -140,6 +142,7 @@ void run(const RenderOptions& o) {
     } catch (const Error& e) {
         fail(o.env.empty() ? "sky" : o.env, std::string(e.what()));
     }
+    if (!o.aovDir.empty()) checkOutputDirectory("--aov-dir", o.aovDir, true);
 
     const bool showProgress = progressWanted(o.quiet);
     std::unique_ptr<trace::Tracer> tracer;
@@ -261,10 +264,12 @@ void addRenderCommand(CLI::App& app) {
         cmd->add_option("--ao-u", o->alchemyU, "Falloff constant u of the alchemy falloff, meters")->capture_default_str();
     });
     cmd->add_option("--env", o->env, "Equirectangular environment (.hdr or .exr); default: a built-in procedural sky");
-    cmd->add_option("--exposure", o->exposure, "Exposure in EV stops, [-20, 20]")->capture_default_str();
-    cmd->add_option("--tonemap", o->tonemap, "aces, reinhard or none")
-        ->check(CLI::IsMember({"aces", "reinhard", "none"}))
-        ->capture_default_str();
+    o->displayFlags = optionsAddedBy(*cmd, [&] {
+        cmd->add_option("--exposure", o->exposure, "Exposure in EV stops, [-20, 20] (PNG output)")->capture_default_str();
+        cmd->add_option("--tonemap", o->tonemap, "aces, reinhard or none (PNG output)")
+            ->check(CLI::IsMember({"aces", "reinhard", "none"}))
+            ->capture_default_str();
+    });
     cmd->add_option("--supersample", o->supersample, "N x N albedo samples per pixel for antialiasing, [1, 16]")
         ->capture_default_str();
     cmd->add_option("--aov-dir", o->aovDir,
