@@ -7,6 +7,7 @@
 #include "obscura/image_io.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -101,7 +102,8 @@ void writeBakeOutput(const std::string& inputPath, const Scene& scene, const Bak
 void writeBakedPly(const Scene& scene, const BakeResult& r, const ArtistControls& controls, const std::string& path) {
     std::size_t vertices = r.instanceFirst.back(), faces = 0;
     for (const Instance& inst : scene.instances) faces += scene.meshes[inst.mesh].triangleCount();
-    if (vertices > 0xffffffffu) fail(path, "too many vertices for PLY int indices");
+    // The header says "int": signed 32-bit indices, which from 2^31 vertices on would read as negative.
+    if (vertices > 0x7fffffffu) fail(path, "too many vertices for PLY int indices (2^31 - 1 at most)");
     writeAtomically(path, [&](const std::string& temp) { writeFile(path, temp, [&](std::FILE* f) {
         Writer w{f, path};
         const std::string header =
@@ -145,19 +147,28 @@ void writeBakedPly(const Scene& scene, const BakeResult& r, const ArtistControls
 
 void writeBakedCsv(const Scene& scene, const BakeResult& r, const ArtistControls& controls, const std::string& path) {
     writeAtomically(path, [&](const std::string& temp) { writeFile(path, temp, [&](std::FILE* f) {
-        bool ok = std::fputs("index,x,y,z,short,long,blended\n", f) >= 0;
-        for (std::size_t i = 0; i < scene.instances.size() && ok; ++i) {
+        Writer w{f, path};
+        const std::string header = "index,x,y,z,short,long,blended\n";
+        w.put(header.data(), header.size());
+        // std::to_chars: the shortest text that reads back as the same float, and no locale (printf wrote
+        // "0,66464" with decimal commas in a host program that had set a German locale).
+        char line[160];
+        for (std::size_t i = 0; i < scene.instances.size(); ++i) {
             const Instance& inst = scene.instances[i];
             const Mesh& mesh = scene.meshes[inst.mesh];
-            for (std::size_t v = 0; v < mesh.positions.size() && ok; ++v) {
+            for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
                 const std::size_t k = r.instanceFirst[i] + v;
                 const Vec3 p = transformPoint(inst.worldFromObject, mesh.positions[v]);
                 const float s = channel(r, k, 0), l = channel(r, k, 1);
-                ok = std::fprintf(f, "%zu,%.9g,%.9g,%.9g,%.7g,%.7g,%.7g\n", k, double(p.x), double(p.y), double(p.z),
-                                  double(s), double(l), double(controls.blended(s, l))) > 0;
+                char* end = std::to_chars(line, line + sizeof line, k).ptr;
+                for (float x : {p.x, p.y, p.z, s, l, controls.blended(s, l)}) {
+                    *end++ = ',';
+                    end = std::to_chars(end, line + sizeof line, x).ptr;
+                }
+                *end++ = '\n';
+                w.put(line, std::size_t(end - line));
             }
         }
-        if (!ok) fail(path, "write failed (disk full?)");
     }); });
 }
 
