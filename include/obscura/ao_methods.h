@@ -38,6 +38,12 @@ struct AoMethod {
     std::function<Image(const GBuffer&, const MethodOptions&)> compute;
     // The ray-traced settings (falloff, radius) of the integral the method estimates, with `rays` rays.
     std::function<trace::ObscuranceSettings(const MethodOptions&, int rays)> reference;
+    // The samples per pixel it takes with these options (per grid pixel at half resolution): Alchemy's disc
+    // samples, GTAO's 2 x slices x steps per side, whose slice count `samples` sets only in whole slices.
+    std::function<int(const MethodOptions&)> samplesPerPixel;
+    // Whether MethodOptions::gtaoMipRatio changes it: its samples switch on distance (mip, planar-mip and
+    // planar-nearest sampling).
+    bool readsMipRatio = false;
 };
 
 const std::vector<AoMethod>& aoMethods();

@@ -29,7 +29,8 @@ AoMethod alchemy(const char* name, const char* description, ssao::AlchemyFormula
                 Image raw = ssao::alchemyAO(g, alchemySettings(f, o));
                 return ssao::bilateralFilter(raw, g, o.blur);
             },
-            [f](const MethodOptions& o, int rays) { return ssao::rayTracedEquivalent(alchemySettings(f, o), rays); }};
+            [f](const MethodOptions& o, int rays) { return ssao::rayTracedEquivalent(alchemySettings(f, o), rays); },
+            [f](const MethodOptions& o) { return alchemySettings(f, o).samples; }};
 }
 
 // What every GTAO method takes from the options after its counts: `samples` > 0 sets the slice count to
@@ -38,6 +39,12 @@ AoMethod alchemy(const char* name, const char* description, ssao::AlchemyFormula
 void applySampleOptions(ssao::GtaoSettings& s, const MethodOptions& o) {
     if (o.samples > 0 && o.gtao.slices == 0) s.sliceCount = std::clamp(o.samples / (2 * s.stepsPerSide), 1, 64);
     if (o.gtaoMipRatio > 0.0f) s.mipDistanceRatio = o.gtaoMipRatio;
+}
+
+int horizonSamples(const ssao::GtaoSettings& s) { return 2 * s.sliceCount * s.stepsPerSide; }
+
+bool readsMipRatio(ssao::GtaoSampling s) {
+    return s == ssao::GtaoSampling::Mip || s == ssao::GtaoSampling::PlanarMip || s == ssao::GtaoSampling::PlanarNearest;
 }
 
 // GTAO with a preset and the override's counts. Its integral is binary AO of the same radius (default 1 m).
@@ -69,7 +76,9 @@ AoMethod gtao(const char* name, const char* description, ssao::GtaoQuality quali
                 ref.radius = gtaoSettings(quality, sampling, o).radius;
                 ref.rays = rays;
                 return ref;
-            }};
+            },
+            [quality, sampling](const MethodOptions& o) { return horizonSamples(gtaoSettings(quality, sampling, o)); },
+            readsMipRatio(sampling)};
 }
 
 // GTAO at half resolution (ssao::computeGtaoHalfResolution) with its measured counts unless the override
@@ -99,7 +108,8 @@ AoMethod gtaoHalf(const char* name, const char* description,
                 ref.radius = settings(o).radius;
                 ref.rays = rays;
                 return ref;
-            }};
+            },
+            [settings](const MethodOptions& o) { return horizonSamples(settings(o)); }, readsMipRatio(sampling)};
 }
 
 } // namespace

@@ -106,6 +106,32 @@ TEST_F(GtaoCli, CompareMeasuresGtaoAgainstRayTracedAo) {
     EXPECT_TRUE(fs::exists(path("c.png")));
 }
 
+// --samples sets GTAO's slice count in whole slices of 2 x steps per side, 1 to 64: 5 ran 6 (the high preset's
+// 3 steps, 1 slice) and 1024 ran 384 without a word. The count taken is reported, and warned about where it is
+// not the one asked for; Alchemy takes any count.
+TEST_F(GtaoCli, CompareReportsTheSamplesItTakesAndWhatItIgnores) {
+    const std::string compare = "compare corner --size 32x24 --rays 4 -q --json -o " + path("c.png") + " --methods gtao,alchemy ";
+    Result r = run(compare + "--samples 5");
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_NE(r.out.find("warning: --samples 5: gtao takes 6 samples per pixel"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("warning: --samples 5: alchemy"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("\"samples_per_pixel\": 6"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("\"samples_per_pixel\": 5"), std::string::npos) << r.out;
+    r = run(compare + "--samples 12");
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_EQ(r.out.find("warning"), std::string::npos) << r.out;
+    r = run(compare + "--samples 1024");
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_NE(r.out.find("gtao takes 384 samples per pixel"), std::string::npos) << r.out;
+    // --gtao-mip-ratio changes only the methods whose samples switch on distance; the others ignored it silently.
+    r = run(compare + "--gtao-mip-ratio 3");
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_NE(r.out.find("warning: --gtao-mip-ratio: no method of --methods reads it"), std::string::npos) << r.out;
+    r = run("compare corner --size 32x24 --rays 4 -q --json -o " + path("c.png") + " --methods gtao,gtao-mip --gtao-mip-ratio 3");
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_EQ(r.out.find("warning"), std::string::npos) << r.out;
+}
+
 // --gtao-sampling reaches the kernel: on the open plane planar samples give exactly 1 everywhere and nearest
 // (and mip, and planar-mip) ones darken a few far pixels (tests/ssao/gtao_test.cpp,
 // NearestSamplingDarkensAnOpenPlaneSlightly). Planar-nearest darkens none below 0.999 (its far samples alone

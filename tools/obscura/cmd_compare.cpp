@@ -109,6 +109,16 @@ void run(const CompareOptions& o) {
     mo.gtaoMipRatio = o.gtaoMipRatio;
     mo.radius = o.radius;
     mo.seed = o.seed;
+    if (o.gtaoMipRatio > 0.0f &&
+        std::none_of(methods.begin(), methods.end(), [](const eval::AoMethod* m) { return m->readsMipRatio; }))
+        std::fprintf(stderr, "obscura: warning: --gtao-mip-ratio: no method of --methods reads it (gtao-mip, "
+                             "gtao-planar-mip and the planar-nearest ones do); ignored\n");
+    // GTAO takes whole slices of 2 x steps samples, 1 to 64 of them: say so where --samples asked for another count.
+    for (const eval::AoMethod* m : methods)
+        if (o.samples > 0 && m->samplesPerPixel(mo) != o.samples)
+            std::fprintf(stderr, "obscura: warning: --samples %d: %s takes %d samples per pixel (whole slices of 2 x its "
+                                 "steps per side, 1 to 64 slices)\n",
+                         o.samples, m->name.c_str(), m->samplesPerPixel(mo));
     mo.blur.mode = o.blur == "none" ? ssao::BlurMode::None : o.blur == "2d" ? ssao::BlurMode::TwoD : ssao::BlurMode::Separable;
     mo.blur.normalWeight = normalWeightFromFlag(o.blurNormalWeight);
     mo.blur.radius = o.blurRadius;
@@ -178,6 +188,7 @@ void run(const CompareOptions& o) {
                                      {"bias", r.stats.bias},
                                      {"max", r.stats.maxError},
                                      {"ms", r.ms},
+                                     {"samples_per_pixel", r.method->samplesPerPixel(mo)},
                                      {"reference", {{"falloff", r.ref.falloff == trace::Falloff::Alchemy ? "alchemy" : r.ref.falloff == trace::Falloff::Binary ? "binary" : "exponential"},
                                                     {"radius", r.ref.radius},
                                                     {"u", r.ref.alchemyU},
@@ -228,10 +239,10 @@ void run(const CompareOptions& o) {
                 "method - ray traced\n\n",
                 loaded.name.c_str(), camera.width, camera.height, rows.front().stats.pixels, o.rays,
                 context ? context->device().name.c_str() : "the CPU");
-    std::printf("%-18s %8s %8s %9s %8s %9s\n", "method", "MAE", "RMSE", "bias", "max", "ms");
+    std::printf("%-24s %8s %8s %9s %8s %9s %5s\n", "method", "MAE", "RMSE", "bias", "max", "ms", "spp");
     for (const Row& r : rows)
-        std::printf("%-18s %8.4f %8.4f %+9.4f %8.4f %9.1f\n", r.method->name.c_str(), r.stats.mae, r.stats.rmse,
-                    r.stats.bias, r.stats.maxError, r.ms);
+        std::printf("%-24s %8.4f %8.4f %+9.4f %8.4f %9.1f %5d\n", r.method->name.c_str(), r.stats.mae, r.stats.rmse,
+                    r.stats.bias, r.stats.maxError, r.ms, r.method->samplesPerPixel(mo));
     std::printf("\nwrote %s: rows = methods; columns = lit frame, method AO, ray-traced AO, signed error "
                 "(blue: too dark, red: too light, +-%.*f)\n",
                 o.output.c_str(), decimals, double(o.range));
@@ -247,7 +258,8 @@ void addCompareCommand(CLI::App& app) {
     cmd->add_option("--methods", o->methods, "Comma-separated methods: " + eval::aoMethodNames() + " (at half resolution: --blur filters its grid before the upsampling)")->capture_default_str();
     cmd->add_option("-o,--output", o->output, "Side-by-side PNG")->capture_default_str();
     cmd->add_option("--rays", o->rays, "Rays per pixel of the ray-traced reference, [1, 65536]")->capture_default_str();
-    cmd->add_option("--samples", o->samples, "Samples per pixel of every method (0: each method's default)")
+    cmd->add_option("--samples", o->samples, "Samples per pixel of every method (0: each method's default); GTAO takes whole slices of 2 x steps per "
+                    "side, 1 to 64, and says so where that is another count")
         ->capture_default_str();
     cmd->add_option("--radius", o->radius, "World radius of every method, m (0: each method's default)")
         ->capture_default_str();
