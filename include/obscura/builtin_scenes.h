@@ -36,5 +36,9 @@ constexpr int kCabinetSlats = 30;
 // A deterministic large scene for scale tests: terrain, buildings with interiors and scattered props,
 // about `triangles` triangles in total (at least a few thousand).
 Scene generateLevel(std::size_t triangles, std::uint32_t seed = 1);
+// The budgets generateLevel is meant for; the CLI's --triangles are held to them.
+constexpr long long kMinLevelTriangles = 4000, kMaxLevelTriangles = 200000000;
+// Throws obscura::Error naming `flag` for a budget outside [kMinLevelTriangles, kMaxLevelTriangles].
+void checkLevelTriangles(const std::string& flag, long long triangles);
 
 } // namespace obscura

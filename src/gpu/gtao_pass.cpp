@@ -49,8 +49,9 @@ void checkGtaoLoopBudget(const Context::Impl& c, const ssao::GtaoConstants& k) {
     const long most = long((budget / double(k.sliceCount) - perSlice) / perStep) * long(k.sliceCount);
     fail(c.info.name, "ends a shader's loops after 65535 iterations in all, without an error, and GTAO with " +
                           std::to_string(k.sliceCount) + " slices x " + std::to_string(k.stepsPerSide) +
-                          " steps would need about " + std::to_string(long(iterations)) +
-                          " there, so its result would be wrong: use at most " + std::to_string(std::max(most, 0L)) +
+                          " steps would need about " + std::to_string(long(iterations)) + " there, past the " +
+                          std::to_string(long(budget)) + " it is held to (a tenth kept for the loops outside the "
+                          "march), so its result would be wrong: use at most " + std::to_string(std::max(most, 0L)) +
                           " slices x steps with these samples on lavapipe, or another device");
 }
 

@@ -2,11 +2,13 @@
 // floors, and instanced props. Sized by a triangle budget so benchmarks can ask for 1M or 10M triangles.
 #include "obscura/builtin_scenes.h"
 
+#include "obscura/error.h"
 #include "obscura/mesh_builder.h"
 #include "obscura/sampling.h"
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 namespace obscura {
 
@@ -23,6 +25,12 @@ float terrainHeight(float x, float z) {
 }
 
 } // namespace
+
+void checkLevelTriangles(const std::string& flag, long long triangles) {
+    if (triangles < kMinLevelTriangles || triangles > kMaxLevelTriangles)
+        fail(flag, "must be in [" + std::to_string(kMinLevelTriangles) + ", " + std::to_string(kMaxLevelTriangles) +
+                       "], got " + std::to_string(triangles));
+}
 
 Scene generateLevel(std::size_t triangles, std::uint32_t seed) {
     triangles = std::max<std::size_t>(triangles, 4000);

@@ -66,6 +66,11 @@ TEST_F(BenchCli, BadArgumentsFailWithOneLine) {
     expectFailure("bench alchemy --threads -1", {"--threads", "-1"});  // once timed all cores without a word
     expectFailure("bench alchemy --threads 100000", {"--threads"});
     expectFailure("bench gtao --threads -1", {"--threads"});
+    // A generated level's budget is the generator's range, as for `scenes --generate` (100 once timed a
+    // 4742-triangle level labelled "level-100"); a bad scene name fails before the table's header.
+    expectFailure("bench trace --triangles 100", {"--triangles", "[4000, 200000000]", "got 100"});
+    expectFailure("bench trace --triangles -1", {"--triangles", "got -1"});
+    expectFailure("bench bake-quality --scenes stairs,nope", {"--scenes", "'nope'"});
     expectFailure("bench gtao --repeats 101", {"--repeat"});
     expectFailure("bench gtao --radius -1", {"--radius"});
 }

@@ -10,9 +10,12 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 #include <sstream>
+#include <string>
+#include <vector>
 
 namespace obscura::cli {
 
@@ -39,13 +42,24 @@ void runQuality(const QualityOptions& o) {
     settings.creaseAngle = o.creaseAngle;
     settings.distances = parseBakeDistances("--distances", o.distances);
     settings.validate();
+    // Every name is checked before the table's header: a bad one once failed after the header was printed.
+    std::vector<std::string> names;
+    std::stringstream in(o.scenes);
+    for (std::string name; std::getline(in, name, ',');) names.push_back(name);
+    const std::vector<std::string> known = builtinSceneNames();
+    for (const std::string& name : names)
+        if (std::find(known.begin(), known.end(), name) == known.end()) {
+            std::string list;
+            for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
+            fail("--scenes", "unknown built-in scene '" + name + "' (known: " + list + ")");
+        }
+    if (names.empty()) fail("--scenes", "no scene given");
     nlohmann::json report;
     if (!o.json)
         std::printf("%-9s %8s %8s %6s %9s %9s %9s %9s %9s %9s %9s %9s %9s %7s\n", "scene", "vertices", "smooth", "d (m)",
                     "bake MAE", "bake max", "smoothMAE", "point MAE", "point max", "smoothMAE", "J bake", "J point", "J ref",
                     "time s");
-    std::stringstream in(o.scenes);
-    for (std::string name; std::getline(in, name, ',');) {
+    for (const std::string& name : names) {
         BuiltinScene b = makeBuiltinScene(name);
         Scene refined = bake::refineScene(b.scene, o.maxEdge, bake::refinementFocus(b.scene, 20.0f), o.grading);
         bake::QualityResult q = bake::compareWithDense(refined, settings, o.referenceRays);

@@ -24,8 +24,7 @@ struct GenerateOptions {
 void generate(const GenerateOptions& o) {
     if (o.kind != "level") fail("--generate", "unknown generator \"" + o.kind + "\" (available: level)");
     if (o.output.empty()) fail("--output", "--generate needs -o FILE.glb (or .gltf)");
-    if (o.triangles < 4000 || o.triangles > 200000000)
-        fail("--triangles", "must be in [4000, 200000000], got " + std::to_string(o.triangles));
+    checkLevelTriangles("--triangles", o.triangles);
     checkOutputPath("--output", o.output, {".glb", ".gltf"});
     Scene scene = generateLevel(std::size_t(o.triangles), o.seed);
     writeGltf(scene, o.output);
