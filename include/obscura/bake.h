@@ -77,9 +77,11 @@ struct BakeSettings {
 // faces never split) are joined, and the connected components of that relation are the smoothing groups,
 // whatever the faces' order; each group gets its own copy of the vertex (same position). The regulariser then has no edge across a crease, and each side of a 90-degree step keeps
 // the value of the hemisphere it sees. A file vertex maps to the copy of the first kept face (in file order)
-// that uses it; where one file vertex serves faces on both sides of a crease, its output is that face's side.
-// glTF and OBJ files with hard edges already split them into separate file vertices, so there the map is
-// exact.
+// that uses it; where one file vertex serves faces on both sides of a crease (a PLY or an OBJ without normals
+// sharing a cube's corners), its output is the mean of its copies' values weighted by the area of its faces
+// in each (`blends`), whatever the faces' order. (Taking the first face's copy made a cube's contact edge
+// with the floor white or dark as its bottom face came first or last.) glTF and OBJ files with hard edges
+// already split them into separate file vertices, so there the map is exact.
 struct WeldedMesh {
     std::vector<Vec3> positions;            // world space, m; one per welded vertex
     std::vector<std::uint32_t> indices;     // 3 per kept triangle, into positions, the file's winding
@@ -87,6 +89,12 @@ struct WeldedMesh {
     std::vector<std::uint32_t> vertexMap;   // per (instance, mesh vertex): its welded vertex (copy, see above)
     std::vector<float> weldShift;           // per welded vertex: m, the farthest a file vertex moved to join it
                                             // (0 where none moved; empty: 0 everywhere)
+    struct Blend {
+        std::uint32_t file;  // index into vertexMap
+        std::uint32_t copy;  // welded vertex
+        float weight;        // m^2: the area of the file vertex's kept faces in that copy
+    };
+    std::vector<Blend> blends;              // for file vertices in more than one copy only, sorted by file
     std::size_t inputTriangles = 0;
     std::size_t droppedTriangles = 0;       // degenerate after welding (repeated vertex, or twice the area at most
                                             // 1e-12 of the square of its instance's diagonal, sanitizeScene's

@@ -71,6 +71,20 @@ BakeResult bakeScene(const Scene& scene, const BakeSettings& settings, const Sta
     for (std::size_t i = 0; i < mesh.vertexMap.size(); ++i)
         for (std::size_t c = 0; c < channels; ++c)
             r.values[i * channels + c] = std::clamp(welded[std::size_t(mesh.vertexMap[i]) * channels + c], 0.0f, 1.0f);
+    // A file vertex on both sides of a crease: the mean of its copies by face area (WeldedMesh::blends).
+    for (std::size_t i = 0; i < mesh.blends.size();) {
+        std::size_t end = i;
+        double sum[2] = {0, 0}, weight = 0;
+        for (; end < mesh.blends.size() && mesh.blends[end].file == mesh.blends[i].file; ++end) {
+            const WeldedMesh::Blend& b = mesh.blends[end];
+            weight += double(b.weight);
+            for (std::size_t c = 0; c < channels; ++c) sum[c] += double(b.weight) * double(welded[std::size_t(b.copy) * channels + c]);
+        }
+        if (weight > 0)
+            for (std::size_t c = 0; c < channels; ++c)
+                r.values[std::size_t(mesh.blends[i].file) * channels + c] = std::clamp(float(sum[c] / weight), 0.0f, 1.0f);
+        i = end;
+    }
     r.inputTriangles = mesh.inputTriangles;
     r.droppedTriangles = mesh.droppedTriangles;
     r.weldedVertices = r.solve.unknowns;

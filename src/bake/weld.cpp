@@ -144,6 +144,31 @@ void splitCreases(WeldedMesh& out, const std::vector<std::uint32_t>& fileCorner,
     std::vector<std::uint32_t> fileCopy(out.vertexMap.size(), 0xffffffffu);
     for (std::size_t c = 0; c < corners; ++c)
         if (fileCopy[fileCorner[c]] == 0xffffffffu) fileCopy[fileCorner[c]] = copyOf[c];
+    // File vertices whose faces fell into more than one copy: their output blends the copies by face area.
+    std::vector<char> several(out.vertexMap.size(), 0);
+    for (std::size_t c = 0; c < corners; ++c)
+        if (copyOf[c] != fileCopy[fileCorner[c]]) several[fileCorner[c]] = 1;
+    out.blends.clear();
+    for (std::size_t c = 0; c < corners; ++c) {
+        if (!several[fileCorner[c]]) continue;
+        const std::size_t t = c / 3;
+        const float area = float(0.5 * geometry::twiceArea(out.positions[out.indices[3 * t]],
+                                                           out.positions[out.indices[3 * t + 1]],
+                                                           out.positions[out.indices[3 * t + 2]]));
+        out.blends.push_back({fileCorner[c], copyOf[c], area});
+    }
+    std::sort(out.blends.begin(), out.blends.end(), [](const WeldedMesh::Blend& a, const WeldedMesh::Blend& b) {
+        return a.file != b.file ? a.file < b.file : a.copy < b.copy;
+    });
+    // One entry per (file vertex, copy), the areas summed in corner order: the same bits for any thread count.
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < out.blends.size(); ++i) {
+        if (kept > 0 && out.blends[kept - 1].file == out.blends[i].file && out.blends[kept - 1].copy == out.blends[i].copy)
+            out.blends[kept - 1].weight += out.blends[i].weight;
+        else
+            out.blends[kept++] = out.blends[i];
+    }
+    out.blends.resize(kept);
     for (std::size_t f = 0; f < fileCopy.size(); ++f)
         out.vertexMap[f] = fileCopy[f] != 0xffffffffu ? fileCopy[f] : firstCopy[out.vertexMap[f]];
     for (std::size_t c = 0; c < corners; ++c) out.indices[c] = copyOf[c];
