@@ -235,7 +235,7 @@ TEST_F(AlchemyCli, AoRejectsBadBuffers) {
     // A band of at least half the height but less than half the width: the crop of the buffer came first and sized
     // an image by a negative height ("internal: cannot create std::vector larger than max_size()").
     expectFailure("ao --depth " + path("g/depth.exr") + cam + " --ao-guard-band 9 -o " + path("ao.exr"),
-                  {"guard-band: 9 px leaves nothing of a 24x16 buffer"});
+                  {"--ao-guard-band: 9 px on every side leaves nothing of", "depth.exr's 24x16 pixels"});
     expectFailure("ao --depth " + path("g/depth.exr") + cam + " -o " + path("ao.png"), {"ao.png", "unsupported"});
     // Normals that are not unit vectors: another buffer (albedo), or unit normals stored as n * 0.5 + 0.5.
     // Sky pixels are not checked: the corner's sky normals are 0.

@@ -186,6 +186,8 @@ TEST_F(Cli, ScenesListsEveryBuiltin) {
     // -o without --generate was ignored (the list printed, nothing written); --triangles -1 was reported as
     // 18446744073709551615.
     expectFailure("scenes -o " + path("x.glb"), {"--output", "give --generate level"});
+    expectFailure("scenes --triangles 5", {"--triangles", "give --generate level"});  // listed the scenes, exit 0
+    expectFailure("scenes --seed 9", {"--seed", "give --generate level"});
     expectFailure("scenes --generate level --triangles -1 -o " + path("x.glb"),
                   {"--triangles: must be in [4000, 200000000], got -1"});
 }
@@ -241,6 +243,22 @@ TEST_F(Cli, FailedRenderLeavesNoAovs) {
                       path("g.png"),
                   {"nosuch.hdr"});
     EXPECT_FALSE(std::filesystem::exists(path("aov3")));
+    // Nor on its AOVs: -o may not be one of GTAO's (bent_normal.exr was overwritten by the frame, exit 0), nor
+    // the AOV directory itself (its six files were written before -o failed), and an AOV that is a directory
+    // is refused before the work (four files were left behind).
+    std::filesystem::create_directory(path("d1"));
+    expectFailure("render corner --ao gtao --ao-output bent-normal --size 32x18 -q --aov-dir " + path("d1") + " -o " +
+                      path("d1/bent_normal.exr"),
+                  {"bent_normal.exr", "is the output"});
+    expectFailure("render corner --ao gtao --frames 2 --size 32x18 -q --aov-dir " + path("d1") + " -o " +
+                      path("d1/ao_0001.exr"),
+                  {"ao_0001.exr", "is the output"});
+    expectFailure("render corner" + kFast + "--aov-dir " + path("same.png") + " -o " + path("same.png"),
+                  {"--aov-dir", "is the -o output"});
+    std::filesystem::create_directories(path("d1/lighting.exr"));
+    expectFailure("render corner" + kFast + "--aov-dir " + path("d1") + " -o " + path("g.png"),
+                  {"lighting.exr", "is a directory"});
+    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(path("d1")), std::filesystem::directory_iterator()), 1);
 }
 
 // --exposure and --tonemap shape a PNG's display values; an .exr output is linear radiance and took them without

@@ -250,6 +250,13 @@ void checkOutputDirectory(const std::string& flag, const std::string& dir, bool 
     }
 }
 
+fs::path firstMissingDirectory(const std::string& dir) {
+    std::error_code ec;
+    fs::path created;
+    for (fs::path p = fs::absolute(dir, ec); !p.empty() && !fs::exists(p, ec); p = p.parent_path()) created = p;
+    return created;
+}
+
 bool progressWanted(bool quiet) { return !quiet && isatty(STDERR_FILENO); }
 
 Progress::Progress(std::string stage, bool enabled)

@@ -6,6 +6,7 @@
 #include "obscura/scene.h"
 
 #include <chrono>
+#include <filesystem>
 #include <functional>
 #include <mutex>
 #include <string>
@@ -75,6 +76,9 @@ bool samePath(const std::string& a, const std::string& b);
 // `dir` names a directory or none yet (not a file); with `create`, one that is not there is made. A command
 // checks without `create` first and creates once its inputs have loaded, so a failure leaves no directory.
 void checkOutputDirectory(const std::string& flag, const std::string& dir, bool create);
+// The outermost directory of `dir`'s path that is not there yet (empty if `dir` exists): what creating `dir`
+// makes, and what a failed command removes again.
+std::filesystem::path firstMissingDirectory(const std::string& dir);
 
 // Fails early if an input (skipped when empty) is not one of `extensions`, where readImage would read other
 // formats as something they cannot hold: "<flag>: <path>: <content> is read from .hdr or .exr files, not .png".

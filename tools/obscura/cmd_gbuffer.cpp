@@ -76,9 +76,7 @@ void run(const GBufferOptions& o) {
     GBuffer g = trace::renderGBuffer(tracer, camera, gs, [&](double f) { progress(f); });
 
     // The first directory of the output's path that is not there yet: removed again if a write fails.
-    fs::path created;
-    if (toDirectory)
-        for (fs::path p = fs::absolute(dir, ec); !p.empty() && !fs::exists(p, ec); p = p.parent_path()) created = p;
+    const fs::path created = toDirectory ? firstMissingDirectory(dir) : fs::path();
     std::size_t written = 0;
     try {
         if (toDirectory) {

@@ -16,6 +16,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -117,14 +118,24 @@ void run(const RenderOptions& o) {
                                  "--blur-radius up to " + std::to_string(gpu::kTiledBlurMaxRadius));
     if (o.tiledBlur && o.fusedBlur) fail("--gpu-tiled-blur", "and --gpu-fused-blur are two ways to run the blur: give one");
 
-    // An AOV must not replace an input (the environment read above) or the -o output, as -o itself may not.
-    for (const char* name : {"ao.exr", "depth.exr", "normal.exr", "albedo.exr", "lighting.exr", "camera.json"}) {
-        if (o.aovDir.empty()) break;
-        const std::string aov = (std::filesystem::path(o.aovDir) / name).string();
+    // Every file --aov-dir gets, GTAO's (and their numbered frames) included: none may replace an input (the
+    // environment read above) or the -o output, as -o itself may not, nor be a directory. (The GTAO images
+    // were once missing here, and -o d/bent_normal.exr was overwritten by the bent normal, with exit 0.)
+    std::vector<std::string> aovFiles;
+    if (!o.aovDir.empty()) {
+        if (samePath(o.aovDir, o.output)) fail("--aov-dir", o.aovDir + " is the -o output; give the AOVs a directory of their own");
+        for (const char* name : {"ao.exr", "depth.exr", "normal.exr", "albedo.exr", "lighting.exr", "camera.json"})
+            aovFiles.push_back((std::filesystem::path(o.aovDir) / name).string());
+        if (o.ao == "gtao")
+            for (const std::string& file : o.gtao.aovFiles(o.aovDir))
+                if (std::find(aovFiles.begin(), aovFiles.end(), file) == aovFiles.end()) aovFiles.push_back(file);
+    }
+    for (const std::string& aov : aovFiles) {
         for (const auto& [what, other] : {std::pair<const char*, std::string>{"the input file", o.env},
                                           {"the input file", o.scene}, {"the output", o.output}})
             if (samePath(aov, other))
                 fail(aov, std::string("is ") + what + " " + other + "; --aov-dir never overwrites it, choose another");
+        if (std::filesystem::is_directory(aov)) fail(aov, "is a directory; --aov-dir writes a file there");
     }
     // Made once the scene and the environment have loaded (below), so that a bad one leaves no directory.
     if (!o.aovDir.empty()) checkOutputDirectory("--aov-dir", o.aovDir, false);
@@ -142,98 +153,114 @@ void run(const RenderOptions& o) {
     } catch (const Error& e) {
         fail(o.env.empty() ? "sky" : o.env, std::string(e.what()));
     }
+    // The work once the inputs have loaded: the G-buffer, the AO, the frame and its files.
+    auto renderAndWrite = [&] {
+        const bool showProgress = progressWanted(o.quiet);
+        std::unique_ptr<trace::Tracer> tracer;
+        {
+            Progress p("building BVH", showProgress);
+            tracer = std::make_unique<trace::Tracer>(loaded.scene);
+            p(1.0);
+        }
+        GBuffer gbuffer;
+        {
+            Progress p("primary rays", showProgress);
+            trace::GBufferSettings gs;
+            gs.supersample = o.supersample;
+            // Alchemy's guard band renders a larger G-buffer and crops it after the AO pass.
+            const Camera gbufferCamera = o.ao == "alchemy" ? ssao::guardBandCamera(camera, alchemy.guardBand) : camera;
+            gbuffer = trace::renderGBuffer(*tracer, gbufferCamera, gs, [&](double f) { p(f); });
+        }
+        Image ao;
+        const gpu::AlchemyFormats alchemyFormats{o.gtao.gpuPackedNormals};
+        if (o.ao == "raytraced") {
+            Progress p("ambient occlusion", showProgress);
+            ao = trace::ambientObscurance(*tracer, gbuffer, aoSettings, [&](double f) { p(f); });
+        } else if (o.ao == "alchemy" && o.fusedBlur) {
+            ao = gpu::alchemyAOBlurred(*context, gbuffer, alchemy, blur, alchemyFormats);
+            gbuffer = ssao::cropGuardBand(gbuffer, camera, alchemy.guardBand);
+        } else if (o.ao == "alchemy") {
+            Image raw = context ? gpu::alchemyAO(*context, gbuffer, alchemy, alchemyFormats) : ssao::alchemyAO(gbuffer, alchemy);
+            gbuffer = ssao::cropGuardBand(gbuffer, camera, alchemy.guardBand);
+            ao = o.tiledBlur ? gpu::bilateralFilterTiled(*context, raw, gbuffer, blur)
+                 : context   ? gpu::bilateralFilter(*context, raw, gbuffer, blur)
+                             : ssao::bilateralFilter(raw, gbuffer, blur);
+        }
+        GtaoFrame gtao;
+        if (o.ao == "gtao") {
+            trace::GBufferSettings gs;
+            gs.supersample = o.supersample;
+            gtao = renderGtaoFrames(o.gtao, aoSettings.radius, *tracer, camera, gs, o.aovDir, showProgress, context.get());
+            gbuffer = gtao.gbuffer;
+            camera = gbuffer.camera;
+            ao = gtao.visibility;
+        }
+
+        render::Frame frame = o.ao == "gtao" ? shadeGtao(gtao, sh, environment, context.get())
+                              : context      ? gpu::shade(*context, gbuffer, sh, ao, environment)
+                                             : render::shade(gbuffer, sh, ao, environment);
+        reportValidation(context.get());
+        render::ShadeSettings shading;
+        shading.exposure = o.exposure;
+        shading.tonemap = kTonemaps.at(o.tonemap);
+
+        if (!o.aovDir.empty()) {
+            namespace fs = std::filesystem;
+            auto path = [&](const char* name) { return (fs::path(o.aovDir) / name).string(); };
+            writeExr(path("ao.exr"), ao.empty() ? Image(camera.width, camera.height, 1, 1.0f) : ao);
+            writeExr(path("depth.exr"), gbuffer.depth);
+            writeExr(path("normal.exr"), gbuffer.normal);
+            writeExr(path("albedo.exr"), gbuffer.albedo);
+            writeExr(path("lighting.exr"), frame.lighting);
+            writeCameraJson(path("camera.json"), camera);
+        }
+        if (fileExtension(o.output) == ".exr")
+            writeExr(o.output, frame.color);
+        else
+            writePng(o.output, render::toDisplay(frame.color, shading));
+
+        std::printf("wrote %s: %dx%d, scene %s, AO %s", o.output.c_str(), camera.width, camera.height, loaded.name.c_str(),
+                    o.ao.c_str());
+        if (o.ao == "raytraced") std::printf(" (%s, r = %s m, %d rays)", o.falloff.c_str(), o.radius.c_str(), o.rays);
+        if (o.ao == "alchemy")
+            std::printf(" (%s, r = %g m, intensity %g, contrast %g, %d samples, blur %s%s%s)",
+                        alchemy.formulation == ssao::AlchemyFormulation::Paper ? "paper" : "chapter", double(alchemy.radius),
+                        double(alchemy.intensity), double(alchemy.contrast), alchemy.samples, o.blur.mode.c_str(),
+                        o.fusedBlur   ? ", rows fused into the estimator"
+                        : o.tiledBlur ? ", both passes in one tiled dispatch"
+                                      : "",
+                        alchemyFormats.packedNormals ? ", octahedral normals" : "");
+        if (o.ao == "gtao") {
+            const ssao::GtaoSettings g = o.gtao.settings(aoSettings.radius);
+            std::string variants = o.gtao.halfResolution ? ", half resolution" : "";
+            if (o.gtao.gridHistory) variants += ", history on the grid";
+            if (o.gtao.alternatingWindow)
+                variants += o.gtao.alternatingWindowSize == 2 ? ", alternating 2x2 windows" : ", alternating 4x4 windows";
+            if (o.gtao.gpuPackedNormals) variants += ", octahedral normals";
+            if (o.gtao.gpuPackedOutput) variants += ", 16-bit visibility";
+            if (o.gtao.gpuFusedTemporal) variants += ", GTAO and accumulation in one dispatch";
+            std::printf(" (%s: %d slice(s) x %d steps%s, r = %s m, %d frame(s)%s)", o.gtao.quality.c_str(), g.sliceCount,
+                        g.stepsPerSide, g.interleave ? ", 4x4 interleave" : g.jitter ? ", jittered" : "", o.radius.c_str(),
+                        o.gtao.frames, variants.c_str());
+        }
+        if (context) std::printf(", on %s", context->device().name.c_str());
+        std::printf(", %.2f s\n", secondsSince(start));
+    };
+    // From here a failure removes what this run wrote to --aov-dir (the files that were not there before, and
+    // the directories it made): once, a failed -o left six AOVs behind.
+    std::vector<std::string> newAovFiles;
+    for (const std::string& file : aovFiles)
+        if (!std::filesystem::exists(file)) newAovFiles.push_back(file);
+    const std::filesystem::path newAovDir = o.aovDir.empty() ? std::filesystem::path() : firstMissingDirectory(o.aovDir);
     if (!o.aovDir.empty()) checkOutputDirectory("--aov-dir", o.aovDir, true);
-
-    const bool showProgress = progressWanted(o.quiet);
-    std::unique_ptr<trace::Tracer> tracer;
-    {
-        Progress p("building BVH", showProgress);
-        tracer = std::make_unique<trace::Tracer>(loaded.scene);
-        p(1.0);
+    try {
+        renderAndWrite();
+    } catch (...) {
+        std::error_code ec;
+        for (const std::string& file : newAovFiles) std::filesystem::remove(file, ec);
+        if (!newAovDir.empty()) std::filesystem::remove_all(newAovDir, ec);
+        throw;
     }
-    GBuffer gbuffer;
-    {
-        Progress p("primary rays", showProgress);
-        trace::GBufferSettings gs;
-        gs.supersample = o.supersample;
-        // Alchemy's guard band renders a larger G-buffer and crops it after the AO pass.
-        const Camera gbufferCamera = o.ao == "alchemy" ? ssao::guardBandCamera(camera, alchemy.guardBand) : camera;
-        gbuffer = trace::renderGBuffer(*tracer, gbufferCamera, gs, [&](double f) { p(f); });
-    }
-    Image ao;
-    const gpu::AlchemyFormats alchemyFormats{o.gtao.gpuPackedNormals};
-    if (o.ao == "raytraced") {
-        Progress p("ambient occlusion", showProgress);
-        ao = trace::ambientObscurance(*tracer, gbuffer, aoSettings, [&](double f) { p(f); });
-    } else if (o.ao == "alchemy" && o.fusedBlur) {
-        ao = gpu::alchemyAOBlurred(*context, gbuffer, alchemy, blur, alchemyFormats);
-        gbuffer = ssao::cropGuardBand(gbuffer, camera, alchemy.guardBand);
-    } else if (o.ao == "alchemy") {
-        Image raw = context ? gpu::alchemyAO(*context, gbuffer, alchemy, alchemyFormats) : ssao::alchemyAO(gbuffer, alchemy);
-        gbuffer = ssao::cropGuardBand(gbuffer, camera, alchemy.guardBand);
-        ao = o.tiledBlur ? gpu::bilateralFilterTiled(*context, raw, gbuffer, blur)
-             : context   ? gpu::bilateralFilter(*context, raw, gbuffer, blur)
-                         : ssao::bilateralFilter(raw, gbuffer, blur);
-    }
-    GtaoFrame gtao;
-    if (o.ao == "gtao") {
-        trace::GBufferSettings gs;
-        gs.supersample = o.supersample;
-        gtao = renderGtaoFrames(o.gtao, aoSettings.radius, *tracer, camera, gs, o.aovDir, showProgress, context.get());
-        gbuffer = gtao.gbuffer;
-        camera = gbuffer.camera;
-        ao = gtao.visibility;
-    }
-
-    render::Frame frame = o.ao == "gtao" ? shadeGtao(gtao, sh, environment, context.get())
-                          : context      ? gpu::shade(*context, gbuffer, sh, ao, environment)
-                                         : render::shade(gbuffer, sh, ao, environment);
-    reportValidation(context.get());
-    render::ShadeSettings shading;
-    shading.exposure = o.exposure;
-    shading.tonemap = kTonemaps.at(o.tonemap);
-
-    if (!o.aovDir.empty()) {
-        namespace fs = std::filesystem;
-        auto path = [&](const char* name) { return (fs::path(o.aovDir) / name).string(); };
-        writeExr(path("ao.exr"), ao.empty() ? Image(camera.width, camera.height, 1, 1.0f) : ao);
-        writeExr(path("depth.exr"), gbuffer.depth);
-        writeExr(path("normal.exr"), gbuffer.normal);
-        writeExr(path("albedo.exr"), gbuffer.albedo);
-        writeExr(path("lighting.exr"), frame.lighting);
-        writeCameraJson(path("camera.json"), camera);
-    }
-    if (fileExtension(o.output) == ".exr")
-        writeExr(o.output, frame.color);
-    else
-        writePng(o.output, render::toDisplay(frame.color, shading));
-
-    std::printf("wrote %s: %dx%d, scene %s, AO %s", o.output.c_str(), camera.width, camera.height, loaded.name.c_str(),
-                o.ao.c_str());
-    if (o.ao == "raytraced") std::printf(" (%s, r = %s m, %d rays)", o.falloff.c_str(), o.radius.c_str(), o.rays);
-    if (o.ao == "alchemy")
-        std::printf(" (%s, r = %g m, intensity %g, contrast %g, %d samples, blur %s%s%s)",
-                    alchemy.formulation == ssao::AlchemyFormulation::Paper ? "paper" : "chapter", double(alchemy.radius),
-                    double(alchemy.intensity), double(alchemy.contrast), alchemy.samples, o.blur.mode.c_str(),
-                    o.fusedBlur   ? ", rows fused into the estimator"
-                    : o.tiledBlur ? ", both passes in one tiled dispatch"
-                                  : "",
-                    alchemyFormats.packedNormals ? ", octahedral normals" : "");
-    if (o.ao == "gtao") {
-        const ssao::GtaoSettings g = o.gtao.settings(aoSettings.radius);
-        std::string variants = o.gtao.halfResolution ? ", half resolution" : "";
-        if (o.gtao.gridHistory) variants += ", history on the grid";
-        if (o.gtao.alternatingWindow)
-            variants += o.gtao.alternatingWindowSize == 2 ? ", alternating 2x2 windows" : ", alternating 4x4 windows";
-        if (o.gtao.gpuPackedNormals) variants += ", octahedral normals";
-        if (o.gtao.gpuPackedOutput) variants += ", 16-bit visibility";
-        if (o.gtao.gpuFusedTemporal) variants += ", GTAO and accumulation in one dispatch";
-        std::printf(" (%s: %d slice(s) x %d steps%s, r = %s m, %d frame(s)%s)", o.gtao.quality.c_str(), g.sliceCount,
-                    g.stepsPerSide, g.interleave ? ", 4x4 interleave" : g.jitter ? ", jittered" : "", o.radius.c_str(),
-                    o.gtao.frames, variants.c_str());
-    }
-    if (context) std::printf(", on %s", context->device().name.c_str());
-    std::printf(", %.2f s\n", secondsSince(start));
 }
 
 } // namespace

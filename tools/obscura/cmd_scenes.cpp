@@ -39,16 +39,18 @@ void addScenesCommand(CLI::App& app) {
                                                  "write a generated one with --generate");
     auto o = std::make_shared<GenerateOptions>();
     cmd->add_option("--generate", o->kind, "Write a generated scene instead of listing: level (terrain, buildings, props)");
-    cmd->add_option("--triangles", o->triangles, "Triangle budget of the generated scene, [4000, 2e8]")->capture_default_str();
-    cmd->add_option("--seed", o->seed, "Seed of the generated scene (same seed, same file)")->capture_default_str();
+    CLI::Option* triangles =
+        cmd->add_option("--triangles", o->triangles, "Triangle budget of the generated scene, [4000, 2e8]")->capture_default_str();
+    CLI::Option* seed = cmd->add_option("--seed", o->seed, "Seed of the generated scene (same seed, same file)")->capture_default_str();
     CLI::Option* output = cmd->add_option("-o,--output", o->output, "Output .glb or .gltf for --generate");
-    cmd->callback([o, output] {
+    cmd->callback([o, output, triangles, seed] {
         if (!o->kind.empty()) {
             generate(*o);
             return;
         }
         // Listing writes nothing: an output path without --generate was once ignored without a word.
-        if (output->count() > 0) fail("--output", "writes a generated scene: give --generate level");
+        for (const CLI::Option* option : {output, triangles, seed})
+            if (option->count() > 0) fail(option->get_name(), "is for a generated scene: give --generate level");
         for (const std::string& name : builtinSceneNames()) {
             BuiltinScene s = makeBuiltinScene(name);
             std::printf("%-9s %s (%zu triangles)\n", name.c_str(), s.description.c_str(), s.scene.triangleCount());

@@ -35,6 +35,23 @@ std::string numbered(const std::string& dir, const char* name, int frame) {
     return (std::filesystem::path(dir) / (std::string(name) + buffer)).string();
 }
 
+} // namespace
+
+std::vector<std::string> GtaoOptions::aovFiles(const std::string& aovDir) const {
+    std::vector<const char*> names = {"ao"};
+    if (output != "visibility") names.push_back("bent_normal");
+    if (output == "all" && multibounce) names.push_back("ao_multibounce");
+    if (output == "all" && specular != "none") names.push_back("specular_occlusion");
+    std::vector<std::string> files;
+    for (const char* name : names) {
+        files.push_back((std::filesystem::path(aovDir) / (std::string(name) + ".exr")).string());
+        for (int k = 0; frames > 1 && k < frames; ++k) files.push_back(numbered(aovDir, name, k));
+    }
+    return files;
+}
+
+namespace {
+
 std::vector<std::string> gtaoSamplingNames() {
     std::vector<std::string> names;
     for (int i = 0; i < ssao::kGtaoSamplingCount; ++i) names.push_back(ssao::gtaoSamplingName(ssao::GtaoSampling(i)));
@@ -304,6 +321,7 @@ GtaoFrame renderGtaoFrames(const GtaoOptions& o, float radius, const trace::Trac
                                  : ssao::computeSpecularOcclusion(f.gbuffer, f.visibility, f.bentNormal,
                                                                   kSpecularModes.at(o.specular), o.roughness);
         if (!aovDir.empty()) {
+            // What is written here, aovFiles lists.
             const bool last = k + 1 == o.frames;
             auto write = [&](const char* name, const Image& image) {
                 if (image.empty()) return;

@@ -61,6 +61,8 @@ struct GtaoOptions {
     ssao::GtaoSettings settings(float radius) const;
     // Checks that need no scene; throws obscura::Error naming the flag.
     void validate(const std::string& aovDir) const;
+    // Every file renderGtaoFrames writes to `aovDir` with these flags (the numbered frames' too), and ao.exr.
+    std::vector<std::string> aovFiles(const std::string& aovDir) const;
 };
 
 // --gtao-sampling (ssao::gtaoSamplingName's words) and --gtao-mip-ratio on `app`, the first's help starting with `lead`
