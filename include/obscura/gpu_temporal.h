@@ -100,6 +100,7 @@ private:
     GtaoTemporalFormats formats_;
     GtaoTemporalDispatch dispatch_;
     int frame_ = 0;
+    int width_ = 0, height_ = 0;  // the frames' size, from the first frame rendered
     ssao::GtaoResult result_;
     std::unique_ptr<GtaoTemporalPasses> passes_;  // made for the first frame's size
     std::unique_ptr<Buffer> previousDepth_;       // the last frame's upload, read by the next frame

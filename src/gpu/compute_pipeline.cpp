@@ -173,6 +173,14 @@ void ComputePipeline::dispatch(VkCommandBuffer cmd, std::initializer_list<Resour
             fail("Vulkan device '" + context_.info.name + "'",
                  "binds at most " + std::to_string(maxRange) + " bytes as one storage buffer (maxStorageBufferRange), "
                  "and shader " + name_ + " needs " + std::to_string(r.bytes) + ": the image is too large for it");
+    // So is a group count past maxComputeWorkGroupCount (VUID-vkCmdDispatch-groupCountY-00387): the row blur's
+    // one group per row, for an image 70000 rows tall, which the public functions took.
+    const std::uint32_t* maxGroups = context_.properties.limits.maxComputeWorkGroupCount;
+    if (groupsX > maxGroups[0] || groupsY > maxGroups[1])
+        fail("Vulkan device '" + context_.info.name + "'",
+             "dispatches at most " + std::to_string(maxGroups[0]) + " x " + std::to_string(maxGroups[1]) +
+                 " workgroups (maxComputeWorkGroupCount), and shader " + name_ + " needs " + std::to_string(groupsX) +
+                 " x " + std::to_string(groupsY) + ": the image is too large for it");
     const VkDescriptorSet set = sets_[used_++];
     std::vector<VkDescriptorBufferInfo> buffers(resources.size());
     std::vector<VkDescriptorImageInfo> images(resources.size());

@@ -417,15 +417,22 @@ const ssao::GtaoResult& GtaoTemporal::frame(const GBuffer& g) {
     // ssao::GtaoTemporal::frame's checks and messages.
     g.validateDepthNormalShape("gtao temporal");
     g.validatePixels("gtao temporal");  // the CPU's check of the depths and normals; the shaders check nothing
-    if (frame_ > 0 && (w != passes_->width() || h != passes_->height()))
-        fail("gtao temporal", "frame size changed from " + std::to_string(passes_->width()) + "x" +
-                                  std::to_string(passes_->height()) + " to " + std::to_string(w) + "x" +
-                                  std::to_string(h));
-    if (w < 1 || h < 1) fail("gtao temporal", "G-buffer is empty");  // nothing to upload
+    if (frame_ > 0 && (w != width_ || h != height_))
+        fail("gtao temporal", "frame size changed from " + std::to_string(width_) + "x" + std::to_string(height_) +
+                                  " to " + std::to_string(w) + "x" + std::to_string(h));
+    const bool bentNormals = outputs_ == GtaoOutputs::VisibilityAndBentNormal;
+    if (w < 1 || h < 1) {  // the CPU's answer, empty images; nothing to upload
+        result_.visibility = Image(w, h, 1);
+        result_.bentNormal = bentNormals ? Image(w, h, 3) : Image();
+        width_ = w, height_ = h;
+        ++frame_;
+        return result_;
+    }
 
     Context::Impl& c = context_->impl();
-    const bool bentNormals = outputs_ == GtaoOutputs::VisibilityAndBentNormal;
-    if (!passes_)
+    // Made for the first frame rendered: a first frame that failed (a buffer past the device's range) once
+    // left passes of its size behind, which the next frame of another size ran into.
+    if (!passes_ || passes_->width() != w || passes_->height() != h)
         passes_ = std::make_unique<GtaoTemporalPasses>(c, settings_, temporal_, w, h,
                                                        variantOf(outputs_, formats_, dispatch_));
     const std::size_t pixels = std::size_t(w) * std::size_t(h);
@@ -440,6 +447,7 @@ const ssao::GtaoResult& GtaoTemporal::frame(const GBuffer& g) {
         result_.bentNormal = Image(w, h, 3);
         download(c, passes_->bentNormal(), result_.bentNormal.pixels.data(), 3 * pixels * sizeof(float));
     }
+    width_ = w, height_ = h;
     ++frame_;
     return result_;
 }

@@ -27,10 +27,10 @@ Image multiBounce(Context& context, const GBuffer& g, const Image& visibility) {
     const auto matches = [&](const Image& image, int channels) {
         return image.width == w && image.height == h && image.channels >= channels;
     };
-    if (w < 1 || h < 1 || !matches(g.depth, 1) || !matches(g.albedo, 3) || !matches(visibility, 1) ||
-        visibility.channels != 1)
+    if (!matches(g.depth, 1) || !matches(g.albedo, 3) || !matches(visibility, 1) || visibility.channels != 1)
         fail("multi-bounce", "visibility (1 channel), depth and albedo (3 channels) must match the " +
                                  std::to_string(w) + "x" + std::to_string(h) + " G-buffer");
+    if (w < 1 || h < 1) return Image(w, h, 3);  // as the other passes answer an empty G-buffer: no 0-byte buffers
     Context::Impl& c = context.impl();
     const std::size_t pixels = g.depth.pixelCount();
     const Buffer depth = uploadChannels(c, g.depth, 1);

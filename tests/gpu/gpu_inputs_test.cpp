@@ -16,6 +16,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 
 namespace obscura::gpu {
@@ -49,6 +51,76 @@ TEST(GpuInputs, ABufferPastTheStorageBufferRangeIsRefused) {
     // The context still works after the refusal.
     const render::Frame small = shade(context, facingPlane(8, 4), {}, Image(), Image());
     EXPECT_EQ(small.color.width, 8);
+    EXPECT_EQ(testing::validationReport(context), "");
+}
+
+// A first spatio-temporal frame that failed (its 4096x2736 normals past lavapipe's storage-buffer range) left
+// passes of its size behind: the next frame, 16x8, skipped the size check and came back 4096x2736, of stale
+// device memory (max |GPU - CPU| 1 over its 16x8 pixels). On a device that shades the large frame, the 16x8
+// one is refused as a change of size, as on the CPU.
+TEST(GpuInputs, ATemporalFrameThatFailedLeavesNothingBehind) {
+    OBSCURA_GPU_CONTEXT(context);
+    ssao::GtaoSettings s;
+    s.sliceCount = 1;
+    s.stepsPerSide = 1;
+    ssao::GtaoTemporalSettings t;
+    t.packedHistory = true;
+    GtaoTemporal temporal(context, s, t, GtaoOutputs::Visibility);
+    const std::string big = testing::errorMessage([&] { temporal.frame(facingPlane(4096, 2736)); });
+    const GBuffer small = facingPlane(16, 8);
+    if (big == "no error") {
+        EXPECT_EQ(testing::errorMessage([&] { temporal.frame(small); }),
+                  "gtao temporal: frame size changed from 4096x2736 to 16x8");
+    } else {
+        EXPECT_NE(big.find("maxStorageBufferRange"), std::string::npos) << big;
+        EXPECT_EQ(temporal.framesRendered(), 0);
+        ssao::GtaoTemporal cpu(s, t);
+        const Image expected = cpu.frame(small).visibility;
+        const Image got = temporal.frame(small).visibility;
+        ASSERT_EQ(got.width, 16);
+        ASSERT_EQ(got.height, 8);
+        double worst = 0;
+        for (std::size_t i = 0; i < got.pixels.size(); ++i)
+            worst = std::max(worst, std::fabs(double(got.pixels[i]) - double(expected.pixels[i])));
+        EXPECT_LT(worst, 1e-4);
+        EXPECT_EQ(temporal.historyLength().width, 16);
+    }
+    EXPECT_EQ(testing::validationReport(context), "");
+}
+
+// A 0x0 G-buffer: the CPU's GtaoTemporal answers empty images and counts the frame, the GPU's threw "G-buffer
+// is empty"; gpu::multiBounce refused 0x0 inputs that match, saying they did not.
+TEST(GpuInputs, AnEmptyTemporalFrameAndMultiBounceAnswerAsTheCpu) {
+    OBSCURA_GPU_CONTEXT(context);
+    const GBuffer e = facingPlane(0, 0);
+    GtaoTemporal temporal(context, ssao::GtaoSettings{}, ssao::GtaoTemporalSettings{});
+    ssao::GtaoTemporal cpu(ssao::GtaoSettings{}, ssao::GtaoTemporalSettings{});
+    const ssao::GtaoResult& r = temporal.frame(e);
+    const ssao::GtaoResult& rc = cpu.frame(e);
+    EXPECT_EQ(r.visibility.width, rc.visibility.width);
+    EXPECT_EQ(r.visibility.channels, rc.visibility.channels);
+    EXPECT_EQ(r.bentNormal.channels, rc.bentNormal.channels);
+    EXPECT_EQ(temporal.framesRendered(), cpu.framesRendered());
+    testing::expectSameError([&] { cpu.frame(facingPlane(4, 4)); }, [&] { temporal.frame(facingPlane(4, 4)); });
+    EXPECT_EQ(multiBounce(context, e, Image(0, 0, 1)).width, 0);
+    EXPECT_EQ(testing::validationReport(context), "");
+}
+
+// The separable blur's row pass dispatches a workgroup per row: for a 1x70000 image that is past every
+// device's maxComputeWorkGroupCount of 65535 (VUID-vkCmdDispatch-groupCountY-00387). Refused by name, with no
+// validation message; a device with a larger count blurs it as the CPU does.
+TEST(GpuInputs, AGroupCountPastTheDeviceLimitIsRefused) {
+    OBSCURA_GPU_CONTEXT(context);
+    const std::size_t before = context.validationMessages().size();
+    const GBuffer tall = facingPlane(1, 70000);
+    ssao::BilateralSettings blur;
+    blur.mode = ssao::BlurMode::Separable;
+    const Image ao(1, 70000, 1, 0.5f);
+    const std::string m = testing::errorMessage([&] { bilateralFilter(context, ao, tall, blur); });
+    if (m != "no error") {
+        EXPECT_NE(m.find("maxComputeWorkGroupCount"), std::string::npos) << m;
+    }
+    EXPECT_EQ(context.validationMessages().size(), before) << testing::validationReport(context);
     EXPECT_EQ(testing::validationReport(context), "");
 }
 
