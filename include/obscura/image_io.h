@@ -19,6 +19,13 @@ namespace obscura {
 Image readImage(const std::string& path);
 
 Image readExr(const std::string& path);
+// The EXR as its display window frames it, for images whose pixels mean positions in a frame (an
+// equirectangular environment): the data window's pixels at their place, 0 outside it, and what lies outside
+// the display window (overscan) left out. readExr gives the data window alone, which for a map a compositor
+// cropped to its non-black pixels put the sky's rows where the ground's go.
+Image readExrDisplayWindow(const std::string& path);
+// readImage, but an .exr by readExrDisplayWindow: what an environment map is read with.
+Image readEnvironmentImage(const std::string& path);
 // Writes every channel as 32-bit float. Channel names come from image.channelNames when it has one per
 // channel, otherwise R,G,B,A (up to 4) or Y (1 channel).
 void writeExr(const std::string& path, const Image& image);

@@ -348,6 +348,36 @@ Image readExr(const std::string& path) {
     }
 }
 
+Image readExrDisplayWindow(const std::string& path) {
+    Image data = readExr(path);  // every check, and the data window's pixels
+    Imath::Box2i display, window;
+    try {
+        Imf::InputFile file(path.c_str(), exrThreads());
+        display = file.header().displayWindow();
+        window = file.header().dataWindow();
+    } catch (const std::exception& e) {
+        fail(path, e.what());
+    }
+    if (display == window) return data;
+    const std::int64_t width = std::int64_t(display.max.x) - display.min.x + 1;
+    const std::int64_t height = std::int64_t(display.max.y) - display.min.y + 1;
+    if (width < 1 || height < 1 || width > kMaxImageSide || height > kMaxImageSide)
+        fail(path, "display window is " + std::to_string(width) + "x" + std::to_string(height) + ", outside [1, " +
+                       std::to_string(kMaxImageSide) + "] per side");
+    Image out(int(width), int(height), data.channels, 0.0f);
+    out.channelNames = data.channelNames;
+    for (int y = 0; y < data.height; ++y) {
+        const std::int64_t oy = std::int64_t(window.min.y) + y - display.min.y;
+        if (oy < 0 || oy >= height) continue;
+        for (int x = 0; x < data.width; ++x) {
+            const std::int64_t ox = std::int64_t(window.min.x) + x - display.min.x;
+            if (ox < 0 || ox >= width) continue;
+            for (int c = 0; c < data.channels; ++c) out.at(int(ox), int(oy), c) = data.at(x, y, c);
+        }
+    }
+    return out;
+}
+
 void writeExr(const std::string& path, const Image& image) {
     if (image.empty()) fail(path, "image has zero size");
     assert(image.pixels.size() == image.pixelCount() * std::size_t(image.channels));

@@ -33,6 +33,10 @@ Image readImage(const std::string& path) {
     fail(path, "unknown image format '" + ext + "' (expected .exr, .png or .hdr)");
 }
 
+Image readEnvironmentImage(const std::string& path) {
+    return fileExtension(path) == ".exr" ? readExrDisplayWindow(path) : readImage(path);
+}
+
 namespace {
 
 std::string temporaryPathFor(const std::string& path) {

@@ -3,10 +3,12 @@
 #include "obscura/error.h"
 #include "obscura/image_io.h"
 #include "obscura/parallel.h"
+#include "obscura/render.h"
 
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfThreading.h>
 #include <OpenEXR/ImfTileDescription.h>
 #include <OpenEXR/ImfTiledOutputFile.h>
@@ -367,6 +369,53 @@ TEST_F(ImageIoTest, ExrReadsHalfAndUintChannelsAndHonoursDataWindow) {
         }
     }
     EXPECT_TRUE(std::signbit(image.at(2, 0, 0))); // -0 survives
+}
+
+// An environment's pixels are positions in its panorama, which the display window frames: a map cropped to
+// its non-black rows (display 64x32, data rows 0-15, the sky at 1) was read as the data window alone, 64x16,
+// and lit the ground as the sky (E(down) = pi, for 0). Read into the display window it is the full-frame map:
+// the same irradiance, to float rounding. Overscan (a data window past the display window) is cut off.
+TEST_F(ImageIoTest, EnvironmentsAreReadInTheirDisplayWindow) {
+    auto write = [&](const std::string& name, Imath::Box2i display, Imath::Box2i data) {
+        Imf::Header header(display, data);
+        const int w = data.max.x - data.min.x + 1, h = data.max.y - data.min.y + 1;
+        std::vector<float> values(std::size_t(w) * std::size_t(h));
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) values[std::size_t(y) * std::size_t(w) + std::size_t(x)] = float(data.min.y + y < 16);
+        Imf::FrameBuffer frame;
+        for (const char* c : {"R", "G", "B"}) {
+            header.channels().insert(c, Imf::Channel(Imf::FLOAT));
+            // OpenEXR addresses a slice from the window's origin: base = first pixel - origin.
+            char* base = reinterpret_cast<char*>(values.data()) -
+                         (std::ptrdiff_t(data.min.y) * w + data.min.x) * std::ptrdiff_t(sizeof(float));
+            frame.insert(c, Imf::Slice(Imf::FLOAT, base, sizeof(float), sizeof(float) * std::size_t(w)));
+        }
+        Imf::OutputFile out(file(name).c_str(), header);
+        out.setFrameBuffer(frame);
+        out.writePixels(h);
+        return file(name);
+    };
+    Image full(64, 32, 3, 0.0f);
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 64; ++x)
+            for (int c = 0; c < 3; ++c) full.at(x, y, c) = 1.0f;
+    const obscura::render::SH9 reference = obscura::render::projectEnvironment(full);
+    const obscura::Vec3 up{0, 1, 0}, down{0, -1, 0};
+    const std::string cropped = write("cropped.exr", Imath::Box2i({0, 0}, {63, 31}), Imath::Box2i({0, 0}, {63, 15}));
+    EXPECT_EQ(obscura::readExr(cropped).height, 16);  // readExr: the data window, as before
+    const Image env = obscura::readEnvironmentImage(cropped);
+    ASSERT_EQ(env.width, 64);
+    ASSERT_EQ(env.height, 32);
+    const obscura::render::SH9 sh = obscura::render::projectEnvironment(env);
+    EXPECT_NEAR(obscura::render::irradiance(sh, up).x, obscura::render::irradiance(reference, up).x, 1e-5f);
+    EXPECT_NEAR(obscura::render::irradiance(sh, down).x, obscura::render::irradiance(reference, down).x, 1e-5f);
+    EXPECT_LT(obscura::render::irradiance(sh, down).x, 0.05f);
+    // Overscan: 4 pixels past every edge of the display window, left out.
+    const std::string overscan = write("overscan.exr", Imath::Box2i({0, 0}, {63, 31}), Imath::Box2i({-4, -4}, {67, 35}));
+    const Image o = obscura::readEnvironmentImage(overscan);
+    ASSERT_EQ(o.width, 64);
+    ASSERT_EQ(o.height, 32);
+    EXPECT_EQ(o.pixels, full.pixels);
 }
 
 // A header-only file claiming a data window of 8388608x256 (2^31 floats, 8 GiB) once had a whole band sized

@@ -145,7 +145,7 @@ void run(const RenderOptions& o) {
     LoadedScene loaded = loadSceneArgument(o.scene);
     Camera camera = o.camera.apply(loaded);
 
-    Image environment = o.env.empty() ? render::proceduralSky() : readImage(o.env);
+    Image environment = o.env.empty() ? render::proceduralSky() : readEnvironmentImage(o.env);
     if (environment.channels < 3) fail(o.env, "environment needs 3 colour channels, has " + std::to_string(environment.channels));
     render::SH9 sh;
     try {
