@@ -92,6 +92,7 @@ Camera cameraFromJson(const std::string& text, const std::string& what) {
 
 Camera readCameraJson(const std::string& path) {
     if (!std::filesystem::exists(path)) fail(path, "no such file");
+    if (std::filesystem::is_directory(path)) fail(path, "is a directory, not a camera JSON file");
     std::ifstream in(path);
     if (!in) fail(path, "cannot open");
     std::stringstream ss;

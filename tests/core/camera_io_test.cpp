@@ -56,6 +56,14 @@ TEST(CameraIo, ErrorsNameTheFileAndProblem) {
         }
     }
     EXPECT_THROW(readCameraJson("/nonexistent/cam.json"), Error);
+    // A directory was "not a JSON object".
+    const std::string dir = ::testing::TempDir();
+    try {
+        readCameraJson(dir);
+        FAIL() << "accepted a directory";
+    } catch (const Error& e) {
+        EXPECT_EQ(std::string(e.what()), dir + ": is a directory, not a camera JSON file");
+    }
 }
 
 // Sizes were read with get<int>(): 4294967360 wrapped to 64, 64.9 was cut to 64 and 1e30 was undefined.

@@ -768,13 +768,33 @@ TEST_F(ImageIoTest, GarbageBytesAreRejectedPerFormat) {
     }
 }
 
-TEST_F(ImageIoTest, CorruptPngAfterAGoodSignatureReportsStbReason) {
+TEST_F(ImageIoTest, CorruptPngAfterAGoodSignatureIsRefused) {
     const std::string path = file("corrupt.png");
     obscura::writePng(path, Image(8, 8, 3, 0.5f));
     std::string bytes = readBytes(path);
     bytes.resize(40); // signature and part of IHDR survive, the rest is gone
     writeBytes(path, bytes);
     expectMessage(thrownMessage([&] { obscura::readPng(path); }), path, "cannot read PNG");
+}
+
+// stb_image checks no chunk CRC (nor zlib's Adler-32): a PNG with one flipped bit in its pixel data decoded
+// to other pixels without an error. Every chunk's CRC is checked now; the same bytes with the bit back read.
+TEST_F(ImageIoTest, APngThatFailsAChunkCrcIsRefused) {
+    const std::string path = file("flipped.png");
+    Image image(8, 8, 3);
+    for (std::size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] = float(i % 7) / 7.0f;
+    obscura::writePng(path, image);
+    std::string bytes = readBytes(path);
+    const std::size_t idat = bytes.find("IDAT");
+    ASSERT_NE(idat, std::string::npos);
+    const std::size_t at = idat + 4 + 6;  // inside the compressed data, past its 2-byte zlib header
+    bytes[at] = char(bytes[at] ^ 0x10);
+    writeBytes(path, bytes);
+    expectMessage(thrownMessage([&] { obscura::readPng(path); }), path, "chunk 'IDAT' at byte " + std::to_string(idat - 4) +
+                                                                       " fails its CRC");
+    bytes[at] = char(bytes[at] ^ 0x10);
+    writeBytes(path, bytes);
+    EXPECT_EQ(obscura::readPng(path).width, 8);
 }
 
 TEST_F(ImageIoTest, PngDataNamedHdrIsNotMistakenForHdr) {
