@@ -98,7 +98,8 @@ public:
     bool validation() const;
     // Every validation message so far ("severity: id: text"), oldest first; empty without validation.
     std::vector<std::string> validationMessages() const;
-    // GPU time of the last pass's dispatches, from timestamp queries, ms; -1 when timestamps are missing.
+    // GPU time of the last pass's dispatches, from timestamp queries, ms; -1 when timestamps are missing. A
+    // call that submits nothing (a blur of BlurMode::None, an empty G-buffer) leaves the previous value.
     double lastPassMs() const;
     // Every pipeline the context has made so far, by name, with what the driver said of it; empty unless
     // device().pipelineStatistics.
