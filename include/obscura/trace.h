@@ -10,6 +10,7 @@
 #include "obscura/sampling.h"
 #include "obscura/scene.h"
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -80,8 +81,9 @@ public:
     Vec3 hitPoint(Vec3 origin, Vec3 direction, const Hit& hit) const { return origin + direction * hit.t; }
     // The hit's point from its barycentrics on the world-space triangle: on the triangle's plane to the
     // rounding of its own coordinates, where hitPoint is off it by the rounding of the ray's origin (a camera
-    // 100 km out puts that a centimetre or more off).
-    Vec3 surfacePoint(const Hit& hit) const;
+    // 100 km out puts that a centimetre or more off). With `offset`, also selfHitOffset for rays leaving it,
+    // from the same world-space triangle.
+    Vec3 surfacePoint(const Hit& hit, float* offset = nullptr) const;
     // Distance to move a ray origin along the geometric normal so that the ray does not hit the triangle it starts
     // on (see trace::selfHitOffset). For a point p on hit's triangle, found by a ray from `origin`.
     float selfHitOffset(const Hit& hit, Vec3 origin, Vec3 p) const;
@@ -93,6 +95,8 @@ public:
     void* embreeScene() const;
 
 private:
+    std::array<Vec3, 3> worldTriangle(const Hit& hit) const;  // the hit triangle's corners in world space
+
     struct Impl;
     std::unique_ptr<Impl> impl_;
     const Scene& scene_;

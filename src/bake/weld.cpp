@@ -157,7 +157,7 @@ void splitCreases(WeldedMesh& out, const std::vector<std::uint32_t>& fileCorner,
                                                            out.positions[out.indices[3 * t + 2]]));
         out.blends.push_back({fileCorner[c], copyOf[c], area});
     }
-    std::sort(out.blends.begin(), out.blends.end(), [](const WeldedMesh::Blend& a, const WeldedMesh::Blend& b) {
+    std::stable_sort(out.blends.begin(), out.blends.end(), [](const WeldedMesh::Blend& a, const WeldedMesh::Blend& b) {
         return a.file != b.file ? a.file < b.file : a.copy < b.copy;
     });
     // One entry per (file vertex, copy), the areas summed in corner order: the same bits for any thread count.

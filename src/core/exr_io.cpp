@@ -275,13 +275,18 @@ std::vector<std::string> exrChannelNames(const std::string& path, const Image& i
 
 } // namespace
 
-Image readExr(const std::string& path) {
+namespace {
+
+// readExr, and the file's display and data windows where asked for.
+Image readExrWindows(const std::string& path, Imath::Box2i* displayWindow, Imath::Box2i* dataWindow) {
     requireRegularFile(path);
     try {
         checkDataWindowBeforeOpening(path);
         Imf::InputFile file(path.c_str(), exrThreads());
         const Imf::Header& header = file.header();
         const Imath::Box2i window = header.dataWindow();
+        if (displayWindow) *displayWindow = header.displayWindow();
+        if (dataWindow) *dataWindow = window;
         const std::int64_t width = std::int64_t(window.max.x) - window.min.x + 1;
         const std::int64_t height = std::int64_t(window.max.y) - window.min.y + 1;
 
@@ -348,16 +353,13 @@ Image readExr(const std::string& path) {
     }
 }
 
+} // namespace
+
+Image readExr(const std::string& path) { return readExrWindows(path, nullptr, nullptr); }
+
 Image readExrDisplayWindow(const std::string& path) {
-    Image data = readExr(path);  // every check, and the data window's pixels
     Imath::Box2i display, window;
-    try {
-        Imf::InputFile file(path.c_str(), exrThreads());
-        display = file.header().displayWindow();
-        window = file.header().dataWindow();
-    } catch (const std::exception& e) {
-        fail(path, e.what());
-    }
+    Image data = readExrWindows(path, &display, &window);
     if (display == window) return data;
     const std::int64_t width = std::int64_t(display.max.x) - display.min.x + 1;
     const std::int64_t height = std::int64_t(display.max.y) - display.min.y + 1;

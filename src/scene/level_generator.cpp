@@ -33,7 +33,7 @@ void checkLevelTriangles(const std::string& flag, long long triangles) {
 }
 
 Scene generateLevel(std::size_t triangles, std::uint32_t seed) {
-    triangles = std::max<std::size_t>(triangles, 4000);
+    triangles = std::max<std::size_t>(triangles, std::size_t(kMinLevelTriangles));
     Scene scene;
     Random rng{hash32(seed)};
     const float half = 150.0f;

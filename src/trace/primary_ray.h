@@ -33,9 +33,8 @@ inline bool pixelSurface(const Tracer& tracer, const GBuffer& g, const Mat4& wor
     PrimaryRay ray = primaryRay(g.camera, worldFromView, float(x) + 0.5f, float(y) + 0.5f);
     Hit hit;
     if (!tracer.intersect(ray.origin, ray.direction, ray.tnear, ray.tfar, hit)) return false;
-    p = tracer.surfacePoint(hit);
+    p = tracer.surfacePoint(hit, &offset);
     ng = dot(hit.geometricNormal, ray.direction) > 0.0f ? -hit.geometricNormal : hit.geometricNormal;
-    offset = tracer.selfHitOffset(hit, p, p);
     n = normalize(transformVector(worldFromView, g.viewNormal(x, y)));
     return true;
 }

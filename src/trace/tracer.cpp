@@ -208,14 +208,20 @@ Vec3 Tracer::shadingNormal(const Hit& hit) const {
     return normalize(transformVector(impl_->normalFromObject[hit.instance], n));
 }
 
-Vec3 Tracer::surfacePoint(const Hit& hit) const {
+std::array<Vec3, 3> Tracer::worldTriangle(const Hit& hit) const {
     const Instance& inst = scene_.instances[hit.instance];
     const Mesh& mesh = scene_.meshes[inst.mesh];
     const std::uint32_t* tri = &mesh.indices[3 * std::size_t(hit.primitive)];
-    const Vec3 a = transformPoint(inst.worldFromObject, mesh.positions[tri[0]]);
-    const Vec3 b = transformPoint(inst.worldFromObject, mesh.positions[tri[1]]);
-    const Vec3 c = transformPoint(inst.worldFromObject, mesh.positions[tri[2]]);
-    return a * (1.0f - hit.u - hit.v) + b * hit.u + c * hit.v;
+    return {transformPoint(inst.worldFromObject, mesh.positions[tri[0]]),
+            transformPoint(inst.worldFromObject, mesh.positions[tri[1]]),
+            transformPoint(inst.worldFromObject, mesh.positions[tri[2]])};
+}
+
+Vec3 Tracer::surfacePoint(const Hit& hit, float* offset) const {
+    const auto [a, b, c] = worldTriangle(hit);
+    const Vec3 p = a * (1.0f - hit.u - hit.v) + b * hit.u + c * hit.v;
+    if (offset) *offset = trace::selfHitOffset(a, b, c, p, 0.0f);
+    return p;
 }
 
 Vec3 Tracer::albedo(const Hit& hit) const { return scene_.meshes[scene_.instances[hit.instance].mesh].baseColor; }
@@ -238,13 +244,8 @@ float selfHitOffset(Vec3 a, Vec3 b, Vec3 c, Vec3 p, float scale) {
 }
 
 float Tracer::selfHitOffset(const Hit& hit, Vec3 origin, Vec3 p) const {
-    const Instance& inst = scene_.instances[hit.instance];
-    const Mesh& mesh = scene_.meshes[inst.mesh];
-    const std::uint32_t* tri = &mesh.indices[3 * std::size_t(hit.primitive)];
-    return trace::selfHitOffset(transformPoint(inst.worldFromObject, mesh.positions[tri[0]]),
-                                transformPoint(inst.worldFromObject, mesh.positions[tri[1]]),
-                                transformPoint(inst.worldFromObject, mesh.positions[tri[2]]), p,
-                                maxAbsComponent(origin));
+    const auto [a, b, c] = worldTriangle(hit);
+    return trace::selfHitOffset(a, b, c, p, maxAbsComponent(origin));
 }
 
 float Tracer::selfHitOffset(Vec3 p, Vec3 ng) const {

@@ -182,9 +182,7 @@ void run(const AoOptions& o) {
         mo.blur = blur;
         mo.gtao = o.gtao.value;
         mo.gtaoMipRatio = o.gtaoMipRatio;
-        if (o.gtaoMipRatio > 0.0f && !method.readsMipRatio)
-            std::fprintf(stderr, "obscura: warning: --gtao-mip-ratio: method %s does not read it (gtao-mip, "
-                                 "gtao-planar-mip and the planar-nearest ones do); ignored\n", o.method.c_str());
+        warnGtaoMipRatioUnread(o.gtaoMipRatio, method.readsMipRatio, "method " + o.method + " does not read it");
         if (radiusGiven) mo.radius = alchemy.radius;  // else the method's own (1 m)
         mo.gpu = context.get();
         ao = method.compute(g, mo);

@@ -109,10 +109,9 @@ void run(const CompareOptions& o) {
     mo.gtaoMipRatio = o.gtaoMipRatio;
     mo.radius = o.radius;
     mo.seed = o.seed;
-    if (o.gtaoMipRatio > 0.0f &&
-        std::none_of(methods.begin(), methods.end(), [](const eval::AoMethod* m) { return m->readsMipRatio; }))
-        std::fprintf(stderr, "obscura: warning: --gtao-mip-ratio: no method of --methods reads it (gtao-mip, "
-                             "gtao-planar-mip and the planar-nearest ones do); ignored\n");
+    warnGtaoMipRatioUnread(o.gtaoMipRatio,
+                           std::any_of(methods.begin(), methods.end(), [](const eval::AoMethod* m) { return m->readsMipRatio; }),
+                           "no method of --methods reads it");
     // GTAO takes whole slices of 2 x steps samples, 1 to 64 of them: say so where --samples asked for another count.
     for (const eval::AoMethod* m : methods)
         if (o.samples > 0 && m->samplesPerPixel(mo) != o.samples)

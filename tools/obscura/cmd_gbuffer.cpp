@@ -58,8 +58,7 @@ void run(const GBufferOptions& o) {
                     : std::vector<std::string>{o.output, fs::path(o.output).replace_extension(".camera.json").string()};
     std::error_code ec;
     if (toDirectory) {
-        if (o.output.empty()) fail("-o", "directory is empty");
-        if (fs::exists(dir, ec) && !fs::is_directory(dir, ec)) fail(o.output, "exists and is not a directory");
+        checkOutputDirectory("-o", o.output, false);
         for (const std::string& path : outputs)
             if (fs::is_directory(path, ec)) fail(path, "is a directory");
     } else {

@@ -80,6 +80,12 @@ void addGtaoMipRatioOverride(CLI::App& app, float& mipRatio) {
         ->capture_default_str();
 }
 
+void warnGtaoMipRatioUnread(float mipRatio, bool read, const std::string& what) {
+    if (mipRatio > 0.0f && !read)
+        std::fprintf(stderr, "obscura: warning: --gtao-mip-ratio: %s (gtao-mip, gtao-planar-mip and the "
+                             "planar-nearest ones do); ignored\n", what.c_str());
+}
+
 void validateGtaoMipRatioOverride(float mipRatio) {
     if (mipRatio != 0.0f && !(mipRatio >= 2.0f && mipRatio <= 64.0f))
         fail("--gtao-mip-ratio", "must be in [2, 64], or " + defaultMipRatioText());

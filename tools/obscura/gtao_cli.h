@@ -75,6 +75,8 @@ ssao::GtaoSampling gtaoSampling(const std::string& sampling);
 void addGtaoMipRatioOverride(CLI::App& app, float& mipRatio);
 // Throws obscura::Error naming --gtao-mip-ratio unless it is 0 or in [2, 64].
 void validateGtaoMipRatioOverride(float mipRatio);
+// Warns that --gtao-mip-ratio is ignored when it is given and `read` is false (no method run reads it).
+void warnGtaoMipRatioUnread(float mipRatio, bool read, const std::string& what);
 
 // Frame k of the built-in camera path: `base` turned k * 0.5 degrees about the vertical through its target.
 Camera gtaoPathCamera(const Camera& base, int k);
