@@ -11,6 +11,7 @@
 #include <array>
 #include <cassert>
 #include <cerrno>
+#include <charconv>
 #include <climits>
 #include <cmath>
 #include <cstdint>
@@ -144,9 +145,29 @@ public:
     Image read() {
         const std::string magic = line();
         if (magic != "#?RADIANCE" && magic != "#?RGBE") fail(path_, "not a Radiance HDR file (missing #?RADIANCE header)");
+        // EXPOSURE and COLORCORR give what the file's values were multiplied by, one line per adjustment
+        // (they multiply up); the radiance an environment lights with is the values divided by the product.
+        std::array<double, 3> factor{1.0, 1.0, 1.0};
         for (std::string header = line(); !header.empty(); header = line()) {
             if (header.rfind("FORMAT=", 0) == 0 && header != "FORMAT=32-bit_rle_rgbe")
                 fail(path_, "unsupported Radiance HDR pixel format '" + header.substr(7) + "' (only 32-bit_rle_rgbe)");
+            if (header.rfind("EXPOSURE=", 0) == 0) {
+                const double e = headerFactors(header, 1)[0];
+                for (double& f : factor) f *= e;
+            } else if (header.rfind("COLORCORR=", 0) == 0) {
+                const std::array<double, 3> c = headerFactors(header, 3);
+                for (std::size_t i = 0; i < 3; ++i) factor[i] *= c[i];
+            }
+        }
+        std::array<float, 3> unscale{};
+        for (std::size_t i = 0; i < 3; ++i) {
+            unscale[i] = float(1.0 / factor[i]);
+            if (!(unscale[i] > 0.0f) || !std::isfinite(unscale[i])) {
+                char text[32];
+                std::snprintf(text, sizeof text, "%g", factor[i]);
+                fail(path_, std::string("Radiance HDR EXPOSURE/COLORCORR lines multiply to ") + text +
+                                ", past the float range");
+            }
         }
         const std::string resolution = line();
         int height = 0, width = 0;
@@ -175,10 +196,34 @@ public:
                 for (int c = 0; c < 3; ++c) out[x * 3 + c] = float(rgbe[c]) * scale;
             }
         }
+        if (unscale != std::array<float, 3>{1.0f, 1.0f, 1.0f})
+            for (std::size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] *= unscale[i % 3];
         return image;
     }
 
 private:
+    // The positive numbers after a header line's '=': one for EXPOSURE, three for COLORCORR.
+    std::array<double, 3> headerFactors(const std::string& header, int count) const {
+        std::array<double, 3> values{1.0, 1.0, 1.0};
+        const std::string text = header.substr(header.find('=') + 1);
+        const char* p = text.c_str();
+        for (int i = 0; i < count; ++i) {
+            while (*p == ' ' || *p == '\t') ++p;
+            double v = 0.0;
+            const auto [end, error] = std::from_chars(p, text.c_str() + text.size(), v);
+            if (error != std::errc() || !(v > 0.0) || !std::isfinite(v))
+                fail(path_, "Radiance HDR header '" + header + "' needs " +
+                                (count == 1 ? "a positive number" : "three positive numbers"));
+            values[std::size_t(i)] = v;
+            p = end;
+        }
+        while (*p == ' ' || *p == '\t' || *p == '\r') ++p;
+        if (*p != '\0')
+            fail(path_, "Radiance HDR header '" + header + "' needs " +
+                            (count == 1 ? "a positive number" : "three positive numbers"));
+        return values;
+    }
+
     std::string line() {
         std::string text;
         while (true) {

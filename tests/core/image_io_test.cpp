@@ -725,6 +725,39 @@ TEST_F(ImageIoTest, HdrAtTheSmallestRunLengthSizeIsRead) {
                   "truncated Radiance HDR pixel data (254x3 needs at least 60 bytes, the file has 59)");
 }
 
+// Radiance's EXPOSURE and COLORCORR lines record multipliers already applied to the values (several
+// multiply up): the radiance is the values divided by their product. A map saved with exposure 2 once lit
+// the scene twice as bright.
+TEST_F(ImageIoTest, HdrExposureAndColourCorrectionAreDividedOut) {
+    constexpr int width = 3, height = 2;
+    const std::vector<float> rgb(std::size_t(width) * height * 3, 0.5f);
+    const std::string plain = file("plain.hdr");
+    ASSERT_NE(stbi_write_hdr(plain.c_str(), width, height, 3, rgb.data()), 0);
+    const std::string bytes = readBytes(plain);
+    const std::size_t blank = bytes.find("\n\n");
+    ASSERT_NE(blank, std::string::npos);
+    const auto withHeader = [&](const std::string& name, const std::string& lines) {
+        const std::string path = file(name);
+        writeBytes(path, bytes.substr(0, blank + 1) + lines + bytes.substr(blank + 1));
+        return path;
+    };
+
+    const Image exposed = obscura::readHdr(withHeader("exposed.hdr", "EXPOSURE=2\nEXPOSURE= 0.5e1\n"));
+    for (float v : exposed.pixels) EXPECT_EQ(v, 0.05f);
+    const Image corrected = obscura::readHdr(withHeader("corrected.hdr", "COLORCORR=1 0.25\t4\nEXPOSURE=.5\n"));
+    const float expected[3] = {1.0f, 4.0f, 0.25f};
+    for (std::size_t i = 0; i < corrected.pixels.size(); ++i) EXPECT_EQ(corrected.pixels[i], expected[i % 3]) << i;
+
+    for (const char* bad : {"EXPOSURE=0", "EXPOSURE=-1", "EXPOSURE=nan", "EXPOSURE=", "EXPOSURE=2 3", "COLORCORR=1 1"}) {
+        const std::string path = withHeader("bad.hdr", std::string(bad) + "\n");
+        expectMessage(thrownMessage([&] { obscura::readHdr(path); }), path,
+                      std::string("Radiance HDR header '") + bad + "' needs");
+    }
+    const std::string tiny = withHeader("tiny.hdr", "EXPOSURE=1e-30\nEXPOSURE=1e-30\n");
+    expectMessage(thrownMessage([&] { obscura::readHdr(tiny); }), tiny,
+                  "Radiance HDR EXPOSURE/COLORCORR lines multiply to 1e-60, past the float range");
+}
+
 TEST_F(ImageIoTest, ExtensionDispatchIsCaseInsensitive) {
     EXPECT_EQ(obscura::fileExtension("a/b.EXR"), ".exr");
     EXPECT_EQ(obscura::fileExtension("a.tar.Gz"), ".gz");
