@@ -27,6 +27,8 @@ namespace obscura::ssao {
 
 // eq. 18: cos of the visibility cone's half-angle for cosine-weighted AO, sqrt(1 - A).
 float visibilityConeCos(float ao);
+// eq. 18's half-angle alpha_v itself (radians, [0, pi/2]), precise for AO near 0 where acos of the cosine is not.
+float visibilityConeAngle(float ao);
 // eq. 26: cos of the specular cone's half-angle, 0.01^(r^2 / 2) = exp(-2.30259 r^2).
 float specularConeCos(float roughness);
 // Solid angle of the intersection of two spherical caps of half-angles alpha1, alpha2 (radians, [0, pi])
@@ -64,7 +66,8 @@ private:
 
 enum class SpecularOcclusionMode { Lut4, Lut3, Cone };
 
-// S for one shading point; all vectors unit, in one space; view points from the surface to the eye.
+// S for one shading point; all vectors unit, in one space; view points from the surface to the eye. Lut3 takes
+// the normal to be the bent normal (§6): it reads the 3-D table at beta = angle(b, w_r) for theta_o too.
 float specularOcclusion(SpecularOcclusionMode mode, float ao, Vec3 bentNormal, Vec3 normal, Vec3 view,
                         float roughness);
 

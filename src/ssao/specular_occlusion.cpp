@@ -27,7 +27,13 @@ constexpr double kPiD = 3.14159265358979323846;
 // Monte Carlo integration to about 0.01 (tests/ssao/specular_occlusion_test.cpp).
 constexpr int kSamples = 2048;
 
-float clampCos(float c) { return std::clamp(c, -1.0f, 1.0f); }
+// The angle between a and b whose (possibly clamped) dot product is c, as atan2 of |a x b| and c: acos(c) turns
+// the rounding of a cosine near 1 into 3.5e-4 rad, which the tables' steep low-roughness slopes magnify past the
+// GPU pass's bound. Neither vector need be unit; a zero one gives pi/2, as acos(0) did.
+float angleBetween(Vec3 a, Vec3 b, float c) {
+    const float s = length(cross(a, b));
+    return s == 0.0f && c == 0.0f ? 0.5f * kPi : std::atan2(s, c);
+}
 
 // Smith Lambda for GGX at a direction of polar cosine z.
 float smithLambda(float z, float alpha) {
@@ -109,6 +115,12 @@ double capIntersection(double a1, double a2, double beta) {
 } // namespace
 
 float visibilityConeCos(float ao) { return std::sqrt(std::clamp(1.0f - ao, 0.0f, 1.0f)); }
+
+float visibilityConeAngle(float ao) {
+    // atan2 of sin and cos (sin^2 = A), not acos(cos): near A = 0 the cosine rounds to 1 within 6e-8, which
+    // acos turns into 3.5e-4 rad, and a mirror-like GTSO changes by 16 per radian there.
+    return std::atan2(std::sqrt(std::clamp(ao, 0.0f, 1.0f)), visibilityConeCos(ao));
+}
 
 float specularConeCos(float roughness) { return std::exp(-2.30259f * roughness * roughness); }
 
@@ -225,14 +237,15 @@ float SpecularOcclusionTable::lookup(float alphaV, float beta, float roughness, 
 
 float specularOcclusion(SpecularOcclusionMode mode, float ao, Vec3 bentNormal, Vec3 normal, Vec3 view,
                         float roughness) {
-    const float alphaV = std::acos(visibilityConeCos(ao));
+    const float alphaV = visibilityConeAngle(ao);
     const float nv = std::clamp(dot(normal, view), 0.0f, 1.0f);
     const Vec3 reflected = normal * (2.0f * nv) - view;
-    const float thetaO = std::acos(nv);
-    const float beta = std::acos(clampCos(dot(bentNormal, reflected)));
+    const float thetaO = angleBetween(normal, view, nv);
+    const float beta = angleBetween(bentNormal, reflected, dot(bentNormal, reflected));
     switch (mode) {
     case SpecularOcclusionMode::Lut4: return SpecularOcclusionTable::fourD().lookup(alphaV, beta, roughness, thetaO);
-    case SpecularOcclusionMode::Lut3: return SpecularOcclusionTable::threeD().lookup(alphaV, thetaO, roughness, thetaO);
+    // §6: the 3-D table takes the normal to be the bent normal, so theta_o = beta (the cone's angle to w_r).
+    case SpecularOcclusionMode::Lut3: return SpecularOcclusionTable::threeD().lookup(alphaV, beta, roughness, beta);
     case SpecularOcclusionMode::Cone: return specularOcclusionCone(alphaV, beta, roughness);
     }
     return 1.0f;

@@ -151,7 +151,7 @@ void GtaoOptions::add(CLI::App& app) {
     app.add_flag("--multibounce", multibounce, "GTAO: near-field interreflection G(A, albedo) per colour channel");
     app.add_option("--specular-occlusion", specular,
                    "GTAO: specular occlusion from the bent-normal cone: none, lut4 (4-D GGX table), lut3 (3-D, "
-                   "bent normal = normal), cone (cone-cone intersection)")
+                   "the normal taken as the bent normal), cone (cone-cone intersection)")
         ->check(CLI::IsMember({"none", "lut4", "lut3", "cone"}))
         ->capture_default_str();
     app.add_option("--roughness", roughness, "GTAO specular occlusion: GGX roughness of every surface, [0, 1]")

@@ -17,6 +17,7 @@
 #extension GL_GOOGLE_include_directive : require
 
 #include "lighting_layouts.h"
+#include "vector_math.glsl"
 
 layout(local_size_x = kLightingWorkgroupX, local_size_y = kLightingWorkgroupY, local_size_z = 1) in;
 
@@ -93,7 +94,11 @@ float lookup(float alphaV, float beta, float roughness, float thetaO) {
     return r;
 }
 
-float clampCos(float c) { return clamp(c, -1.0, 1.0); }
+// The CPU's angleBetween: atan of |a x b| and the (clamped) cosine c, exact where acos of a cosine near 1 is not.
+float angleBetween(vec3 a, vec3 b, float c) {
+    const float s = length3(cross3(a, b));
+    return s == 0.0 && c == 0.0 ? 0.5 * kPi : atan(s, c);
+}
 
 // The CPU's capIntersection in float: two cap sectors less the kite of the triangle (axis 1, axis 2, a corner
 // of the lens), with the angles from the half-angle formulas and the excess from L'Huilier's theorem, so that a
@@ -143,14 +148,16 @@ void main() {
     const vec3 view = normalize(-vec3(c.x * k.viewFromPixelMulX + k.viewFromPixelAddX,
                                       c.y * k.viewFromPixelMulY + k.viewFromPixelAddY, -1.0));
     const vec3 n = vec3At(x, false), b = vec3At(x, true);
-    const float alphaV = acos(sqrt(clamp(1.0 - ao[x], 0.0, 1.0)));  // eq. 18
+    // Eq. 18, as the CPU's visibilityConeAngle: atan of sin and cos keeps alpha_v exact where A -> 0.
+    const float a = clamp(ao[x], 0.0, 1.0);
+    const float alphaV = atan(sqrt(a), sqrt(1.0 - a));
     const float nv = clamp(dot(n, view), 0.0, 1.0);
     const vec3 reflected = n * (2.0 * nv) - view;
-    const float thetaO = acos(nv);
-    const float beta = acos(clampCos(dot(b, reflected)));
+    const float thetaO = angleBetween(n, view, nv);
+    const float beta = angleBetween(b, reflected, dot(b, reflected));
     float s;
     if (kMode == kSpecularModeLut4) s = lookup(alphaV, beta, k.roughness, thetaO);
-    else if (kMode == kSpecularModeLut3) s = lookup(alphaV, thetaO, k.roughness, thetaO);
+    else if (kMode == kSpecularModeLut3) s = lookup(alphaV, beta, k.roughness, beta);  // n taken as b (§6)
     else s = specularOcclusionCone(alphaV, beta, k.roughness);
     result[x] = s;
 }
