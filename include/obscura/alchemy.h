@@ -41,7 +41,9 @@ enum class AlchemyFormulation { Paper, Chapter };
 struct AlchemySettings {
     AlchemyFormulation formulation = AlchemyFormulation::Paper;
     float radius = 0.5f;          // r (R in the chapter): m, (0, 1e4]; the paper's default 0.5 m
-    float intensity = 1.0f;       // sigma (paper) or scale (chapter): unitless, [0, 1000]; paper default 1
+    // sigma (paper): m, as eq. 10's sum is per metre (so the paper's A changes with the scene's scale: 0.986 ->
+    // 0.999 for a well scaled x10 with r, eps); scale (chapter): unitless. [0, 1000]; paper default 1.
+    float intensity = 1.0f;
     float contrast = 1.0f;        // k: unitless, [0.01, 100]; paper default 1 (no curve)
     float bias = 1e-4f;           // beta (paper, m, multiplied by z_C) or bias (chapter, m): [0, 1]; paper 1e-4
     float epsilon = 1e-4f;        // eps of the paper's denominator: m^2, (0, 1]; paper 1e-4 (chapter: unused)

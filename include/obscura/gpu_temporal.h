@@ -14,8 +14,8 @@
 // as a pass of its own (reconstruct_interleaved.comp, upsample_depth_aware.comp).
 //
 // Errors: as in obscura/gpu.h; the CPU's errors for bad settings and buffers. reconstructInterleaved and
-// upsampleDepthAware check nothing on the CPU; here they throw obscura::Error for buffers the GPU cannot read
-// safely (the message is this pass's own).
+// upsampleDepthAware make the CPU's checks (ssao::checkReconstructInterleavedInputs,
+// ssao::checkUpsampleDepthAwareInputs), with the same messages.
 #pragma once
 
 #include "obscura/gbuffer.h"
