@@ -23,7 +23,9 @@ Vec2 equirectFromDirection(Vec3 dir) {
     // directions that are not quite unit.
     float horizontal = std::sqrt(dir.x * dir.x + dir.z * dir.z);
     float theta = std::atan2(horizontal, dir.y);
-    float phi = std::atan2(dir.x, -dir.z);
+    // Straight up or down every azimuth is the pole: u = 0.5, rather than atan2(0, +-0), whose answer follows the
+    // zeros' signs here and is undefined in GLSL (the GPU pass read another texel of the top row).
+    float phi = horizontal > 0.0f ? std::atan2(dir.x, -dir.z) : 0.0f;
     float u = phi / (2.0f * kPi) + 0.5f;
     if (u >= 1.0f) u -= 1.0f; // atan2 returns (-pi, pi]; keep u in [0, 1)
     return {u, theta / kPi};

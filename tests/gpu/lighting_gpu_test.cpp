@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <cstdio>
 #include <vector>
 
@@ -247,6 +248,39 @@ TEST(GpuLighting, ShadeMatchesTheCpu) {
             EXPECT_LE(lighting, 1e-4) << c.scene << " " << v.name;
         }
     }
+    EXPECT_EQ(testing::validationReport(context), "");
+}
+
+// Where the two kernels' inputs are degenerate they still agree: a sky pixel looking straight up (atan(0, 0),
+// undefined in GLSL, picked another texel of the top row: 0.4 on the CPU, 8 on the GPU, for a 7x5 map of
+// distinct texels) and a surface pixel with a zero normal (GLSL's normalize(0) gave black; the CPU lights it with
+// the environment's mean, the SH's constant term).
+TEST(GpuLighting, ShadeAgreesAtThePoleAndOnAZeroNormal) {
+    OBSCURA_GPU_CONTEXT(context);
+    Image environment(7, 5, 3);
+    for (std::size_t i = 0; i < environment.pixels.size(); ++i) environment.pixels[i] = 0.2f * float(1 + i % 41);
+    const render::SH9 sh = render::projectEnvironment(environment);
+    GBuffer g;
+    g.camera.position = {0, 1, 0};
+    g.camera.target = {0, 5, 0};
+    g.camera.up = {0, 0, -1};
+    g.camera.width = 33;
+    g.camera.height = 17;
+    g.depth = Image(33, 17, 1, std::numeric_limits<float>::infinity());
+    g.normal = Image(33, 17, 3, 0.0f);
+    g.albedo = Image(33, 17, 3, 0.0f);
+    g.depth.at(3, 3) = 2.0f;  // a surface pixel whose normal is zero
+    for (int c = 0; c < 3; ++c) g.albedo.at(3, 3, c) = 0.5f;
+    const render::Frame cpu = render::shade(g, sh, Image(), environment);
+    const render::Frame gpu = shade(context, g, sh, Image(), environment);
+    for (const auto& [x, y] : {std::pair{16, 8}, std::pair{3, 3}}) {
+        for (int c = 0; c < 3; ++c) {
+            const float want = cpu.color.at(x, y, c);
+            EXPECT_GT(want, 0.0f) << x << "," << y;
+            EXPECT_NEAR(gpu.color.at(x, y, c), want, 1e-4f * want) << x << "," << y << " channel " << c;
+        }
+    }
+    EXPECT_LE(maxRelativeDifference(gpu.color, cpu.color), 1e-4);
     EXPECT_EQ(testing::validationReport(context), "");
 }
 

@@ -62,6 +62,14 @@ TEST(ShEquirect, DocumentedConvention) {
     uv = equirectFromDirection({0, 0, 1});
     EXPECT_GE(uv.x, 0.0f); // u stays in [0, 1) on the seam
     EXPECT_LT(uv.x, 1.0f);
+    // Straight up or down, whatever the zeros' signs (atan2(0, -0) is pi, atan2(0, 0) is 0): u = 0.5.
+    for (float x : {0.0f, -0.0f})
+        for (float z : {0.0f, -0.0f})
+            for (float y : {1.0f, -1.0f}) {
+                uv = equirectFromDirection({x, y, z});
+                EXPECT_EQ(uv.x, 0.5f) << x << " " << y << " " << z;
+                EXPECT_EQ(uv.y, y > 0.0f ? 0.0f : 1.0f);
+            }
 }
 
 TEST(ShEquirect, RoundTripWithin1e5) {

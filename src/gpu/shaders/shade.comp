@@ -11,6 +11,7 @@
 #extension GL_GOOGLE_include_directive : require
 
 #include "lighting_layouts.h"
+#include "vector_math.glsl"
 
 layout(local_size_x = kLightingWorkgroupX, local_size_y = kLightingWorkgroupY, local_size_z = 1) in;
 
@@ -48,7 +49,7 @@ vec3 irradiance(vec3 n) {
 vec2 equirectFromDirection(vec3 dir) {
     const float horizontal = sqrt(dir.x * dir.x + dir.z * dir.z);
     const float theta = atan(horizontal, dir.y);
-    const float phi = atan(dir.x, -dir.z);
+    const float phi = horizontal > 0.0 ? atan(dir.x, -dir.z) : 0.0;  // the pole: u = 0.5, as the CPU's
     float u = phi / (2.0 * kPi) + 0.5;
     if (u >= 1.0) u -= 1.0;
     return vec2(u, theta / kPi);
@@ -91,7 +92,7 @@ void main() {
         store(x, sampleEquirect(normalize(worldFromView(view))), vec3(0.0));  // no surface to light
         return;
     }
-    const vec3 n = normalize(worldFromView(loadNormal(x)));
+    const vec3 n = normalize3(worldFromView(loadNormal(x)));  // a zero normal stays zero, as on the CPU
     const vec3 light = irradiance(n) * (1.0 / kPi);
     const vec3 a = vec3(albedo[3 * x], albedo[3 * x + 1], albedo[3 * x + 2]);
     vec3 o = vec3(1.0);
