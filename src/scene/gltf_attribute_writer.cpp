@@ -9,6 +9,7 @@
 #include "obscura/image_io.h"
 #include "scene/gltf_json_check.h"
 #include "scene/gltf_output.h"
+#include "scene/gltf_read.h"
 
 #include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
@@ -26,11 +27,6 @@ using Json = nlohmann::ordered_json;
 
 constexpr int kFloat = 5126;        // accessor componentType FLOAT
 constexpr int kArrayBuffer = 34962;  // bufferView target ARRAY_BUFFER
-
-// Images are not decoded: the JSON keeps them as they are.
-bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
-    return true;
-}
 
 // RFC 4648 base64, for buffers embedded as data URIs.
 std::string base64(const std::vector<unsigned char>& bytes) {
@@ -86,21 +82,9 @@ struct Target {
 
 // The loader's order: the default scene's roots (every parentless node without scenes), depth first,
 // children in order; per node with a mesh, its triangle primitives. `reached` marks the nodes visited.
-std::vector<Target> loaderOrder(const tinygltf::Model& model, std::vector<char>& reached) {
-    std::vector<int> roots;
-    if (!model.scenes.empty()) {
-        int s = model.defaultScene;
-        if (s < 0 || std::size_t(s) >= model.scenes.size()) s = 0;
-        roots = model.scenes[std::size_t(s)].nodes;
-    } else {
-        // The loader checks only the nodes it visits: a node outside the tree may name any child.
-        std::vector<char> isChild(model.nodes.size(), 0);
-        for (const tinygltf::Node& node : model.nodes)
-            for (int c : node.children)
-                if (c >= 0 && std::size_t(c) < isChild.size()) isChild[std::size_t(c)] = 1;
-        for (std::size_t i = 0; i < model.nodes.size(); ++i)
-            if (!isChild[i]) roots.push_back(int(i));
-    }
+// The loader checks only the nodes it visits: a node outside the tree may name any child.
+std::vector<Target> loaderOrder(const tinygltf::Model& model, const std::string& path, std::vector<char>& reached) {
+    const std::vector<int> roots = loader::sceneRoots(model, path);
     reached.assign(model.nodes.size(), 0);
     std::vector<Target> targets;
     for (int r : roots) {
@@ -132,19 +116,14 @@ void writeGltfWithAttributes(const std::string& inputPath, const Scene& scene, c
     checkInstanceAttributes(scene, &attributes, path);
     // tinygltf reads the buffers (data URIs, files beside the input, a .glb's binary chunk) and gives the
     // structure the order is found in; the JSON is what is edited and written.
-    tinygltf::TinyGLTF gltf;
-    gltf.SetImageLoader(skipImage, nullptr);
     tinygltf::Model model;
-    std::string err, warn;
     const bool inputBinary = fileExtension(inputPath) == ".glb";
-    const bool ok = inputBinary ? gltf.LoadBinaryFromFile(&model, &err, &warn, inputPath)
-                                : gltf.LoadASCIIFromFile(&model, &err, &warn, inputPath);
-    if (!ok) fail(inputPath, "not a valid glTF file");
+    loader::readTinyGltf(inputPath, inputBinary, model);
     Json j = Json::parse(loader::readGltfJsonText(inputPath, inputBinary), nullptr, false);
     if (j.is_discarded() || !j.is_object()) fail(inputPath, "not valid JSON");
 
     std::vector<char> reached;
-    const std::vector<Target> targets = loaderOrder(model, reached);
+    const std::vector<Target> targets = loaderOrder(model, inputPath, reached);
     if (targets.size() != scene.instances.size())
         fail(inputPath, "has " + std::to_string(targets.size()) + " triangle primitives placed by nodes, the scene " +
                             std::to_string(scene.instances.size()) + " instances (was it loaded from this file?)");

@@ -53,6 +53,12 @@ public:
             for (const char* key : {"buffer", "byteOffset", "byteLength", "byteStride"}) index(view, key, at);
         });
         each(j, "buffers", [&](const Json& buffer, const std::string& at) { index(buffer, "byteLength", at); });
+        each(j, "materials", [&](const Json& material, const std::string& at) {
+            const auto pbr = material.find("pbrMetallicRoughness");
+            if (pbr == material.end()) return;
+            if (!pbr->is_object()) bad(at + ".pbrMetallicRoughness", "must be an object", *pbr);
+            numbers(*pbr, "baseColorFactor", 4, at + ".pbrMetallicRoughness");
+        });
     }
 
 private:

@@ -2,6 +2,7 @@
 #include "obscura/error.h"
 #include "obscura/scene_io.h"
 #include "scene/gltf_json_check.h"
+#include "scene/gltf_read.h"
 #include "scene/loader_common.h"
 
 #include <tiny_gltf.h>
@@ -18,15 +19,9 @@ namespace obscura {
 
 namespace {
 
-// Textures are ignored, so images are never decoded; this also keeps a missing or corrupt texture from
-// failing the load of otherwise good geometry.
-bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
-    return true;
-}
-
 // A checked view of one accessor's elements: after construction every element lies inside its buffer.
 struct ElementView {
-    const unsigned char* base = nullptr;  // null: no buffer view, all elements are zero (glTF 3.6.2.4)
+    const unsigned char* base = nullptr;  // null only for no elements
     std::size_t stride = 0;
     std::size_t count = 0;
 };
@@ -42,21 +37,7 @@ public:
             if (ext == "KHR_draco_mesh_compression" || ext == "EXT_meshopt_compression" ||
                 ext == "KHR_mesh_quantization")
                 bad("requires extension " + ext + ", which is not supported");
-        std::vector<int> roots;
-        if (!model_.scenes.empty()) {
-            int s = model_.defaultScene;
-            if (s < 0 || std::size_t(s) >= model_.scenes.size()) s = 0;
-            roots = model_.scenes[std::size_t(s)].nodes;
-        } else {
-            // No scenes: every node that is nobody's child is a root.
-            std::vector<char> isChild(model_.nodes.size(), 0);
-            for (const tinygltf::Node& node : model_.nodes)
-                for (int c : node.children)
-                    if (c >= 0 && std::size_t(c) < isChild.size()) isChild[std::size_t(c)] = 1;
-            for (std::size_t i = 0; i < model_.nodes.size(); ++i)
-                if (!isChild[i]) roots.push_back(int(i));
-        }
-        for (int r : roots) visit(r);
+        for (int r : loader::sceneRoots(model_, path_)) visit(r);
         return std::move(scene_);
     }
 
@@ -144,8 +125,8 @@ private:
         } else {
             std::string where = "mesh " + std::to_string(meshIndex) + " primitive " + std::to_string(p);
             Mesh m = readPrimitive(prim, where);
-            m.name = (src.name.empty() ? "mesh" + std::to_string(meshIndex) : src.name) +
-                     (src.primitives.size() > 1 ? "#" + std::to_string(p) : "");
+            m.name = src.name.empty() ? std::string("mesh").append(std::to_string(meshIndex)) : src.name;
+            if (src.primitives.size() > 1) m.name.append("#").append(std::to_string(p));
             index = int(scene_.meshes.size());
             scene_.meshes.push_back(std::move(m));
         }
@@ -199,7 +180,9 @@ private:
         ElementView v;
         v.count = acc.count;
         v.stride = elementSize;
-        if (acc.bufferView < 0) return v;
+        // No buffer view: every element is zero (glTF 3.6.2.4, sparse accessors aside, which are refused), no
+        // geometry at all, and a 200-byte file could state billions of them.
+        if (acc.bufferView < 0) bad(name + " has no buffer view (its " + std::to_string(acc.count) + " elements would all be 0)");
         if (std::size_t(acc.bufferView) >= model_.bufferViews.size())
             bad(name + ": buffer view " + std::to_string(acc.bufferView) + " out of range (" +
                 std::to_string(model_.bufferViews.size()) + " buffer views)");
@@ -285,18 +268,10 @@ private:
 } // namespace
 
 Scene loadGltf(const std::string& path, LoadInfo* info) {
-    loader::checkSceneFile(path);
     std::string ext = std::filesystem::path(path).extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-
-    tinygltf::TinyGLTF gltf;
-    gltf.SetImageLoader(skipImage, nullptr);
     tinygltf::Model model;
-    std::string err, warn;
-    bool ok = ext == ".glb" ? gltf.LoadBinaryFromFile(&model, &err, &warn, path)
-                            : gltf.LoadASCIIFromFile(&model, &err, &warn, path);
-    // tinygltf can fill err and still succeed (a misaligned chunk), so only the return value decides.
-    if (!ok) fail(path, err.empty() ? "not a valid glTF file" : loader::firstLine(err));
+    loader::readTinyGltf(path, ext == ".glb", model);
     // tinygltf keeps the default of a property of the wrong type (an offset of 1e10 read as 0) unsaid.
     loader::checkGltfJson(path, ext == ".glb");
 

@@ -12,6 +12,7 @@
 #include <iterator>
 #include <string>
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace obscura {
@@ -177,6 +178,18 @@ TEST(LoaderGltf, LyingFilesGiveErrors) {
         {"", R"({"mesh": 0, "rotation": [0, 0, 0, "1"]})", acc + "}", view, "nodes[0].rotation must be an array of 4 numbers"},
         {"", R"({"mesh": -1})", acc + "}", view, "nodes[0].mesh must be a non-negative integer, got -1"},
         {R"("scenes": [{"nodes": [0.0]}],)", node, acc + "}", view, "scenes[0].nodes must hold non-negative integers"},
+        // A colour of the wrong type was read as the default grey; a "scene" past the scenes as scene 0.
+        {R"("materials": [{"pbrMetallicRoughness": {"baseColorFactor": [0.5]}}],)", node, acc + "}", view,
+         "materials[0].pbrMetallicRoughness.baseColorFactor must be an array of 4 numbers, got [0.5]"},
+        {R"("materials": [{"pbrMetallicRoughness": "red"}],)", node, acc + "}", view,
+         "materials[0].pbrMetallicRoughness must be an object"},
+        {R"("scene": 3, "scenes": [{"nodes": [0]}],)", node, acc + "}", view, R"("scene": 3 is out of range (1 scenes))"},
+        // No buffer view: all zeros, and a 200-byte file once allocated 1.2 GB for these (count 2^64 - 1 escaped
+        // as "internal: cannot create std::vector larger than max_size()").
+        {"", node, R"({"componentType": 5126, "count": 30000000, "type": "VEC3"})", view,
+         "POSITION accessor 0 has no buffer view (its 30000000 elements would all be 0)"},
+        {"", node, R"({"componentType": 5126, "count": 18446744073709551615, "type": "VEC3"})", view,
+         "POSITION accessor 0 has no buffer view"},
     };
     TempDir dir;
     for (const Case& c : cases) {
@@ -235,6 +248,30 @@ TEST(LoaderGltf, DataUriContentsAreLeftOutAndNothingElse) {
     for (const Case& c : cases) {
         SCOPED_TRACE(c.in);
         EXPECT_EQ(loader::withoutDataUris(c.in), c.out);
+    }
+}
+
+// What tinygltf throws or what a buffer's URI names is the file's error too: a .glb whose buffer states 0 bytes
+// (an exception escaped as "internal: vector::_M_range_check", exit 3), a URI naming a FIFO (the load blocked for
+// good) or a directory ("out of memory").
+TEST(LoaderGltf, BuffersThatCannotBeReadAreTheFilesError) {
+    std::string bytes = readBytes(data("quad.glb"));
+    const std::size_t at = bytes.find("\"buffers\":[{\"byteLength\":104}]");
+    ASSERT_NE(at, std::string::npos);
+    bytes.replace(at, 30, "\"buffers\":[{\"byteLength\":0}]  ");  // the same length: the chunk still holds
+    TempDir dir;
+    const std::string glb = dir.write("empty_buffer.glb", bytes);
+    std::string msg = loadError(glb);
+    EXPECT_EQ(msg.rfind(glb + ": not a valid glTF file", 0), 0u) << msg;
+
+    ASSERT_EQ(::mkfifo((dir.path() + "/fifo").c_str(), 0600), 0);
+    for (const std::string uri : {"fifo", "."}) {
+        const std::string path = dir.write("uri.gltf", R"({"asset": {"version": "2.0"}, "nodes": [{"mesh": 0}],)"
+            R"( "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],)"
+            R"( "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"}],)"
+            R"( "bufferViews": [{"buffer": 0, "byteLength": 36}], "buffers": [{"byteLength": 36, "uri": ")" + uri + R"("}]})");
+        msg = loadError(path);
+        EXPECT_EQ(msg, path + ": File read error : " + dir.path() + "/" + uri + " : not a regular file");
     }
 }
 
