@@ -366,7 +366,18 @@ Image readExrDisplayWindow(const std::string& path) {
     if (width < 1 || height < 1 || width > kMaxImageSide || height > kMaxImageSide)
         fail(path, "display window is " + std::to_string(width) + "x" + std::to_string(height) + ", outside [1, " +
                        std::to_string(kMaxImageSide) + "] per side");
-    Image out(int(width), int(height), data.channels, 0.0f);
+    // The data window's cap holds for the image made of the display window: a 2 KB file whose display window
+    // was 32768x32768 asked for 12.9 GB, beyond any data it holds.
+    if (width * height > kMaxValues / std::max<std::int64_t>(data.channels, 1))
+        fail(path, "display window " + std::to_string(width) + "x" + std::to_string(height) + " with " +
+                       std::to_string(data.channels) + " channels is too large (at most " + std::to_string(kMaxValues) +
+                       " values)");
+    Image out;
+    try {
+        out = Image(int(width), int(height), data.channels, 0.0f);
+    } catch (const std::bad_alloc&) {
+        fail(path, "out of memory for its " + std::to_string(width) + "x" + std::to_string(height) + " display window");
+    }
     out.channelNames = data.channelNames;
     for (int y = 0; y < data.height; ++y) {
         const std::int64_t oy = std::int64_t(window.min.y) + y - display.min.y;

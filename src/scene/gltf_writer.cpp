@@ -81,6 +81,8 @@ void save(tinygltf::Model& model, const std::string& path) {
     gltf.SetImageWriter(keepImage, nullptr);
     writeGltfFile(path, [&](std::ostream& out) {
         if (!gltf.WriteGltfSceneToStream(&model, out, !binary, binary)) fail(path, "cannot write the glTF file");
+        // A failed stream's tellp is -1, which read as 2^64 - 1 bytes "past the 4 GiB" on a full disk.
+        if (!out) fail(path, "write failed (disk full?)");
         // A .glb states its length in 32 bits, which tinygltf truncates without a word; the temporary goes.
         if (binary && std::uint64_t(out.tellp()) > 0xffffffffu)
             fail(path, "would be " + std::to_string(std::uint64_t(out.tellp())) +

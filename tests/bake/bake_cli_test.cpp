@@ -341,6 +341,11 @@ TEST_F(BakeCli, GltfOutputSurvivesNodesOutsideTheTreeAndEmptiedMeshes) {
 TEST_F(BakeCli, AFullDiskLeavesNoGltf) {
     const Result fromGltf = runWithFileSizeLimit("bake " + data("hierarchy.gltf") + " -o " + path("h.glb") + kFast, 1024);
     const Result fromObj = runWithFileSizeLimit("bake " + data("cube.obj") + " -o " + path("c.gltf") + kFast, 1024);
+    // The .glb a scene is written to whole (not the input's edited JSON) said "would be 18446744073709551615
+    // bytes, past the 4 GiB a .glb can state": its failed stream's position, -1.
+    const Result objToGlb = runWithFileSizeLimit("bake " + data("cube.obj") + " -o " + path("c.glb") + kFast, 1024);
+    EXPECT_EQ(objToGlb.code, 1) << objToGlb.out;
+    EXPECT_NE(objToGlb.out.find("c.glb: write failed (disk full?)"), std::string::npos) << objToGlb.out;
     EXPECT_EQ(fromGltf.code, 1) << fromGltf.out;
     EXPECT_NE(fromGltf.out.find("h.glb: write failed"), std::string::npos) << fromGltf.out;
     EXPECT_EQ(fromObj.code, 1) << fromObj.out;

@@ -416,6 +416,10 @@ TEST_F(ImageIoTest, EnvironmentsAreReadInTheirDisplayWindow) {
     ASSERT_EQ(o.width, 64);
     ASSERT_EQ(o.height, 32);
     EXPECT_EQ(o.pixels, full.pixels);
+    // A display window past the values' cap, around a 64x16 data window: 32768x32768x3 once asked for 12.9 GB.
+    const std::string huge = write("huge_display.exr", Imath::Box2i({0, 0}, {32767, 32767}), Imath::Box2i({0, 0}, {63, 15}));
+    expectMessage(thrownMessage([&] { obscura::readEnvironmentImage(huge); }), huge,
+                  "display window 32768x32768 with 3 channels is too large (at most 2147483648 values)");
 }
 
 // A header-only file claiming a data window of 8388608x256 (2^31 floats, 8 GiB) once had a whole band sized
