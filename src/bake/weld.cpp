@@ -95,6 +95,7 @@ void splitCreases(WeldedMesh& out, const std::vector<std::uint32_t>& fileCorner,
     std::vector<std::uint32_t> parent(corners);
     std::iota(parent.begin(), parent.end(), 0u);
     std::vector<std::pair<std::uint32_t, std::uint32_t>> spokes;  // (other vertex, corner)
+    std::vector<std::pair<std::uint32_t, double>> onEdge;         // (corner, its face's slack)
     for (std::size_t v = 0; v < vertices; ++v) {
         spokes.clear();
         for (std::uint32_t i = first[v]; i < first[v + 1]; ++i) {
@@ -103,14 +104,38 @@ void splitCreases(WeldedMesh& out, const std::vector<std::uint32_t>& fileCorner,
             spokes.emplace_back(out.indices[3 * t + (k + 2) % 3], c);
         }
         std::sort(spokes.begin(), spokes.end());
-        // Every pair of faces on each edge through v (a manifold edge has one pair).
+        // Every pair of faces on each edge through v (a manifold edge has one pair). Faces of one normal join
+        // each other, and any other face joins one of them if and only if it joins the one of most slack, so
+        // they are joined first and only that one is compared with the rest: 40000 copies of a triangle on one
+        // edge took 1.6e9 pair tests (9 s), and the time grew with the square of a file's size.
+        auto unite = [&](std::uint32_t c, std::uint32_t d) {
+            const std::uint32_t a = findRoot(parent, c), b = findRoot(parent, d);
+            if (a != b) parent[std::max(a, b)] = std::min(a, b);
+        };
         for (std::size_t i = 0; i < spokes.size();) {
             std::size_t end = i + 1;
             while (end < spokes.size() && spokes[end].first == spokes[i].first) ++end;
-            for (std::size_t j = i; j < end; ++j)
-                for (std::size_t k = j + 1; k < end; ++k) {
-                    const std::uint32_t a = findRoot(parent, spokes[j].second), b = findRoot(parent, spokes[k].second);
-                    if (a != b && joined(spokes[j].second / 3, spokes[k].second / 3)) parent[std::max(a, b)] = std::min(a, b);
+            onEdge.clear();
+            for (std::size_t j = i; j < end; ++j) onEdge.emplace_back(spokes[j].second, slack(spokes[j].second / 3));
+            // By normal, then by slack, most first; the corner breaks ties, so the order is the faces' own.
+            std::sort(onEdge.begin(), onEdge.end(), [&](const auto& p, const auto& q) {
+                const std::array<double, 3>&m = normal[p.first / 3], &n = normal[q.first / 3];
+                if (m != n) return m < n;
+                if (p.second != q.second) return p.second > q.second;
+                return p.first < q.first;
+            });
+            std::size_t kept = 0;
+            for (std::size_t j = 0; j < onEdge.size(); ++j) {
+                if (kept > 0 && normal[onEdge[kept - 1].first / 3] == normal[onEdge[j].first / 3]) {
+                    unite(onEdge[kept - 1].first, onEdge[j].first);
+                    continue;
+                }
+                onEdge[kept++] = onEdge[j];
+            }
+            for (std::size_t j = 0; j < kept; ++j)
+                for (std::size_t k = j + 1; k < kept; ++k) {
+                    const std::uint32_t a = findRoot(parent, onEdge[j].first), b = findRoot(parent, onEdge[k].first);
+                    if (a != b && joined(onEdge[j].first / 3, onEdge[k].first / 3)) parent[std::max(a, b)] = std::min(a, b);
                 }
             i = end;
         }
