@@ -69,6 +69,8 @@ TEST_F(Cli, BadFlagValues) {
     expectFailure("render plane --size 32x18 -q --ao-rays 0 -o " + path("f.png"), {"ao-rays"});
     expectFailure("render plane --size 32x18 -q --fov 200 -o " + path("f.png"), {"--fov"});
     expectFailure("render plane" + kFast + "--ao-radius -1 -o " + path("f.png"), {"--ao-radius"});
+    // The alchemy falloff's u was named "alchemy-u", a flag no command has.
+    expectFailure("render plane" + kFast + "--ao-falloff alchemy --ao-u nan -o " + path("f.png"), {"ao-u: must be"});
     expectFailure("render plane" + kFast + "--camera-from 1,2 -o " + path("f.png"), {"--camera-from"});
     expectFailure("render plane" + kFast + "--ao bogus -o " + path("f.png"), {"--ao"}, 2);
     expectFailure("render plane --ao-rays 4 -q --size 12xfoo -o " + path("f.png"), {"--size"});
