@@ -184,6 +184,14 @@ void checkBilateralInputs(const Image& ao, const GBuffer& g, const BilateralSett
         fail("bilateral filter", "AO image is " + std::to_string(ao.width) + "x" + std::to_string(ao.height) + "x" +
                                      std::to_string(ao.channels) + ", G-buffer is " + std::to_string(g.width()) +
                                      "x" + std::to_string(g.height()) + " (needs 1 channel of the same size)");
+    // A NaN depth made a NaN weight, which the CPU's exp2 clamps to about 2^-125 (the centre still blurred) and
+    // the GPU's exp2 passes on (the centre kept raw): 0.79 against 0.51 beside it. A NaN AO spread over a window.
+    g.validatePixels("bilateral filter");
+    for (int y = 0; y < ao.height; ++y)
+        for (int x = 0; x < ao.width; ++x)
+            if (!std::isfinite(ao.at(x, y)))
+                fail("bilateral filter", "AO at pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") is " +
+                                             numberText(ao.at(x, y)));
 }
 
 Image bilateralPass(const Image& ao, const GBuffer& gbuffer, const BilateralSettings& settings, int axis) {

@@ -48,11 +48,19 @@ TEST(GpuBilateral, RejectsBadInputAsTheCpuFilterDoes) {
     ssao::BilateralSettings radius;
     radius.radius = 33;
     const Image small(8, 8, 1);
-    for (const auto& [image, s] : {std::pair{ao, radius}, std::pair{small, ssao::BilateralSettings{}}}) {
+    Image nanAo = ao;
+    nanAo.at(7, 3) = NAN;
+    for (const auto& [image, s] : {std::pair{ao, radius}, std::pair{small, ssao::BilateralSettings{}},
+                                   std::pair{nanAo, ssao::BilateralSettings{}}}) {
         const std::string cpu = testing::errorMessage([&] { ssao::bilateralFilter(image, g, s); });
         EXPECT_NE(cpu, "no error");
         EXPECT_EQ(testing::errorMessage([&] { bilateralFilter(context, image, g, s); }), cpu);
     }
+    GBuffer nanDepth = g;
+    nanDepth.depth.at(9, 4) = NAN;
+    const std::string cpu = testing::errorMessage([&] { ssao::bilateralFilter(ao, nanDepth, ssao::BilateralSettings{}); });
+    EXPECT_NE(cpu.find("depth at pixel (9, 4) is nan"), std::string::npos) << cpu;
+    EXPECT_EQ(testing::errorMessage([&] { bilateralFilter(context, ao, nanDepth, ssao::BilateralSettings{}); }), cpu);
     ssao::BilateralSettings none;
     none.mode = ssao::BlurMode::None;
     EXPECT_EQ(bilateralFilter(context, ao, g, none).pixels, ao.pixels);

@@ -318,6 +318,22 @@ TEST(Bilateral, RejectsBadSettingsAndBuffers) {
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("4x4x1"), std::string::npos) << e.what();
     }
+    // Non-finite inputs: a NaN depth was blurred on the CPU and kept raw on the GPU; a NaN AO spread.
+    const auto errorOf = [](const auto& run) -> std::string {
+        try {
+            run();
+        } catch (const Error& e) {
+            return e.what();
+        }
+        return "no error";
+    };
+    GBuffer nanDepth = g;
+    nanDepth.depth.at(3, 2) = NAN;
+    EXPECT_EQ(errorOf([&] { bilateralFilter(ao, nanDepth, BilateralSettings{}); }),
+              "bilateral filter: depth at pixel (3, 2) is nan (must be positive or +inf)");
+    Image nanAo = ao;
+    nanAo.at(5, 6) = NAN;
+    EXPECT_EQ(errorOf([&] { bilateral2D(nanAo, g, BilateralSettings{}); }), "bilateral filter: AO at pixel (5, 6) is nan");
 }
 
 } // namespace obscura::ssao
