@@ -223,6 +223,21 @@ TEST_F(GtaoCli, FlagsOfAnotherMethodWarn) {
         << alchemyGtaoOut;
     EXPECT_NE(alchemyGtaoOut.find("warning: --frames: applies to --ao gtao"), std::string::npos) << alchemyGtaoOut;
 
+    // The composite is diffuse: specular occlusion shows only as its AOV (--ao-output all), where it is written;
+    // otherwise it was computed on every frame for nothing (30 times the frame's time on stairs at 64x36).
+    const auto [specularOut, withSpecular] = render("--ao gtao --specular-occlusion lut4 --roughness 0.1");
+    EXPECT_EQ(withSpecular, plain);
+    EXPECT_NE(specularOut.find("warning: --specular-occlusion: is written only as specular_occlusion.exr"),
+              std::string::npos)
+        << specularOut;
+    EXPECT_FALSE(fs::exists(path("aov/specular_occlusion.exr")));
+    const auto [roughnessOut, withRoughness] = render("--ao gtao --roughness 0.1");
+    EXPECT_NE(roughnessOut.find("warning: --roughness: applies to --specular-occlusion; ignored"), std::string::npos)
+        << roughnessOut;
+    const auto [allOut, all] = render("--ao gtao --specular-occlusion lut4 --ao-output all");
+    EXPECT_EQ(allOut.find("warning"), std::string::npos) << allOut;
+    EXPECT_TRUE(fs::exists(path("aov/specular_occlusion.exr")));
+
     // --gpu-packed-normals belongs to both screen-space methods.
     const auto [raytracedOut, raytraced] = render("--ao raytraced --ao-rays 4 --gpu-packed-normals");
     EXPECT_NE(raytracedOut.find("warning: --gpu-packed-normals: applies to --ao alchemy or gtao, not --ao raytraced"),

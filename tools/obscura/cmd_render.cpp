@@ -96,6 +96,7 @@ void run(const RenderOptions& o) {
     }
     if (o.ao == "gtao") {
         o.gtao.validate(o.aovDir);
+        o.gtao.warnUnread();
         o.gtao.settings(aoSettings.radius);  // throws on a bad value before any work
     }
 

@@ -14,6 +14,7 @@
 
 namespace CLI {
 class App;
+class Option;
 }
 
 namespace obscura::cli {
@@ -63,6 +64,13 @@ struct GtaoOptions {
     void validate(const std::string& aovDir) const;
     // Every file renderGtaoFrames writes to `aovDir` with these flags (the numbered frames' too), and ao.exr.
     std::vector<std::string> aovFiles(const std::string& aovDir) const;
+    // Warns of the given flags these ones leave unread: the composite is diffuse, so specular occlusion shows only
+    // as its AOV (--ao-output all), and --roughness only with it. renderGtaoFrames then skips that pass.
+    void warnUnread() const;
+    bool writesSpecular() const { return specular != "none" && output == "all"; }
+
+    const CLI::Option* specularOption = nullptr;  // set by add()
+    const CLI::Option* roughnessOption = nullptr;
 };
 
 // --gtao-sampling (ssao::gtaoSamplingName's words) and --gtao-mip-ratio on `app`, the first's help starting with `lead`
