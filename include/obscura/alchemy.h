@@ -77,8 +77,9 @@ Image cropGuardBand(const Image& image, int guardBand);
 GBuffer cropGuardBand(const GBuffer& gbuffer, const Camera& innerCamera, int guardBand);
 
 // View-space unit normals rebuilt from depth alone: on each axis the neighbour with the smaller depth
-// difference is used, so a silhouette does not bend the normals of the surface in front of it. Sky and
-// pixels without a usable neighbour face the camera. Returns a 3-channel image.
+// difference is used, so a silhouette does not bend the normals of the surface in front of it. A pixel with a
+// usable neighbour along one axis only takes the normal across that tangent in the plane of the tangent and
+// the view ray; sky and pixels without a usable neighbour face the camera. Returns a 3-channel image.
 Image normalsFromDepth(const Image& depth, const Camera& camera);
 
 // The G-buffer as the kernel reads it, as the GPU pass will: the depth plane (one float per sample; the

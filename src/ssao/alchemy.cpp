@@ -177,12 +177,21 @@ Image normalsFromDepth(const Image& depth, const Camera& camera) {
                     const Vec3 p = position(x, y);
                     const float l = misfit(x, y, -1, 0), r = misfit(x, y, 1, 0);
                     const float u = misfit(x, y, 0, -1), d = misfit(x, y, 0, 1);
-                    if ((l < INFINITY || r < INFINITY) && (u < INFINITY || d < INFINITY)) {
+                    const bool alongX = l < INFINITY || r < INFINITY, alongY = u < INFINITY || d < INFINITY;
+                    if (alongX && alongY) {
                         const Vec3 ddx = r <= l ? position(x + 1, y) - p : p - position(x - 1, y);
                         const Vec3 ddy = d <= u ? position(x, y + 1) - p : p - position(x, y - 1);
                         // Pixel y grows downwards, so cross(ddy, ddx) points out of a camera-facing plane.
                         n = normalize(cross(ddy, ddx));
                         if (dot(n, p) > 0.0f) n = -n;
+                    } else if (alongX || alongY) {
+                        // One axis only (an image one pixel wide or tall, a one-pixel-wide strip against the sky):
+                        // the normal across that tangent in the plane of the tangent and the view ray. Facing the
+                        // camera outright made an open plane's 1-pixel-wide column fully occluded (A = 0).
+                        const Vec3 t = alongX ? (r <= l ? position(x + 1, y) - p : p - position(x - 1, y))
+                                              : (d <= u ? position(x, y + 1) - p : p - position(x, y - 1));
+                        const Vec3 across = t * (dot(p, t) / dot(t, t)) - p;  // 0 for a tangent along the ray
+                        n = dot(across, across) > 0.0f ? normalize(across) : -normalize(p);
                     } else {
                         n = -normalize(p);
                     }

@@ -45,7 +45,10 @@ TEST(GpuDepthPrep, MatchesTheCpu) {
     for (const Case& c : {Case{"demo", 64, 40, ssao::DepthConvention::Standard, ssao::NormalSource::World},
                           Case{"stairs", 333, 197, ssao::DepthConvention::Reversed, ssao::NormalSource::FromDepth},
                           Case{"corner", 50, 31, ssao::DepthConvention::ReversedInfinite, ssao::NormalSource::World},
-                          Case{"well", 40, 40, ssao::DepthConvention::Reversed, ssao::NormalSource::FromDepth}}) {
+                          Case{"well", 40, 40, ssao::DepthConvention::Reversed, ssao::NormalSource::FromDepth},
+                          // Neighbours along one axis only: the normal across that tangent (both sides).
+                          Case{"plane", 1, 37, ssao::DepthConvention::Standard, ssao::NormalSource::FromDepth},
+                          Case{"stairs", 53, 1, ssao::DepthConvention::Standard, ssao::NormalSource::FromDepth}}) {
         const GBuffer g = testing::render(c.scene, c.w, c.h);
         ssao::DepthPrepSettings s;
         s.depth = c.depth;

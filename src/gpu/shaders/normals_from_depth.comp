@@ -41,11 +41,18 @@ void main() {
         const vec3 p = position(x, y);
         const float l = misfit(x, y, -1, 0), r = misfit(x, y, 1, 0);
         const float u = misfit(x, y, 0, -1), d = misfit(x, y, 0, 1);
-        if ((l < kInf || r < kInf) && (u < kInf || d < kInf)) {
+        const bool alongX = l < kInf || r < kInf, alongY = u < kInf || d < kInf;
+        if (alongX && alongY) {
             const vec3 ddx = r <= l ? position(x + 1, y) - p : p - position(x - 1, y);
             const vec3 ddy = d <= u ? position(x, y + 1) - p : p - position(x, y - 1);
             n = normalize(cross(ddy, ddx));
             if (dot(n, p) > 0.0) n = -n;
+        } else if (alongX || alongY) {
+            // One axis only: across its tangent, in the plane of the tangent and the view ray (as the CPU's).
+            const vec3 t = alongX ? (r <= l ? position(x + 1, y) - p : p - position(x - 1, y))
+                                  : (d <= u ? position(x, y + 1) - p : p - position(x, y - 1));
+            const vec3 across = t * (dot(p, t) / dot(t, t)) - p;
+            n = dot(across, across) > 0.0 ? normalize(across) : -normalize(p);
         } else {
             n = -normalize(p);
         }
