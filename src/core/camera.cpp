@@ -115,9 +115,13 @@ Vec2 Camera::pixelFromView(Vec3 p, float* depth) const {
 }
 
 Camera turnedAboutTarget(const Camera& base, float radians) {
+    // In double, rounded once: in float, a turn of 0 moved the camera (x 0.4 -> 0.40000004, so frame 0 of
+    // render --ao gtao was not the view asked for), and about a target 1e6 m away by 1.25 cm.
     Camera c = base;
-    const Mat4 turn = Mat4::rotation({0.0f, 1.0f, 0.0f}, radians);
-    c.position = base.target + transformVector(turn, base.position - base.target);
+    const double cosine = std::cos(double(radians)), sine = std::sin(double(radians));
+    const double x = double(base.position.x) - double(base.target.x), z = double(base.position.z) - double(base.target.z);
+    c.position.x = float(double(base.target.x) + (cosine * x + sine * z));
+    c.position.z = float(double(base.target.z) + (cosine * z - sine * x));
     return c;
 }
 

@@ -134,6 +134,20 @@ TEST(Camera, TurnedAboutTargetRotatesThePositionAboutTheVertical) {
     const Camera full = turnedAboutTarget(c, 2.0f * kPi);
     EXPECT_NEAR(full.position.x, c.position.x, 1e-5f);
     EXPECT_NEAR(full.position.z, c.position.z, 1e-5f);
+    // No turn is the camera itself (frame 0 of render --ao gtao): in float, x 0.4 became 0.40000004, and a
+    // camera at x 0.3 turned by 0 about a target 1e6 m away landed at 0.3125.
+    Camera demo = c;
+    demo.position = {0.4f, 2.0f, 5.5f};
+    demo.target = {-0.2f, 0.7f, -1.0f};
+    EXPECT_EQ(turnedAboutTarget(demo, 0.0f).position, demo.position);
+    demo.position = {0.3f, 1.7f, 5.0f};
+    demo.target = {1e6f, 0.0f, 0.0f};
+    EXPECT_EQ(turnedAboutTarget(demo, 0.0f).position, demo.position);
+    // A small turn about that far target: the offset's length is kept to float rounding of the result.
+    const Camera turned = turnedAboutTarget(demo, 0.5f * kPi / 180.0f);
+    const double before = std::hypot(double(demo.position.x) - 1e6, double(demo.position.z));
+    const double after = std::hypot(double(turned.position.x) - 1e6, double(turned.position.z));
+    EXPECT_NEAR(after, before, 0.07);  // half an ulp of 1e6 in float is 0.03
 }
 
 // An infinite far plane passed validate; clipFromView then held NaN (inf / -inf) and the camera file
