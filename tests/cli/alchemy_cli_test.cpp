@@ -249,16 +249,25 @@ TEST_F(AlchemyCli, AoRejectsBadBuffers) {
     expectFailure("ao --depth " + path("g/depth.exr") + " --normal " + path("encoded.exr") + cam + " -o " +
                       path("ao.exr"),
                   {"encoded.exr", "n * 0.5 + 0.5"});
-    // 5% short everywhere is inside the tolerance (half-float storage, interpolated normals), 15% is not.
-    for (const auto& [scale, ok] : {std::pair{0.95f, true}, std::pair{0.85f, false}}) {
+    // 5% short everywhere is inside the tolerance (half-float storage, interpolated normals), 15% is not; the
+    // accepted ones are made unit, so the AO is the unit normals' within float rounding (Alchemy's v.n scaled
+    // with the length: up to 0.09 of AO for normals 9% long).
+    ASSERT_EQ(run("ao --depth " + path("g/depth.exr") + " --normal " + path("g/normal.exr") + cam + " -o " +
+                  path("unit_ao.exr")).code, 0);
+    for (const auto& [scale, ok] : {std::pair{0.95f, true}, std::pair{1.09f, true}, std::pair{0.85f, false}}) {
         obscura::Image scaled = normal;
         for (float& v : scaled.pixels) v *= scale;
         obscura::writeExr(path("scaled.exr"), scaled);
         const std::string args = "ao --depth " + path("g/depth.exr") + " --normal " + path("scaled.exr") + cam +
                                  " -o " + path("scaled_ao.exr");
-        if (ok)
+        if (ok) {
             EXPECT_EQ(run(args).code, 0) << scale;
-        else
+            const obscura::Image unit = obscura::readExr(path("unit_ao.exr"));
+            const obscura::Image scaledAo = obscura::readExr(path("scaled_ao.exr"));
+            ASSERT_EQ(unit.pixels.size(), scaledAo.pixels.size());
+            for (std::size_t i = 0; i < unit.pixels.size(); ++i)
+                EXPECT_NEAR(scaledAo.pixels[i], unit.pixels[i], 1e-5f) << scale << " pixel " << i;
+        } else
             expectFailure(args, {"scaled.exr", "has length 0.8"});
     }
     // Sky written as a finite 1e31, which every pass reads as sky: its zero normals are not checked either

@@ -160,11 +160,14 @@ void run(const AoOptions& o) {
         g.normal = channels(readImage(o.normal), {"N.X", "N.Y", "N.Z"}, o.normal, "normal");
         checkSize(g.normal, g.camera, o.normal, o.camera);
         checkUnitNormals(g, o.normal);  // surface pixels only: a sky pixel's normal is never read
-        // A G-buffer holds (0, 0, 0) under the sky (GBuffer::normal); whatever the file holds there goes.
+        // A G-buffer holds (0, 0, 0) under the sky (GBuffer::normal); whatever the file holds there goes. The
+        // surface normals within the accepted lengths are made unit, as ssao::prepareGBuffer does: Alchemy's
+        // v.n scales with the length (0.09 of AO for normals 1.09 long, as 8-bit or half storage leaves them).
         for (int y = 0; y < g.height(); ++y)
-            for (int x = 0; x < g.width(); ++x)
-                if (g.isSky(x, y))
-                    for (int c = 0; c < 3; ++c) g.normal.at(x, y, c) = 0.0f;
+            for (int x = 0; x < g.width(); ++x) {
+                const Vec3 n = g.isSky(x, y) ? Vec3{} : normalize(g.viewNormal(x, y));
+                for (int c = 0; c < 3; ++c) g.normal.at(x, y, c) = n[c];
+            }
     }
 
     Image ao;
