@@ -15,6 +15,7 @@
 #include "obscura/error.h"
 #include "obscura/gpu_shaders.h"
 #include "obscura/gtao_temporal.h"
+#include "obscura/metrics.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -42,12 +43,7 @@ double normalBytes(const GpuBenchSettings& s) { return s.packedNormals ? 4.0 : 1
 
 std::string normalsText(const GpuBenchSettings& s) { return s.packedNormals ? ", octahedral normals" : ""; }
 
-double median(std::vector<double> v) {
-    if (v.empty()) return 0.0;
-    std::sort(v.begin(), v.end());
-    const std::size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
+using eval::median;
 
 // Records frame `index` (on input `in`); calls mark(pass) after each pass.
 using RecordFrame = std::function<void(VkCommandBuffer, const ResidentInput& in, int index,

@@ -331,19 +331,21 @@ std::size_t GtaoTemporalPasses::bytesPerFrame() const {
     // The depth is written only where the history keeps its own copy.
     const std::size_t history = temporal_.packedHistory ? 1 + 1 + 1 + (b > 0 ? 1 : 0) : 1 + 3 + 1 + b + 1;
     const std::size_t written = history - (variant_.callerKeepsDepth ? 1 : 0);
+    // The spatial mode writes the history planes but reads none (temporal_pixel.glsl returns before its loads).
+    const std::size_t read = temporal_.temporal ? history : 0;
     if (gridHistory_) {
         // The accumulation on the grid: the raw values, the grid's depth and normals, the history in; the next
         // history and the grid's view bent normals out. Then the upsampling, one dispatch per plane: the grid's
         // accumulated visibility (and b bent-normal channels) with its depth and the full depth in; 1 (and b)
         // per pixel out. Fused, the raw values and the grid's depth and normals are the GTAO evaluation's.
-        bytes += f * grid * ((variant_.fused ? 0 : (1 + b) + (1 + n)) + history + written + b);
+        bytes += f * grid * ((variant_.fused ? 0 : (1 + b) + (1 + n)) + read + written + b);
         const std::size_t out =
             variant_.packedOutput ? sizeof(std::uint32_t) * upsamplePackedWords(width_, height_) : f * pixels;
         bytes += f * (grid * (1 + 1) + pixels) + out;
         if (b > 0) bytes += f * (grid * (b + 1) + pixels * (1 + b));
         return bytes;
     }
-    bytes += f * (grid * (1 + b + (step_ == 2 ? 1 : 0)) + pixels * ((1 + n) + history + written + b));
+    bytes += f * (grid * (1 + b + (step_ == 2 ? 1 : 0)) + pixels * ((1 + n) + read + written + b));
     return bytes;
 }
 

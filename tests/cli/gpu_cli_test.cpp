@@ -551,6 +551,9 @@ TEST_F(GpuCommands, BenchGpuBlurTiled) {
         EXPECT_EQ(names(a["cases"][i]).count("bilateral_tiled"), 0u) << name;
     }
     expectFailure("bench --gpu --blur-tiled --blur-radius 9", {"--blur-tiled", "up to 8", "--blur-radius is 9"});
+    // Twice the same size or case printed two rows, of which scripts/gpu-ab kept the second alone.
+    expectFailure("bench --gpu --sizes 8x8,16x8,8x8", {"--sizes", "8x8 is given twice"});
+    expectFailure("bench --gpu --cases gtao,alchemy,gtao", {"--cases", "gtao is given twice"});
     expectFailure("bench --gpu --blur-tiled --half-blur-radius 12", {"--blur-tiled", "--half-blur-radius is 12"});
 }
 

@@ -388,6 +388,25 @@ TEST(GpuGtaoTemporal, RecordsFramesOnResidentBuffers) {
     EXPECT_EQ(testing::validationReport(context), "");
 }
 
+// The spatial mode writes the history planes and reads none (temporal_pixel.glsl returns before its loads): its
+// frame moves the temporal one's bytes less the history's 9 floats (depth, world normal, visibility, world bent
+// normal, length) per element of the lattice. bench --gpu counted them for gtao-spatial too (148 B a pixel at
+// full resolution for 112).
+TEST(GpuGtaoTemporal, TheSpatialModeIsNotChargedForHistoryReads) {
+    OBSCURA_GPU_CONTEXT(context);
+    Context::Impl& c = context.impl();
+    const int w = 37, h = 23;
+    const ssao::GtaoSettings settings = preset(ssao::GtaoQuality::Medium);
+    for (const auto& [half, grid] : {std::pair{false, false}, std::pair{true, false}, std::pair{true, true}}) {
+        const GtaoTemporalPasses spatial(c, settings, mode(false, half, grid), w, h);
+        const GtaoTemporalPasses temporal(c, settings, mode(true, half, grid), w, h);
+        const std::size_t lattice = grid ? std::size_t((w + 1) / 2) * std::size_t((h + 1) / 2) : std::size_t(w) * std::size_t(h);
+        EXPECT_EQ(temporal.bytesPerFrame() - spatial.bytesPerFrame(), 9 * sizeof(float) * lattice)
+            << "half " << half << " grid " << grid;
+    }
+    EXPECT_EQ(testing::validationReport(context), "");
+}
+
 // Packed normals (GtaoTemporalVariant::packedNormals, one octahedral word per pixel): the frame is, bit for
 // bit, the frame of the words' decoded normals (unpackNormals) read as floats, in each mode, with bent normals
 // and with the alternating windows, over 4 frames of the path; so it is the CPU reference's frame of those

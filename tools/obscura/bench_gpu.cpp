@@ -15,6 +15,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cctype>
 #include <cstdio>
 #include <ctime>
@@ -286,12 +287,18 @@ void runGpuBench(const GpuBenchOptions& o) {
     for (const std::string& s : splitList(o.sizes)) {
         int w = 0, h = 0;
         parseSize("--sizes", s, w, h);
+        // A size or case twice printed two rows, of which scripts/gpu-ab kept the second (warmer) one alone.
+        if (std::find(sizes.begin(), sizes.end(), std::pair{w, h}) != sizes.end())
+            fail("--sizes", s + " is given twice");
         sizes.push_back({w, h});
     }
     if (sizes.empty()) fail("--sizes", "no size given");
     const std::vector<std::string> cases = splitList(o.cases);
     if (cases.empty()) fail("--cases", "no case given");
-    for (const std::string& c : cases) {
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+        const std::string& c = cases[i];
+        if (std::find(cases.begin(), cases.begin() + std::ptrdiff_t(i), c) != cases.begin() + std::ptrdiff_t(i))
+            fail("--cases", c + " is given twice");
         bool known = false;
         std::string names;
         for (const gpu::GpuBenchCaseInfo& info : gpu::gpuBenchCases()) {

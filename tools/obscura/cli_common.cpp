@@ -4,6 +4,7 @@
 #include "obscura/bake.h"
 #include "obscura/error.h"
 #include "obscura/image_io.h"
+#include "obscura/metrics.h"
 #include "obscura/scene_io.h"
 
 #include <CLI/CLI.hpp>
@@ -291,6 +292,7 @@ double processCpuMs() {
 }
 } // namespace
 
+
 RunTimes timeRuns(int repeats, const std::function<void()>& body) {
     body();
     std::vector<double> wall, cpu;
@@ -301,9 +303,7 @@ RunTimes timeRuns(int repeats, const std::function<void()>& body) {
         wall.push_back(1000.0 * secondsSince(start));
         cpu.push_back(processCpuMs() - cpu0);
     }
-    std::sort(wall.begin(), wall.end());
-    std::sort(cpu.begin(), cpu.end());
-    return {wall[wall.size() / 2], wall.front(), cpu[cpu.size() / 2]};
+    return {eval::median(wall), *std::min_element(wall.begin(), wall.end()), eval::median(cpu)};
 }
 
 } // namespace obscura::cli
