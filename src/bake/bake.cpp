@@ -33,7 +33,8 @@ BakeResult bakeScene(const Scene& scene, const BakeSettings& settings, const Sta
     double t0 = now();
     report("process geometry", 0.0);
     const WeldedMesh mesh = weldScene(scene, settings.weldDistance(scene.bounds()), settings.creaseAngle);
-    if (mesh.triangleCount() == 0) fail("bake", "no triangles left after welding");
+    if (mesh.triangleCount() == 0)
+        fail("bake", "no triangles left after welding (every face has no area where its instances place it)");
     report("process geometry", 1.0);
     double t1 = now();
     r.times.processGeometry = t1 - t0;

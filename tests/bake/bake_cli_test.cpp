@@ -175,6 +175,16 @@ TEST_F(BakeCli, BadInputIsOneLineAndNoOutput) {
     expectFailure("bake " + data("cube.obj") + out + " --linear-solver qr -q", {"--linear-solver"});
     expectFailure("bake " + data("cube.obj") + " -o " + path("o.png") + kFast, {"o.png", "unsupported output format"});
     expectFailure("bake " + data("cube.obj") + " -o " + path("nodir/o.glb") + kFast, {"does not exist"});
+    // An instance that scales its triangle to nothing: the bake's refusal names the input.
+    {
+        std::ofstream flat(path("flat.gltf"));
+        flat << R"({"asset": {"version": "2.0"}, "nodes": [{"mesh": 0, "scale": [0, 0, 0]}],)"
+                R"( "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],)"
+                R"( "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"}],)"
+                R"( "bufferViews": [{"buffer": 0, "byteLength": 36}], "buffers": [{"byteLength": 36, "uri": )"
+                R"("data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}]})";
+    }
+    expectFailure("bake " + path("flat.gltf") + out + kFast, {"flat.gltf: bake: no triangles left after welding"});
     fs::copy_file(data("quad.glb"), path("quad.glb"));
     const std::string before = readBytes(path("quad.glb"));
     Result r = run("bake " + path("quad.glb") + " -o " + path("quad.glb") + kFast);

@@ -118,7 +118,15 @@ void runBake(BakeOptions& o) {
         }
         (*bar)(f);
     };
-    bake::BakeResult r = bake::bakeScene(loaded.scene, s, progress, std::size_t(o.rawCheck));
+    // The settings were checked above, so what the bake refuses is the scene: its errors name the input (a
+    // glTF whose instances scale every face to nothing said only "bake: no triangles left after welding").
+    bake::BakeResult r;
+    try {
+        r = bake::bakeScene(loaded.scene, s, progress, std::size_t(o.rawCheck));
+    } catch (const Error& e) {
+        bar.reset();
+        fail(o.input, e.what());
+    }
     progress("write", 0.0);
     auto tw = std::chrono::steady_clock::now();
     bake::writeBakeOutput(o.input, loaded.scene, r, o.controls, o.output);
