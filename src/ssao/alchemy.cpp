@@ -169,18 +169,31 @@ Image normalsFromDepth(const Image& depth, const Camera& camera) {
         const float d2 = depth.at(x + 2 * dx, y + 2 * dy);
         return std::fabs(2.0f / d1 - 1.0f / d2 - 1.0f / d0) * d0;
     };
+    // Whether the neighbour at (x + dx, y + dy) is taken over the one opposite. Where only one side has a second
+    // neighbour (the other is next to the border or the sky), a plane test and a depth step are not comparable:
+    // a steep surface's own neighbour steps far in depth while the pixel across a crease passes a plane test
+    // fairly well, and a pixel one in from the border took its difference across the crease (33 degrees off).
+    // There the long side is taken if it continues the centre's plane (kPlaneMisfit, far above rounding, far
+    // below a crease's), else the short one.
+    constexpr float kPlaneMisfit = 1e-4f;
+    auto prefer = [&](int x, int y, int dx, int dy) {
+        const float a = misfit(x, y, dx, dy), b = misfit(x, y, -dx, -dy);
+        const bool longA = usable(x + dx, y + dy) && usable(x + 2 * dx, y + 2 * dy);
+        const bool longB = usable(x - dx, y - dy) && usable(x - 2 * dx, y - 2 * dy);
+        if (longA != longB && a < INFINITY && b < INFINITY) return longA ? a <= kPlaneMisfit : b > kPlaneMisfit;
+        return a <= b;
+    };
     parallelFor(std::size_t(h), [&](std::size_t y0, std::size_t y1) {
         for (int y = int(y0); y < int(y1); ++y)
             for (int x = 0; x < w; ++x) {
                 Vec3 n{0, 0, 1};
                 if (!isSkyDepth(depth.at(x, y))) {
                     const Vec3 p = position(x, y);
-                    const float l = misfit(x, y, -1, 0), r = misfit(x, y, 1, 0);
-                    const float u = misfit(x, y, 0, -1), d = misfit(x, y, 0, 1);
-                    const bool alongX = l < INFINITY || r < INFINITY, alongY = u < INFINITY || d < INFINITY;
+                    const bool alongX = usable(x - 1, y) || usable(x + 1, y), alongY = usable(x, y - 1) || usable(x, y + 1);
+                    const bool right = prefer(x, y, 1, 0), down = prefer(x, y, 0, 1);
                     if (alongX && alongY) {
-                        const Vec3 ddx = r <= l ? position(x + 1, y) - p : p - position(x - 1, y);
-                        const Vec3 ddy = d <= u ? position(x, y + 1) - p : p - position(x, y - 1);
+                        const Vec3 ddx = right ? position(x + 1, y) - p : p - position(x - 1, y);
+                        const Vec3 ddy = down ? position(x, y + 1) - p : p - position(x, y - 1);
                         // Pixel y grows downwards, so cross(ddy, ddx) points out of a camera-facing plane.
                         n = normalize(cross(ddy, ddx));
                         if (dot(n, p) > 0.0f) n = -n;
@@ -188,8 +201,8 @@ Image normalsFromDepth(const Image& depth, const Camera& camera) {
                         // One axis only (an image one pixel wide or tall, a one-pixel-wide strip against the sky):
                         // the normal across that tangent in the plane of the tangent and the view ray. Facing the
                         // camera outright made an open plane's 1-pixel-wide column fully occluded (A = 0).
-                        const Vec3 t = alongX ? (r <= l ? position(x + 1, y) - p : p - position(x - 1, y))
-                                              : (d <= u ? position(x, y + 1) - p : p - position(x, y - 1));
+                        const Vec3 t = alongX ? (right ? position(x + 1, y) - p : p - position(x - 1, y))
+                                              : (down ? position(x, y + 1) - p : p - position(x, y - 1));
                         const Vec3 across = t * (dot(p, t) / dot(t, t)) - p;  // 0 for a tangent along the ray
                         n = dot(across, across) > 0.0f ? normalize(across) : -normalize(p);
                     } else {

@@ -235,6 +235,38 @@ TEST(Alchemy, NormalsFromDepthMatchTheGBufferAcrossCreases) {
     EXPECT_GT(checked, 5000);
 }
 
+// One pixel in from the border or the sky, the side with a second neighbour is judged by whether it continues
+// the centre's plane, not by comparing that test with the other side's depth step: a flat wall B 5 m away
+// meets a steep plane A at a vertical crease, and A's first pixel column is 18. With A only two columns wide
+// (the image 20 wide) or the sky from column 20, column 18 took its difference across the crease onto B:
+// 25 to 36 degrees off A's normal. Analytic depths, so A's own normal is exact.
+TEST(Alchemy, NormalsFromDepthNextToTheBorderStayOnTheirSideOfACrease) {
+    for (const auto& [nx, nz] : {std::pair{-0.9, 0.45}, std::pair{-0.7, 0.7}, std::pair{-0.97, 0.25}})
+        for (const auto& [w, sky] : {std::pair{20, -1}, std::pair{21, -1}, std::pair{24, 20}, std::pair{24, -1}}) {
+            Camera cam;
+            cam.position = {0, 0, 0};
+            cam.target = {0, 0, -1};
+            cam.width = w;
+            cam.height = 9;
+            cam.fovY = 40;
+            const double l = std::hypot(nx, nz), ax = nx / l, az = nz / l;
+            const double t = std::tan(20.0 * 3.14159265358979 / 180.0), aspect = double(w) / 9.0;
+            const double creaseX = (2.0 * 18 / w - 1) * t * aspect * 5.0;  // the crease: column 18's left edge on B
+            Image depth(w, 9, 1);
+            for (int y = 0; y < 9; ++y)
+                for (int x = 0; x < w; ++x) {
+                    const double rx = (2.0 * (x + 0.5) / w - 1) * t * aspect;
+                    const double d = x < 18 ? 5.0 : (ax * creaseX - az * 5.0) / (ax * rx - az);
+                    depth.at(x, y) = sky >= 0 && x >= sky ? INFINITY : float(d);
+                }
+            const Image n = normalsFromDepth(depth, cam);
+            const double cosine = double(n.at(18, 4, 0)) * ax + double(n.at(18, 4, 2)) * az;
+            EXPECT_GT(cosine, 0.9999) << "A's normal (" << ax << ", 0, " << az << "), width " << w << ", sky from "
+                                      << sky << ": (" << n.at(18, 4, 0) << ", " << n.at(18, 4, 1) << ", "
+                                      << n.at(18, 4, 2) << ")";
+        }
+}
+
 TEST(Alchemy, GuardBandCropsToTheInnerView) {
     const Camera inner = camera({4, 4, 4}, {0.5f, 0, 0.5f}, 64, 48);
     const Camera outer = guardBandCamera(inner, 8);

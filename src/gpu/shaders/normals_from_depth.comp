@@ -32,6 +32,16 @@ float misfit(int x, int y, int dx, int dy) {
     return abs(2.0 / d1 - 1.0 / d2 - 1.0 / d0) * d0;
 }
 
+// The CPU's prefer: where one side alone has a second neighbour, it is taken if it continues the centre's plane.
+const float kPlaneMisfit = 1e-4;
+bool prefer(int x, int y, int dx, int dy) {
+    const float a = misfit(x, y, dx, dy), b = misfit(x, y, -dx, -dy);
+    const bool longA = usable(x + dx, y + dy) && usable(x + 2 * dx, y + 2 * dy);
+    const bool longB = usable(x - dx, y - dy) && usable(x - 2 * dx, y - 2 * dy);
+    if (longA != longB && a < kInf && b < kInf) return longA ? a <= kPlaneMisfit : b > kPlaneMisfit;
+    return a <= b;
+}
+
 void main() {
     const ivec2 q = ivec2(gl_GlobalInvocationID.xy);
     if (q.x >= k.width || q.y >= k.height) return;
@@ -39,18 +49,17 @@ void main() {
     vec3 n = vec3(0.0);
     if (depthAt(x, y) < 1e30) {
         const vec3 p = position(x, y);
-        const float l = misfit(x, y, -1, 0), r = misfit(x, y, 1, 0);
-        const float u = misfit(x, y, 0, -1), d = misfit(x, y, 0, 1);
-        const bool alongX = l < kInf || r < kInf, alongY = u < kInf || d < kInf;
+        const bool alongX = usable(x - 1, y) || usable(x + 1, y), alongY = usable(x, y - 1) || usable(x, y + 1);
+        const bool right = prefer(x, y, 1, 0), down = prefer(x, y, 0, 1);
         if (alongX && alongY) {
-            const vec3 ddx = r <= l ? position(x + 1, y) - p : p - position(x - 1, y);
-            const vec3 ddy = d <= u ? position(x, y + 1) - p : p - position(x, y - 1);
+            const vec3 ddx = right ? position(x + 1, y) - p : p - position(x - 1, y);
+            const vec3 ddy = down ? position(x, y + 1) - p : p - position(x, y - 1);
             n = normalize(cross(ddy, ddx));
             if (dot(n, p) > 0.0) n = -n;
         } else if (alongX || alongY) {
             // One axis only: across its tangent, in the plane of the tangent and the view ray (as the CPU's).
-            const vec3 t = alongX ? (r <= l ? position(x + 1, y) - p : p - position(x - 1, y))
-                                  : (d <= u ? position(x, y + 1) - p : p - position(x, y - 1));
+            const vec3 t = alongX ? (right ? position(x + 1, y) - p : p - position(x - 1, y))
+                                  : (down ? position(x, y + 1) - p : p - position(x, y - 1));
             const vec3 across = t * (dot(p, t) / dot(t, t)) - p;
             n = dot(across, across) > 0.0 ? normalize(across) : -normalize(p);
         } else {
