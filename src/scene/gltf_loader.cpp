@@ -32,10 +32,11 @@ public:
         : model_(model), path_(path), info_(info) {}
 
     Scene read() {
-        // Compressed or quantized geometry would read as garbage (or as the zeros of a missing buffer view).
+        // Compressed or quantized geometry would read as garbage (or as the zeros of a missing buffer view), and
+        // instances placed by EXT_mesh_gpu_instancing would be left out (one copy where the file has many).
         for (const std::string& ext : model_.extensionsRequired)
             if (ext == "KHR_draco_mesh_compression" || ext == "EXT_meshopt_compression" ||
-                ext == "KHR_mesh_quantization")
+                ext == "KHR_mesh_quantization" || ext == "EXT_mesh_gpu_instancing")
                 bad("requires extension " + ext + ", which is not supported");
         for (int r : loader::sceneRoots(model_, path_)) visit(r);
         return std::move(scene_);

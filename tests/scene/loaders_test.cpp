@@ -167,6 +167,8 @@ TEST(LoaderGltf, LyingFilesGiveErrors) {
          "must be float VEC3"},
         {R"("extensionsUsed": ["KHR_draco_mesh_compression"], "extensionsRequired": ["KHR_draco_mesh_compression"],)",
          node, acc + "}", view, "requires extension KHR_draco_mesh_compression, which is not supported"},
+        {R"("extensionsUsed": ["EXT_mesh_gpu_instancing"], "extensionsRequired": ["EXT_mesh_gpu_instancing"],)",
+         node, acc + "}", view, "requires extension EXT_mesh_gpu_instancing, which is not supported"},
         // Values of the wrong type, which tinygltf replaced by the default (an offset of 0, no translation).
         {"", node, acc + "}", R"({"buffer": 0, "byteOffset": 1e10, "byteLength": 36})",
          "bufferViews[0].byteOffset must be a non-negative integer, got 10000000000.0"},
