@@ -9,7 +9,6 @@
 #include "obscura/image.h"
 
 #include <cstddef>
-#include <vector>
 
 namespace obscura::eval {
 
@@ -28,9 +27,5 @@ ErrorStats errorStats(const Image& estimate, const Image& reference, const GBuff
 Vec3 signedErrorColor(float error, float range);
 // 3-channel picture of estimate - reference; sky pixels are mid grey.
 Image signedErrorImage(const Image& estimate, const Image& reference, const GBuffer& gbuffer, float range);
-
-// The middle value of timings or errors, or of an even count the mean of the two middle ones; 0 for none. The
-// benches' one rule (the CPU benches once took the upper middle, so 2 repeats' "median" was the slower run).
-double median(std::vector<double> values);
 
 } // namespace obscura::eval

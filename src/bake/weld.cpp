@@ -68,11 +68,13 @@ void splitCreases(WeldedMesh& out, const std::vector<std::uint32_t>& fileCorner,
         const double l = n.length();  // > 0: the weld dropped faces without area
         normal[t] = {n.x / l, n.y / l, n.z / l};
     }
-    auto slack = [&](std::uint32_t t) {
+    std::vector<double> faceSlack(normal.size());  // once per face: the edge groups below read it often
+    for (std::size_t t = 0; t < faceSlack.size(); ++t) {
         const Vec3 a = out.positions[out.indices[3 * t]], b = out.positions[out.indices[3 * t + 1]],
                    c = out.positions[out.indices[3 * t + 2]];
-        return normalSlack(a, b, c, geometry::twiceArea(a, b, c));
-    };
+        faceSlack[t] = normalSlack(a, b, c, geometry::twiceArea(a, b, c));
+    }
+    auto slack = [&](std::uint32_t t) { return faceSlack[t]; };
     const double cosLimit = std::cos(limit);
     auto joined = [&](std::uint32_t s, std::uint32_t t) {
         const std::array<double, 3>& m = normal[s];
@@ -115,6 +117,13 @@ void splitCreases(WeldedMesh& out, const std::vector<std::uint32_t>& fileCorner,
         for (std::size_t i = 0; i < spokes.size();) {
             std::size_t end = i + 1;
             while (end < spokes.size() && spokes[end].first == spokes[i].first) ++end;
+            if (end - i == 2) {  // a manifold edge: one pair, nothing to sort
+                const std::uint32_t c = spokes[i].second, d = spokes[i + 1].second;
+                const std::uint32_t a = findRoot(parent, c), b = findRoot(parent, d);
+                if (a != b && joined(c / 3, d / 3)) parent[std::max(a, b)] = std::min(a, b);
+                i = end;
+                continue;
+            }
             onEdge.clear();
             for (std::size_t j = i; j < end; ++j) onEdge.emplace_back(spokes[j].second, slack(spokes[j].second / 3));
             // By normal, then by slack, most first; the corner breaks ties, so the order is the faces' own.

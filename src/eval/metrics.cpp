@@ -71,11 +71,4 @@ Image signedErrorImage(const Image& estimate, const Image& reference, const GBuf
     return out;
 }
 
-double median(std::vector<double> values) {
-    if (values.empty()) return 0.0;
-    std::sort(values.begin(), values.end());
-    const std::size_t n = values.size();
-    return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
-
 } // namespace obscura::eval

@@ -15,7 +15,7 @@
 #include "obscura/error.h"
 #include "obscura/gpu_shaders.h"
 #include "obscura/gtao_temporal.h"
-#include "obscura/metrics.h"
+#include "obscura/statistics.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -43,7 +43,6 @@ double normalBytes(const GpuBenchSettings& s) { return s.packedNormals ? 4.0 : 1
 
 std::string normalsText(const GpuBenchSettings& s) { return s.packedNormals ? ", octahedral normals" : ""; }
 
-using eval::median;
 
 // Records frame `index` (on input `in`); calls mark(pass) after each pass.
 using RecordFrame = std::function<void(VkCommandBuffer, const ResidentInput& in, int index,

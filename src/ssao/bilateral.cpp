@@ -8,6 +8,7 @@
 #include "obscura/parallel.h"
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <cassert>
 #include <cmath>
@@ -187,6 +188,16 @@ void checkBilateralInputs(const Image& ao, const GBuffer& g, const BilateralSett
     // A NaN depth made a NaN weight, which the CPU's exp2 clamps to about 2^-125 (the centre still blurred) and
     // the GPU's exp2 passes on (the centre kept raw): 0.79 against 0.51 beside it. A NaN AO spread over a window.
     g.validatePixels("bilateral filter");
+    // As validatePixels: a branch-free scan over rows in parallel (every blur of every frame makes it), and the
+    // per-pixel loop that names the first bad one only for a bad image.
+    std::atomic<bool> bad{false};
+    parallelFor(std::size_t(ao.height), [&](std::size_t y0, std::size_t y1) {
+        bool finite = true;
+        for (std::size_t i = y0 * std::size_t(ao.width); i < y1 * std::size_t(ao.width); ++i)
+            finite &= std::isfinite(ao.pixels[i]);
+        if (!finite) bad.store(true, std::memory_order_relaxed);
+    }, 16);
+    if (!bad.load()) return;
     for (int y = 0; y < ao.height; ++y)
         for (int x = 0; x < ao.width; ++x)
             if (!std::isfinite(ao.at(x, y)))

@@ -17,7 +17,7 @@ namespace obscura::trace {
 void ObscuranceSettings::validate() const {
     if (!(radius > 0.0f)) fail("ao-radius", "must be > 0 (or inf), got " + numberText(radius));
     if (!(alchemyU > 0.0f) || !std::isfinite(alchemyU)) fail("ao-u", "must be a finite value > 0");
-    if (!(alchemyScale >= 0.0f) || !std::isfinite(alchemyScale)) fail("alchemy-scale", "must be a finite value >= 0");
+    if (!(alchemyScale >= 0.0f) || !std::isfinite(alchemyScale)) fail("ObscuranceSettings::alchemyScale", "must be a finite value >= 0");
     if (!(halfDistance > 0.0f) || !std::isfinite(halfDistance)) fail("ao-distance", "must be a finite value > 0");
     if (rays < 1 || rays > (1 << 20)) fail("ao-rays", "must be in [1, 1048576], got " + std::to_string(rays));
 }

@@ -106,9 +106,10 @@ TEST(Crease, GroupsDoNotDependOnFaceOrder) {
 }
 
 // Copies of a face on one edge (a non-manifold file: the same triangle listed again and again) join each other
-// and whatever the first copy joins; they are joined as one before the pairs are compared, which took the square
-// of the copies' count in time (40000 copies of one triangle: 9 s). The groups stay those of the three faces
-// above: crease 60, fins together (7 vertices); crease 5, all apart (5 + 2 + 2 = 9).
+// and whatever the one of most slack joins, so they are united before the pairs are compared (every pair took
+// the square of the copies' count in time: 40000 copies of one triangle, 9.4 s; now 0.16 s, measured with
+// obscura bake, not here). What this holds is that the shortcut keeps the groups of the three faces above:
+// crease 60, fins together (7 vertices); crease 5, all apart (5 + 2 + 2 = 9).
 TEST(Crease, StackedCopiesOnOneEdgeGroupAsTheirFaceDoes) {
     for (const int copies : {1, 2, 50}) {
         Scene scene = floorAndFins({2, 0, 1});

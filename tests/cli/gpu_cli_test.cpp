@@ -144,7 +144,7 @@ TEST_F(GpuCommands, RenderAlchemyTiledBlurMatchesTheTwoPasses) {
 TEST_F(GpuCommands, RenderGtaoMatchesTheCpu) {
     const char* cases[] = {
         "demo --size 96x54 --ao gtao",
-        "stairs --size 97x55 --ao gtao --ao-quality ultra --multibounce --specular-occlusion lut4",
+        "stairs --size 97x55 --ao gtao --ao-quality ultra --multibounce --specular-occlusion lut4 --ao-output all",
         "well --size 64x48 --ao gtao --frames 3",                                 // temporal
         "demo --size 75x41 --ao gtao --frames 2 --gtao-mode spatial --gtao-half-res",
         "corner --size 70x40 --ao gtao --frames 3 --gtao-half-res --gtao-packed-history",
@@ -162,6 +162,10 @@ TEST_F(GpuCommands, RenderGtaoMatchesTheCpu) {
         const Pair d = renderBoth(c);
         EXPECT_LE(d.frame.mean, 1e-3) << c;
         EXPECT_LE(d.ao.max, 2e-3) << c;
+        if (std::string(c).find("--specular-occlusion") != std::string::npos) {  // written with --ao-output all only
+            EXPECT_LE(difference(obscura::readExr(path("cpu/specular_occlusion.exr")),
+                                 obscura::readExr(path("gpu/specular_occlusion.exr"))).max, 2e-3) << c;
+        }
         std::printf("[ measured ] render %s: frame mean |diff| %.2e, AO max |diff| %.2e\n", c, d.frame.mean, d.ao.max);
     }
 }

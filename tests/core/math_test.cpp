@@ -1,5 +1,6 @@
 // Matrix helpers: inverse, normal matrix under non-uniform scale and mirroring.
 #include "obscura/math.h"
+#include "obscura/statistics.h"
 
 #include <gtest/gtest.h>
 
@@ -31,4 +32,14 @@ TEST(Math, ColumnMajorMatchesGltf) {
     float v[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 5, 6, 7, 1};
     Vec3 p = transformPoint(Mat4::fromColumnMajor(v), {1, 1, 1});
     EXPECT_EQ(p, (Vec3{6, 7, 8}));
+}
+
+// The benches' median: an even count takes the mean of the two middle values (the CPU benches took the upper
+// one, so 2 repeats of 10 and 40 ms gave 40).
+TEST(Statistics, OddAndEvenCounts) {
+    EXPECT_EQ(median({}), 0.0);
+    EXPECT_EQ(median({3.0}), 3.0);
+    EXPECT_EQ(median({40.0, 10.0}), 25.0);
+    EXPECT_EQ(median({40.0, 10.0, 40.0, 10.0}), 25.0);
+    EXPECT_EQ(median({5.0, 1.0, 9.0}), 5.0);
 }

@@ -23,16 +23,6 @@ GBuffer flat(int w, int h) {
 
 } // namespace
 
-// The benches' median: an even count takes the mean of the two middle values (the CPU benches took the upper
-// one, so 2 repeats of 10 and 40 ms gave 40).
-TEST(Median, OddAndEvenCounts) {
-    EXPECT_EQ(median({}), 0.0);
-    EXPECT_EQ(median({3.0}), 3.0);
-    EXPECT_EQ(median({40.0, 10.0}), 25.0);
-    EXPECT_EQ(median({40.0, 10.0, 40.0, 10.0}), 25.0);
-    EXPECT_EQ(median({5.0, 1.0, 9.0}), 5.0);
-}
-
 // Errors e = {+0.2, -0.1, 0, +0.3} on four surface pixels and a sky pixel with a huge error that must be
 // ignored: MAE 0.15, bias 0.1, RMSE sqrt(0.14 / 4), max 0.3.
 TEST(Metrics, ExactOnAHandMadeImage) {

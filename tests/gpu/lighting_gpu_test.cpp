@@ -180,8 +180,9 @@ GrazingViews grazingViews() {
 // beta axis holds b = n at a node for every theta_o, so an unoccluded surface stays 1 (QUALITY.md: within 2e-3)
 // up to theta_o = 89.98 degrees; AO 0 gives below 1e-3 in every mode, a mirror's cone included; and the cone
 // near a mirror keeps its digits: the shader's float form against the CPU's double, where both take alpha_v
-// and beta from float acos, whose ulps S multiplies by up to 1 / alpha_s (470 at roughness 0.001). Measured
-// on lavapipe (2026-11-28, LLVM 15.0.6): max 2.6e-4; bound 1e-3 (the textbook form was off by up to 0.99).
+// and beta from float atan (of sine and cosine), whose ulps S multiplies by up to 1 / alpha_s (470 at roughness
+// 0.001). Measured on lavapipe (2026-11-28, LLVM 15.0.6): max 4.5e-5 (2.6e-4 while the angles were acos of
+// cosines); bound 1e-3 (the textbook form was off by up to 0.99).
 TEST(GpuLighting, SpecularOcclusionAtGrazingViewsAndNearMirrors) {
     OBSCURA_GPU_CONTEXT(context);
     using Mode = ssao::SpecularOcclusionMode;

@@ -4,7 +4,7 @@
 #include "obscura/bake.h"
 #include "obscura/error.h"
 #include "obscura/image_io.h"
-#include "obscura/metrics.h"
+#include "obscura/statistics.h"
 #include "obscura/scene_io.h"
 
 #include <CLI/CLI.hpp>
@@ -303,7 +303,7 @@ RunTimes timeRuns(int repeats, const std::function<void()>& body) {
         wall.push_back(1000.0 * secondsSince(start));
         cpu.push_back(processCpuMs() - cpu0);
     }
-    return {eval::median(wall), *std::min_element(wall.begin(), wall.end()), eval::median(cpu)};
+    return {median(wall), *std::min_element(wall.begin(), wall.end()), median(cpu)};
 }
 
 } // namespace obscura::cli

@@ -109,6 +109,6 @@ struct RunTimes {
     double minMs = 0;        // wall
     double medianCpuMs = 0;  // process CPU time, all threads: on a shared machine, what the work itself cost
 };
-RunTimes timeRuns(int repeats, const std::function<void()>& body);  // medians by eval::median
+RunTimes timeRuns(int repeats, const std::function<void()>& body);  // medians as obscura::median
 
 } // namespace obscura::cli

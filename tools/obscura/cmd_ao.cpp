@@ -162,7 +162,7 @@ void run(const AoOptions& o) {
         checkUnitNormals(g, o.normal);  // surface pixels only: a sky pixel's normal is never read
         // A G-buffer holds (0, 0, 0) under the sky (GBuffer::normal); whatever the file holds there goes. The
         // surface normals within the accepted lengths are made unit, as ssao::prepareGBuffer does: Alchemy's
-        // v.n scales with the length (0.09 of AO for normals 1.09 long, as 8-bit or half storage leaves them).
+        // v.n scales with the length (AO moved by up to 0.082 for normals 1.09 long, 0.090 for 0.91).
         for (int y = 0; y < g.height(); ++y)
             for (int x = 0; x < g.width(); ++x) {
                 const Vec3 n = g.isSky(x, y) ? Vec3{} : normalize(g.viewNormal(x, y));

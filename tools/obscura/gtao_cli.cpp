@@ -291,8 +291,8 @@ GtaoFrame renderGtaoFrames(const GtaoOptions& o, float radius, const trace::Trac
     const bool all = o.output == "all";
     // The GPU skips the bent normal where nothing reads it: no bent-normal image, no specular occlusion (the
     // shading uses visibility alone). Its visibility is the same bits either way.
-    const gpu::GtaoOutputs outputs = bent || o.specular != "none" ? gpu::GtaoOutputs::VisibilityAndBentNormal
-                                                                 : gpu::GtaoOutputs::Visibility;
+    const gpu::GtaoOutputs outputs = bent || o.writesSpecular() ? gpu::GtaoOutputs::VisibilityAndBentNormal
+                                                                : gpu::GtaoOutputs::Visibility;
     std::optional<ssao::GtaoTemporal> temporal;
     std::optional<gpu::GtaoTemporal> gpuTemporal;
     if (mode != "full" && context)
