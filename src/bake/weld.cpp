@@ -74,7 +74,6 @@ void splitCreases(WeldedMesh& out, const std::vector<std::uint32_t>& fileCorner,
                    c = out.positions[out.indices[3 * t + 2]];
         faceSlack[t] = normalSlack(a, b, c, geometry::twiceArea(a, b, c));
     }
-    auto slack = [&](std::uint32_t t) { return faceSlack[t]; };
     const double cosLimit = std::cos(limit);
     auto joined = [&](std::uint32_t s, std::uint32_t t) {
         const std::array<double, 3>& m = normal[s];
@@ -84,7 +83,7 @@ void splitCreases(WeldedMesh& out, const std::vector<std::uint32_t>& fileCorner,
         if (cosine >= cosLimit) return true;
         // atan2 of the cross and dot products: acos of the dot cannot tell angles below ~1e-8 from 0.
         const double x = m[1] * n[2] - m[2] * n[1], y = m[2] * n[0] - m[0] * n[2], z = m[0] * n[1] - m[1] * n[0];
-        return std::atan2(std::sqrt(x * x + y * y + z * z), cosine) <= limit + slack(s) + slack(t);
+        return std::atan2(std::sqrt(x * x + y * y + z * z), cosine) <= limit + faceSlack[s] + faceSlack[t];
     };
     // Corners around each welded vertex (CSR), in corner order.
     std::vector<std::uint32_t> first(vertices + 1, 0), around(corners);
@@ -97,7 +96,7 @@ void splitCreases(WeldedMesh& out, const std::vector<std::uint32_t>& fileCorner,
     std::vector<std::uint32_t> parent(corners);
     std::iota(parent.begin(), parent.end(), 0u);
     std::vector<std::pair<std::uint32_t, std::uint32_t>> spokes;  // (other vertex, corner)
-    std::vector<std::pair<std::uint32_t, double>> onEdge;         // (corner, its face's slack)
+    std::vector<std::uint32_t> onEdge;                            // the corners of one edge's faces
     for (std::size_t v = 0; v < vertices; ++v) {
         spokes.clear();
         for (std::uint32_t i = first[v]; i < first[v + 1]; ++i) {
@@ -110,43 +109,36 @@ void splitCreases(WeldedMesh& out, const std::vector<std::uint32_t>& fileCorner,
         // each other, and any other face joins one of them if and only if it joins the one of most slack, so
         // they are joined first and only that one is compared with the rest: 40000 copies of a triangle on one
         // edge took 1.6e9 pair tests (9 s), and the time grew with the square of a file's size.
-        auto unite = [&](std::uint32_t c, std::uint32_t d) {
+        // Unites corners c and d's groups where `always` or their faces join (not tested once they are one).
+        auto unite = [&](std::uint32_t c, std::uint32_t d, bool always) {
             const std::uint32_t a = findRoot(parent, c), b = findRoot(parent, d);
-            if (a != b) parent[std::max(a, b)] = std::min(a, b);
+            if (a != b && (always || joined(c / 3, d / 3))) parent[std::max(a, b)] = std::min(a, b);
         };
         for (std::size_t i = 0; i < spokes.size();) {
             std::size_t end = i + 1;
             while (end < spokes.size() && spokes[end].first == spokes[i].first) ++end;
-            if (end - i == 2) {  // a manifold edge: one pair, nothing to sort
-                const std::uint32_t c = spokes[i].second, d = spokes[i + 1].second;
-                const std::uint32_t a = findRoot(parent, c), b = findRoot(parent, d);
-                if (a != b && joined(c / 3, d / 3)) parent[std::max(a, b)] = std::min(a, b);
-                i = end;
-                continue;
-            }
             onEdge.clear();
-            for (std::size_t j = i; j < end; ++j) onEdge.emplace_back(spokes[j].second, slack(spokes[j].second / 3));
-            // By normal, then by slack, most first; the corner breaks ties, so the order is the faces' own.
-            std::sort(onEdge.begin(), onEdge.end(), [&](const auto& p, const auto& q) {
-                const std::array<double, 3>&m = normal[p.first / 3], &n = normal[q.first / 3];
-                if (m != n) return m < n;
-                if (p.second != q.second) return p.second > q.second;
-                return p.first < q.first;
-            });
-            std::size_t kept = 0;
-            for (std::size_t j = 0; j < onEdge.size(); ++j) {
-                if (kept > 0 && normal[onEdge[kept - 1].first / 3] == normal[onEdge[j].first / 3]) {
-                    unite(onEdge[kept - 1].first, onEdge[j].first);
-                    continue;
-                }
-                onEdge[kept++] = onEdge[j];
-            }
-            for (std::size_t j = 0; j < kept; ++j)
-                for (std::size_t k = j + 1; k < kept; ++k) {
-                    const std::uint32_t a = findRoot(parent, onEdge[j].first), b = findRoot(parent, onEdge[k].first);
-                    if (a != b && joined(onEdge[j].first / 3, onEdge[k].first / 3)) parent[std::max(a, b)] = std::min(a, b);
-                }
+            for (std::size_t j = i; j < end; ++j) onEdge.push_back(spokes[j].second);
             i = end;
+            if (onEdge.size() > 2) {  // a manifold edge has one pair, nothing to merge
+                // By normal, then by slack, most first; the corner breaks ties, so the order is the faces' own.
+                std::sort(onEdge.begin(), onEdge.end(), [&](std::uint32_t p, std::uint32_t q) {
+                    const std::array<double, 3>&m = normal[p / 3], &n = normal[q / 3];
+                    if (m != n) return m < n;
+                    if (faceSlack[p / 3] != faceSlack[q / 3]) return faceSlack[p / 3] > faceSlack[q / 3];
+                    return p < q;
+                });
+                std::size_t kept = 0;
+                for (std::uint32_t c : onEdge) {
+                    if (kept > 0 && normal[onEdge[kept - 1] / 3] == normal[c / 3])
+                        unite(onEdge[kept - 1], c, true);
+                    else
+                        onEdge[kept++] = c;
+                }
+                onEdge.resize(kept);
+            }
+            for (std::size_t j = 0; j < onEdge.size(); ++j)
+                for (std::size_t k = j + 1; k < onEdge.size(); ++k) unite(onEdge[j], onEdge[k], false);
         }
     }
     // New vertices in welded-vertex order, then the order of each group's first corner: deterministic.

@@ -190,10 +190,9 @@ Image normalsFromDepth(const Image& depth, const Camera& camera) {
                 if (!isSkyDepth(depth.at(x, y))) {
                     const Vec3 p = position(x, y);
                     const bool alongX = usable(x - 1, y) || usable(x + 1, y), alongY = usable(x, y - 1) || usable(x, y + 1);
-                    const bool right = prefer(x, y, 1, 0), down = prefer(x, y, 0, 1);
+                    const Vec3 ddx = !alongX ? Vec3{} : prefer(x, y, 1, 0) ? position(x + 1, y) - p : p - position(x - 1, y);
+                    const Vec3 ddy = !alongY ? Vec3{} : prefer(x, y, 0, 1) ? position(x, y + 1) - p : p - position(x, y - 1);
                     if (alongX && alongY) {
-                        const Vec3 ddx = right ? position(x + 1, y) - p : p - position(x - 1, y);
-                        const Vec3 ddy = down ? position(x, y + 1) - p : p - position(x, y - 1);
                         // Pixel y grows downwards, so cross(ddy, ddx) points out of a camera-facing plane.
                         n = normalize(cross(ddy, ddx));
                         if (dot(n, p) > 0.0f) n = -n;
@@ -201,8 +200,7 @@ Image normalsFromDepth(const Image& depth, const Camera& camera) {
                         // One axis only (an image one pixel wide or tall, a one-pixel-wide strip against the sky):
                         // the normal across that tangent in the plane of the tangent and the view ray. Facing the
                         // camera outright made an open plane's 1-pixel-wide column fully occluded (A = 0).
-                        const Vec3 t = alongX ? (right ? position(x + 1, y) - p : p - position(x - 1, y))
-                                              : (down ? position(x, y + 1) - p : p - position(x, y - 1));
+                        const Vec3 t = alongX ? ddx : ddy;
                         const Vec3 across = t * (dot(p, t) / dot(t, t)) - p;  // 0 for a tangent along the ray
                         n = dot(across, across) > 0.0f ? normalize(across) : -normalize(p);
                     } else {

@@ -266,7 +266,7 @@ void GtaoOptions::validate(const std::string& aovDir) const {
 
 void GtaoOptions::warnUnread() const {
     // Computed on every frame and written nowhere, it took a 64x36 render from 0.05 s to 1.55 s for nothing.
-    if (specular != "none" && output != "all" && specularOption)
+    if (specular != "none" && !writesSpecular() && specularOption)
         warnIgnored({specularOption}, "is written only as specular_occlusion.exr (--ao-output all); the frame's "
                                       "composite is diffuse");
     if (specular == "none" && roughnessOption) warnIgnored({roughnessOption}, "applies to --specular-occlusion");

@@ -50,16 +50,14 @@ void main() {
     if (depthAt(x, y) < 1e30) {
         const vec3 p = position(x, y);
         const bool alongX = usable(x - 1, y) || usable(x + 1, y), alongY = usable(x, y - 1) || usable(x, y + 1);
-        const bool right = prefer(x, y, 1, 0), down = prefer(x, y, 0, 1);
+        const vec3 ddx = !alongX ? vec3(0.0) : prefer(x, y, 1, 0) ? position(x + 1, y) - p : p - position(x - 1, y);
+        const vec3 ddy = !alongY ? vec3(0.0) : prefer(x, y, 0, 1) ? position(x, y + 1) - p : p - position(x, y - 1);
         if (alongX && alongY) {
-            const vec3 ddx = right ? position(x + 1, y) - p : p - position(x - 1, y);
-            const vec3 ddy = down ? position(x, y + 1) - p : p - position(x, y - 1);
             n = normalize(cross(ddy, ddx));
             if (dot(n, p) > 0.0) n = -n;
         } else if (alongX || alongY) {
             // One axis only: across its tangent, in the plane of the tangent and the view ray (as the CPU's).
-            const vec3 t = alongX ? (right ? position(x + 1, y) - p : p - position(x - 1, y))
-                                  : (down ? position(x, y + 1) - p : p - position(x, y - 1));
+            const vec3 t = alongX ? ddx : ddy;
             const vec3 across = t * (dot(p, t) / dot(t, t)) - p;
             n = dot(across, across) > 0.0 ? normalize(across) : -normalize(p);
         } else {
