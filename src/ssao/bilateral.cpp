@@ -187,22 +187,29 @@ void checkBilateralInputs(const Image& ao, const GBuffer& g, const BilateralSett
                                      "x" + std::to_string(g.height()) + " (needs 1 channel of the same size)");
     // A NaN depth made a NaN weight, which the CPU's exp2 clamps to about 2^-125 (the centre still blurred) and
     // the GPU's exp2 passes on (the centre kept raw): 0.79 against 0.51 beside it. A NaN AO spread over a window.
-    g.validatePixels("bilateral filter");
-    // As validatePixels: a branch-free scan over rows in parallel (every blur of every frame makes it), and the
-    // per-pixel loop that names the first bad one only for a bad image.
+    // Every blur of every frame makes this check, so it reads what the blur reads and no more (the normals only
+    // with the normal weight; the whole G-buffer's validatePixels and a separate AO scan took 2.7 ms, a fifth of a
+    // separable blur at 1920x1080 on 2 cores), in one branch-free pass over rows in parallel; the loop that
+    // names the first bad pixel runs only for a bad image.
+    const bool normals = settings.usesNormals();
+    const int w = ao.width;
     std::atomic<bool> bad{false};
     parallelFor(std::size_t(ao.height), [&](std::size_t y0, std::size_t y1) {
-        bool finite = true;
-        for (std::size_t i = y0 * std::size_t(ao.width); i < y1 * std::size_t(ao.width); ++i)
-            finite &= std::isfinite(ao.pixels[i]);
-        if (!finite) bad.store(true, std::memory_order_relaxed);
+        bool ok = normals ? g.pixelsValid(0, w, int(y0), int(y1)) : true;
+        for (std::size_t i = y0 * std::size_t(w); i < y1 * std::size_t(w); ++i)
+            ok &= (g.depth.pixels[i] > 0.0f) & ((ao.pixels[i] - ao.pixels[i]) == 0.0f);
+        if (!ok) bad.store(true, std::memory_order_relaxed);
     }, 16);
     if (!bad.load()) return;
+    if (normals) g.validatePixels("bilateral filter");
     for (int y = 0; y < ao.height; ++y)
-        for (int x = 0; x < ao.width; ++x)
-            if (!std::isfinite(ao.at(x, y)))
-                fail("bilateral filter", "AO at pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") is " +
-                                             numberText(ao.at(x, y)));
+        for (int x = 0; x < w; ++x) {
+            const float d = g.depth.at(x, y), v = ao.at(x, y);
+            if (d > 0.0f && std::isfinite(v)) continue;
+            const std::string at = "at pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") is ";
+            if (!(d > 0.0f)) fail("bilateral filter", "depth " + at + numberText(d) + " (must be positive or +inf)");
+            fail("bilateral filter", "AO " + at + numberText(v));
+        }
 }
 
 Image bilateralPass(const Image& ao, const GBuffer& gbuffer, const BilateralSettings& settings, int axis) {

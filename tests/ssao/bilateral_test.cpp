@@ -334,6 +334,14 @@ TEST(Bilateral, RejectsBadSettingsAndBuffers) {
     Image nanAo = ao;
     nanAo.at(5, 6) = NAN;
     EXPECT_EQ(errorOf([&] { bilateral2D(nanAo, g, BilateralSettings{}); }), "bilateral filter: AO at pixel (5, 6) is nan");
+    // Normals are checked where the blur reads them: with the normal weight (the 2-D blur's by default), not
+    // without it (the separable one's default), where the check reads depth and AO alone.
+    GBuffer nanNormal = g;
+    nanNormal.normal.at(4, 1, 2) = NAN;
+    BilateralSettings twoD = settings(BlurMode::TwoD, 3);
+    EXPECT_EQ(errorOf([&] { bilateralFilter(ao, nanNormal, twoD); }),
+              "bilateral filter: normal at pixel (4, 1) is not finite");
+    EXPECT_EQ(errorOf([&] { bilateralFilter(ao, nanNormal, settings(BlurMode::Separable, 3)); }), "no error");
 }
 
 } // namespace obscura::ssao
