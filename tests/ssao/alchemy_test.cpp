@@ -100,14 +100,16 @@ TEST(Alchemy, OpenPlaneIsOneWithNormalsFromDepth) {
     // 1-pixel-wide column of the open plane came out fully occluded (0 in every pixel).
     for (const auto& [w, h] : {std::pair{1, 97}, std::pair{97, 1}, std::pair{2, 97}, std::pair{1, 2}}) {
         const GBuffer thin = render("plane", camera({0, 1.6f, 3}, {0, 0, 0}, w, h));
-        const Image n = normalsFromDepth(thin.depth, thin.camera);
-        double worstTilt = 0;
-        for (int y = 0; y < h; ++y)
-            for (int x = 0; x < w; ++x)
-                if (!thin.isSky(x, y) && w == 1)  // the centre column: the plane's normal exactly, up to rounding
-                    for (int c = 0; c < 3; ++c)
-                        worstTilt = std::max(worstTilt, double(std::fabs(n.at(x, y, c) - thin.normal.at(x, y, c))));
-        EXPECT_LT(worstTilt, 1e-4) << w << "x" << h;
+        if (w == 1) {  // the centre column: the plane's own normal, up to rounding
+            const Image n = normalsFromDepth(thin.depth, thin.camera);
+            int surface = 0;
+            for (int y = 0; y < h; ++y) {
+                if (thin.isSky(0, y)) continue;
+                ++surface;
+                for (int c = 0; c < 3; ++c) EXPECT_NEAR(n.at(0, y, c), thin.normal.at(0, y, c), 1e-4f) << "1x" << h;
+            }
+            EXPECT_GT(surface, 0) << "1x" << h;
+        }
         for (float v : alchemyAO(thin, s).pixels) EXPECT_NEAR(v, 1.0f, 1e-6f) << w << "x" << h;
     }
 }
