@@ -83,7 +83,8 @@ Vec3 transformVector(const Mat4& aFromB, Vec3 v);
 Mat4 transpose(const Mat4& a);
 // General 4x4 inverse; returns false (and leaves out unchanged) for a singular matrix.
 bool invert(const Mat4& a, Mat4& out);
-// Inverse-transpose of the upper 3x3, for transforming normals; singular input gives identity.
+// For transforming normals: the upper 3x3's inverse-transpose up to a positive scale (normalize after), also
+// where that 3x3 is singular but keeps some face's area (its cofactor matrix); identity below rank 2.
 Mat4 normalMatrix(const Mat4& aFromB);
 // Determinant of the upper 3x3 (negative for mirroring transforms).
 float determinant3(const Mat4& a);

@@ -1,6 +1,9 @@
 // Matrix helpers for math.h.
 #include "obscura/math.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace obscura {
 
 Mat4 Mat4::translation(Vec3 t) {
@@ -110,12 +113,30 @@ bool invert(const Mat4& a, Mat4& out) {
 }
 
 Mat4 normalMatrix(const Mat4& aFromB) {
-    Mat4 upper = aFromB;
-    for (int i = 0; i < 3; ++i) upper.m[i][3] = upper.m[3][i] = 0.0f;
-    upper.m[3][3] = 1.0f;
-    Mat4 inv;
-    if (!invert(upper, inv)) return Mat4::identity();
-    return transpose(inv);
+    // The cofactor matrix C of the linear part L: C (a x b) = (L a) x (L b) for any L, so it carries a
+    // face's normal to the placed face's normal even where L is singular. (The inverse-transpose is C / det:
+    // it fails there, and a plane squashed along its own normal, glTF scale [1, 1, 0], keeps its area; the
+    // identity it once fell back to left such a floor's normal in object space.) In double, scaled so its
+    // largest entry is 1, with det's sign so a mirror still turns normals the way the inverse-transpose does.
+    double l[3][3];
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) l[r][c] = double(aFromB.m[r][c]);
+    double cof[3][3];
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) {
+            const int r1 = (r + 1) % 3, r2 = (r + 2) % 3, c1 = (c + 1) % 3, c2 = (c + 2) % 3;
+            cof[r][c] = l[r1][c1] * l[r2][c2] - l[r1][c2] * l[r2][c1];
+        }
+    const double det = l[0][0] * cof[0][0] + l[0][1] * cof[0][1] + l[0][2] * cof[0][2];
+    double largest = 0;
+    for (const auto& row : cof)
+        for (double x : row) largest = std::max(largest, std::abs(x));
+    Mat4 out;
+    if (!(largest > 0) || !std::isfinite(largest)) return out;  // rank below 2: no face keeps any area
+    const double scale = (det < 0 ? -1.0 : 1.0) / largest;
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) out.m[r][c] = float(cof[r][c] * scale);
+    return out;
 }
 
 float determinant3(const Mat4& a) {

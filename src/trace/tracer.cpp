@@ -69,7 +69,8 @@ RTCGeometry makeTriangles(RTCDevice device, const Mesh& mesh, const Mat4* worldF
 
 // Whether Embree can trace an instance with this transform: it carries each ray into object space through the
 // inverse, and a singular or near-singular linear part makes that ray infinite or NaN, which Embree asserts on.
-// Such an instance places only zero-area triangles; flattened into world space it costs memory, not correctness.
+// Such an instance is flattened into world space instead, which costs memory, not correctness; it can still
+// have area (a planar mesh squashed along its own normal), and its normals come from normalMatrix's cofactors.
 bool invertibleForEmbree(const Mat4& m) {
     const auto a = [&](int r, int c) { return double(m.m[r][c]); };
     const double det = a(0, 0) * (a(1, 1) * a(2, 2) - a(1, 2) * a(2, 1)) -

@@ -27,6 +27,25 @@ TEST(Math, NormalMatrixKeepsNormalsPerpendicular) {
     EXPECT_LT(determinant3(Mat4::scale({-1, 1, 1})), 0.0f);
 }
 
+// The cofactor form holds where the inverse-transpose does not exist: a transform of rank 2 keeps the area of
+// faces in the plane it does not squash, and their normals must follow (glTF allows scale [1, 1, 0]). A mirror
+// still turns a normal the way the inverse-transpose does.
+TEST(Math, NormalMatrixOfASquashAndOfAMirror) {
+    const Mat4 rotate = Mat4::rotation(normalize(Vec3{1, 2, 3}), 0.7f);
+    const Vec3 t1{1, 0.5f, 0}, t2{-0.25f, 1, 0};  // a face in z = 0
+    for (const Mat4& m : {rotate * Mat4::scale({2, 0.5f, 0}), rotate * Mat4::scale({1, 1, 1e-30f}),
+                          rotate * Mat4::scale({-1, 1, 1}), rotate * Mat4::scale({3, 3, 3})}) {
+        const Vec3 placed = cross(transformVector(m, t1), transformVector(m, t2));
+        const Vec3 nw = transformVector(normalMatrix(m), cross(t1, t2));
+        ASSERT_GT(length(nw), 0.0f);
+        EXPECT_NEAR(dot(normalize(nw), normalize(placed)), determinant3(m) < 0 ? -1.0f : 1.0f, 1e-5f);
+    }
+    // Rank 1 keeps no face's area: there is no normal to give, and the identity stands in.
+    const Mat4 line = normalMatrix(Mat4::scale({1, 0, 0}));
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) EXPECT_EQ(line.m[i][j], i == j ? 1.0f : 0.0f);
+}
+
 TEST(Math, ColumnMajorMatchesGltf) {
     // glTF stores a translation in elements 12..14.
     float v[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 5, 6, 7, 1};

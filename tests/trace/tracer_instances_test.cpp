@@ -43,6 +43,26 @@ TEST(TracerInstances, SingularTransformOfASharedMeshIsTraced) {
     }
 }
 
+// A planar mesh squashed along its own normal keeps its area: glTF allows the node scale [1, 1, 0]. Its normals
+// came from the identity (the inverse-transpose's fallback for a singular matrix), so under a rotation they
+// stayed in object space: a quad laid down as the floor y = 0 faced +Z, and ray-traced AO above that open floor
+// was 0.5 instead of 1.
+TEST(TracerInstances, SquashedPlaneKeepsItsPlacedNormal) {
+    for (float squash : {1.0f, 0.0f}) {
+        Scene scene;
+        const std::uint32_t mesh = scene.add(unitQuad(), Mat4::translation({0, 0, 50}));  // out of the way
+        scene.instances.push_back(
+            {mesh, Mat4::rotation({1, 0, 0}, -1.5707963f) * Mat4::scale({1, 1, squash}), "floor"});
+        sanitizeScene(scene, "test");
+        const Tracer tracer(scene);
+        Hit hit;
+        ASSERT_TRUE(tracer.intersect({0.25f, 3, -0.25f}, {0, -1, 0}, 0, 100, hit)) << squash;
+        EXPECT_EQ(hit.instance, 1u);
+        EXPECT_NEAR(hit.geometricNormal.y, 1.0f, 1e-5f) << squash;
+        EXPECT_NEAR(tracer.shadingNormal(hit).y, 1.0f, 1e-5f) << squash;
+    }
+}
+
 // A mesh whose only triangle is degenerate keeps no triangle after sanitizeScene. Embree refuses a geometry of
 // no triangles, so the Tracer failed with "embree: allocating geometry failed" for the whole scene, placed
 // once or shared. It now places nothing for it; instance numbers stay those of Scene::instances.
