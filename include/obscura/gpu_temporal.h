@@ -93,7 +93,9 @@ public:
 private:
     Image historyPlane(bool length) const;  // the last frame's visibility or history length, decoded if packed
 
-    Context* context_;
+    // The context's state, not the Context: that is a movable shell, and moving it (a struct holding both, moved)
+    // once left this pointing at an empty one.
+    Context::Impl* context_;
     ssao::GtaoSettings settings_;
     ssao::GtaoTemporalSettings temporal_;
     GtaoOutputs outputs_;

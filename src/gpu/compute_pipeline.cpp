@@ -43,6 +43,7 @@ ComputePipeline::ComputePipeline(Context::Impl& context, const Spirv& code, cons
     if (!shadersOwn && (size[0] != std::uint32_t(workgroupX) || size[1] != std::uint32_t(workgroupY)))
         fail(what, workgroups + ", the host dispatches " + std::to_string(workgroupX) + "x" +
                        std::to_string(workgroupY));
+    if (!layout_.unsupported.empty()) fail(what, layout_.unsupported);
     if (layout_.bindings != bindings || layout_.pushConstantBytes != pushConstantBytes)
         fail(what, "declares " + std::to_string(layout_.bindings) + " bindings and " +
                        std::to_string(layout_.pushConstantBytes) + " bytes of push constants, the host binds " +
@@ -61,6 +62,14 @@ ComputePipeline::ComputePipeline(Context::Impl& context, const Spirv& code, cons
     if (layout_.specConstants != int(specialization.size()))
         fail(what, "declares " + std::to_string(layout_.specConstants) + " specialization constants, the host sets " +
                        std::to_string(specialization.size()));
+    // As many is not enough: the host sets constant_ids 0 to n - 1, and one numbered past them kept its default.
+    for (std::size_t i = 0; i < layout_.specIds.size(); ++i)
+        if (layout_.specIds[i] != i) {
+            std::string ids;
+            for (const std::uint32_t id : layout_.specIds) ids += (ids.empty() ? "" : ", ") + std::to_string(id);
+            fail(what, "declares specialization constant_ids " + ids + "; the host sets constant_ids 0 to " +
+                           std::to_string(specialization.size() - 1));
+        }
     const VkPhysicalDeviceLimits& limits = context.properties.limits;
     if (pushConstantBytes > limits.maxPushConstantsSize)
         fail("Vulkan device '" + context.info.name + "'", what + " needs " + std::to_string(pushConstantBytes) +

@@ -6,11 +6,13 @@
 
 #include "obscura/error.h"
 
+#include <charconv>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <string_view>
 
 namespace obscura::gpu {
 
@@ -106,12 +108,16 @@ int chooseDevice(const std::vector<VkPhysicalDevice>& devices, int asked, const 
     if (asked < -1) fail(from, "must be a device index >= 0, or -1 for the default device, not " + std::to_string(asked));
     if (asked < 0)
         if (const char* env = std::getenv("OBSCURA_GPU_DEVICE"); env && *env) {
-            char* end = nullptr;
-            const long v = std::strtol(env, &end, 10);
+            // The whole value, digits only, as --gpu-device takes it: strtol let " 0" and "+0" through but not "0 ".
+            // -1 asks for the default device, as it does on the command line.
+            const std::string_view text(env);
+            int v = -2;
+            const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), v);
             from = "OBSCURA_GPU_DEVICE";
             // Not `count` as the marker of a bad value: an index equal to the count is a valid number, out of range.
-            if (*end != '\0' || v < 0 || v >= 1 << 20) fail(from, std::string("'") + env + "' is not a device index");
-            asked = int(v);
+            if (error != std::errc() || end != text.data() + text.size() || v < -1 || v >= 1 << 20)
+                fail(from, std::string("'") + env + "' is not a device index (0, 1, ...; -1 for the default device)");
+            asked = v;
         }
     if (asked >= 0) {
         if (asked >= count)
@@ -371,11 +377,12 @@ Spirv Context::Impl::shaderCode(const std::string& name, const Spirv& embedded) 
 
 ComputePipeline& Context::Impl::pipeline(const std::string& name, const Spirv& code, int bindings,
                                          std::uint32_t pushConstantBytes, int workgroupX, int workgroupY) {
-    std::unique_ptr<ComputePipeline>& p = pipelines[name];
-    if (!p)
-        p = std::make_unique<ComputePipeline>(*this, shaderCode(name, code), name, bindings, pushConstantBytes,
-                                              workgroupX, workgroupY);
-    return *p;
+    // Inserted only once built: a constructor that throws (a layout check, a device's workgroup limit) once left a
+    // null entry that the next submit() dereferenced.
+    if (auto known = pipelines.find(name); known != pipelines.end()) return *known->second;
+    auto built = std::make_unique<ComputePipeline>(*this, shaderCode(name, code), name, bindings, pushConstantBytes,
+                                                   workgroupX, workgroupY);
+    return *pipelines.emplace(name, std::move(built)).first->second;
 }
 
 ComputePipeline& Context::Impl::pipeline(const std::string& name, const Spirv& code,
@@ -387,11 +394,10 @@ ComputePipeline& Context::Impl::pipeline(const std::string& name, const Spirv& c
         key.append(std::to_string(specialization[i]));
     }
     if (!specialization.empty()) key.push_back('>');
-    std::unique_ptr<ComputePipeline>& p = pipelines[key];
-    if (!p)
-        p = std::make_unique<ComputePipeline>(*this, shaderCode(name, code), key, bindings, pushConstantBytes,
-                                              workgroupX, workgroupY, specialization);
-    return *p;
+    if (auto known = pipelines.find(key); known != pipelines.end()) return *known->second;  // inserted once built
+    auto built = std::make_unique<ComputePipeline>(*this, shaderCode(name, code), key, bindings, pushConstantBytes,
+                                                   workgroupX, workgroupY, specialization);
+    return *pipelines.emplace(key, std::move(built)).first->second;
 }
 
 ComputePipeline& Context::Impl::pipelineOfShadersSize(const std::string& name, const Spirv& code,

@@ -403,7 +403,7 @@ GtaoTemporalVariant variantOf(GtaoOutputs outputs, GtaoTemporalFormats formats, 
 GtaoTemporal::GtaoTemporal(Context& context, const ssao::GtaoSettings& settings,
                            const ssao::GtaoTemporalSettings& temporal, GtaoOutputs outputs,
                            GtaoTemporalFormats formats, GtaoTemporalDispatch dispatch)
-    : context_(&context), settings_(settings), temporal_(temporal), outputs_(outputs), formats_(formats),
+    : context_(&context.impl()), settings_(settings), temporal_(temporal), outputs_(outputs), formats_(formats),
       dispatch_(dispatch) {
     settings_.validate();
     temporal_.validate();
@@ -431,7 +431,7 @@ const ssao::GtaoResult& GtaoTemporal::frame(const GBuffer& g) {
         return result_;
     }
 
-    Context::Impl& c = context_->impl();
+    Context::Impl& c = *context_;
     // Made for the first frame rendered: a first frame that failed (a buffer past the device's range) once
     // left passes of its size behind, which the next frame of another size ran into.
     if (!passes_ || passes_->width() != w || passes_->height() != h)
@@ -460,7 +460,7 @@ Image GtaoTemporal::historyLength() const {
 }
 
 Image GtaoTemporal::historyPlane(bool length) const {
-    Context::Impl& c = context_->impl();
+    Context::Impl& c = *context_;
     // The visibility has the image's size; the length the history's (the grid's with gridHistory).
     Image image = length ? Image(passes_->historyWidth(), passes_->historyHeight(), 1)
                          : Image(passes_->width(), passes_->height(), 1);

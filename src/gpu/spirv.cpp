@@ -10,6 +10,7 @@
 #include <functional>
 #include <map>
 #include <set>
+#include <string>
 #include <vector>
 
 namespace obscura::gpu {
@@ -30,6 +31,7 @@ SpirvLayout reflect(const Spirv& code) {
     std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> memberOffsets;
     std::map<std::uint32_t, std::uint32_t> bound;  // variable id -> binding
     std::map<std::uint32_t, std::uint32_t> variableTypes;  // variable id -> its pointer type
+    std::map<std::uint32_t, std::uint32_t> setOf, blockKind;  // variable -> descriptor set; struct -> (Buffer)Block
     std::set<std::uint32_t> specIds;
     // A specialization constant's result id -> its constant_id, and -> its default value.
     std::map<std::uint32_t, std::uint32_t> specIdOf, specDefaults;
@@ -54,7 +56,11 @@ SpirvLayout reflect(const Spirv& code) {
         case OpTypeArray:
         case OpTypeStruct:
         case OpTypePointer: {
+            // The fewest words each form has (result id and its operands), so no operand is read past its end.
+            const std::uint32_t least = op == OpTypeStruct ? 2 : op == OpTypeVector || op == OpTypeArray || op == OpTypePointer ? 4 : 3;
+            if (words < least) malformed("type instruction of " + std::to_string(words) + " words");
             std::vector<std::uint32_t>& t = types[a[0]];
+            if (!t.empty()) malformed("type id " + std::to_string(a[0]) + " defined twice");
             t.push_back(op);
             t.insert(t.end(), a + 1, a + words - 1);
             break;
@@ -75,6 +81,8 @@ SpirvLayout reflect(const Spirv& code) {
             if (words >= 4) variableTypes[a[1]] = a[0];
             break;
         case OpDecorate:
+            if (words >= 3 && (a[1] == DecorationBlock || a[1] == DecorationBufferBlock)) blockKind[a[0]] = a[1];
+            if (words >= 4 && a[1] == DecorationDescriptorSet) setOf[a[0]] = a[2];
             if (words >= 4 && a[1] == DecorationBinding) bound[a[0]] = a[2];
             if (words >= 4 && a[1] == DecorationSpecId) {
                 specIds.insert(a[2]);
@@ -112,37 +120,72 @@ SpirvLayout reflect(const Spirv& code) {
             }
         }
     }
+    const auto unsupported = [&](const std::string& why) {
+        if (layout.unsupported.empty()) layout.unsupported = why;
+    };
     layout.bindings = int(bound.size());
     for (const std::uint32_t id : std::set<std::uint32_t>(layout.sizeSpecIds.begin(), layout.sizeSpecIds.end()))
         specIds.erase(id);
     layout.specConstants = int(specIds.size());
-    // A binding is a combined image sampler when its variable points to an OpTypeSampledImage (the
-    // variable's pointer type is OpTypePointer storage-class pointee).
+    layout.specIds.assign(specIds.begin(), specIds.end());
+    // Each binding's kind from what its variable points to: a storage buffer is a block in the StorageBuffer
+    // class (or, in SPIR-V before 1.3, a BufferBlock in the Uniform class); a combined image sampler is a
+    // UniformConstant OpTypeSampledImage. Anything else (a uniform block, a storage image, an array of either)
+    // is a descriptor the host never writes.
+    std::set<std::uint32_t> numbers;
     for (const auto& [variable, binding] : bound) {
+        const std::string which = "binding " + std::to_string(binding);
+        const auto set = setOf.find(variable);
+        if (set != setOf.end() && set->second != 0)
+            unsupported(which + " is in descriptor set " + std::to_string(set->second) + ", the host binds set 0 only");
+        if (!numbers.insert(binding).second) unsupported(which + " is declared twice");
+        if (binding >= (1u << 16)) {
+            unsupported(which + " is out of the host's range");
+            continue;
+        }
         if (binding >= layout.kinds.size()) layout.kinds.resize(binding + 1, BindingKind::StorageBuffer);
         const auto pointer = types.find(variableTypes[variable]);
-        if (pointer == types.end() || pointer->second.size() < 3 || pointer->second[0] != OpTypePointer) continue;
+        if (pointer == types.end() || pointer->second.size() < 3 || pointer->second[0] != OpTypePointer) {
+            unsupported(which + " is not a variable of pointer type");
+            continue;
+        }
+        const std::uint32_t storage = pointer->second[1];
         const auto pointee = types.find(pointer->second[2]);
-        if (pointee != types.end() && !pointee->second.empty() && pointee->second[0] == OpTypeSampledImage)
+        const std::uint32_t pointeeOp = pointee == types.end() || pointee->second.empty() ? 0 : pointee->second[0];
+        const auto block = blockKind.find(pointer->second[2]);
+        const std::uint32_t decoration = block == blockKind.end() ? 0 : block->second;
+        if (storage == StorageClassUniformConstant && pointeeOp == OpTypeSampledImage)
             layout.kinds[binding] = BindingKind::SampledImage;
+        else if (pointeeOp == OpTypeStruct && ((storage == StorageClassStorageBuffer && decoration == DecorationBlock) ||
+                                               (storage == StorageClassUniform && decoration == DecorationBufferBlock)))
+            layout.kinds[binding] = BindingKind::StorageBuffer;
+        else
+            unsupported(which + " is neither a storage buffer nor a combined image sampler (a uniform block, a "
+                                "storage image or an array?)");
     }
-    std::function<std::uint32_t(std::uint32_t)> sizeOf = [&](std::uint32_t id) -> std::uint32_t {
+    if (!numbers.empty() && *numbers.rbegin() + 1 != numbers.size())
+        unsupported("bindings are not numbered 0 to " + std::to_string(numbers.size() - 1) + " (the highest is " +
+                    std::to_string(*numbers.rbegin()) + ")");
+    // In 64-bit arithmetic and at most 16 types deep: a struct that contains itself once recursed until the stack
+    // overflowed, and sizes past the 32-bit range are no push-constant block.
+    std::function<std::uint64_t(std::uint32_t, int)> sizeOf = [&](std::uint32_t id, int depth) -> std::uint64_t {
+        if (depth > 16) malformed("push-constant type nested more than 16 deep (or containing itself)");
         const auto it = types.find(id);
         if (it == types.end() || it->second.empty()) malformed("push constant of unknown type");
         const std::vector<std::uint32_t>& t = it->second;
         switch (t[0]) {
         case OpTypeInt:
         case OpTypeFloat: return t[1] / 8;
-        case OpTypeVector: return t[2] * sizeOf(t[1]);
+        case OpTypeVector: return std::uint64_t(t[2]) * sizeOf(t[1], depth + 1);
         case OpTypeArray:
             if (!strides.count(id) || !constants.count(t[2])) malformed("push-constant array without a stride");
-            return strides[id] * constants[t[2]];
+            return std::uint64_t(strides[id]) * constants[t[2]];
         case OpTypeStruct: {
-            std::uint32_t end = 0;
+            std::uint64_t end = 0;
             for (std::uint32_t m = 0; m + 1 < t.size(); ++m) {
                 const auto offset = memberOffsets.find({id, m});
                 if (offset == memberOffsets.end()) malformed("push-constant member without an offset");
-                end = std::max(end, offset->second + sizeOf(t[m + 1]));
+                end = std::max(end, offset->second + sizeOf(t[m + 1], depth + 1));
             }
             return end;
         }
@@ -153,7 +196,9 @@ SpirvLayout reflect(const Spirv& code) {
         const auto it = types.find(pushType);
         if (it == types.end() || it->second.size() < 3 || it->second[0] != OpTypePointer)
             malformed("push-constant variable is not a pointer");
-        layout.pushConstantBytes = sizeOf(it->second[2]);
+        const std::uint64_t bytes = sizeOf(it->second[2], 0);
+        if (bytes > 0xffffffffu) malformed("push-constant block of " + std::to_string(bytes) + " bytes");
+        layout.pushConstantBytes = std::uint32_t(bytes);
     }
     return layout;
 }

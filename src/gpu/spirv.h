@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace obscura::gpu {
@@ -34,6 +35,12 @@ enum : std::uint32_t {
     DecorationBuiltIn = 11,
     DecorationArrayStride = 6,
     DecorationBinding = 33,
+    DecorationDescriptorSet = 34,
+    DecorationBlock = 2,
+    DecorationBufferBlock = 3,
+    StorageClassUniformConstant = 0,
+    StorageClassUniform = 2,
+    StorageClassStorageBuffer = 12,
     DecorationOffset = 35,
     BuiltInWorkgroupSize = 25,
     StorageClassPushConstant = 9,
@@ -85,6 +92,12 @@ struct SpirvLayout {
     // are: their constant_ids are sizeSpecIds, and a host that would set one is refused (ComputePipeline).
     std::uint32_t localSize[3] = {0, 0, 0};
     std::vector<std::uint32_t> sizeSpecIds;
+    std::vector<std::uint32_t> specIds;  // the constant_ids the host sets, ascending (sizeSpecIds left out)
+    // Why the host cannot bind this layout as it binds every shader (one set 0 of bindings 0..n-1, each a single
+    // storage buffer or combined image sampler), or empty. ComputePipeline refuses a module that says something:
+    // a binding in set 1, a gap, a uniform block or a storage image once passed the count check and crashed the
+    // driver or wrote to the wrong buffer.
+    std::string unsupported;
 };
 // Reads the layout from the module's decorations and types. Throws obscura::Error for a malformed module or
 // a type it cannot size (only scalars, vectors, arrays with strides and structs occur in push constants).

@@ -12,6 +12,7 @@
 #include "obscura/alchemy_constants.h"
 #include "obscura/error.h"
 #include "obscura/gpu.h"
+#include "obscura/gpu_shaders.h"
 
 #include <gtest/gtest.h>
 
@@ -55,6 +56,64 @@ TEST(GpuShaders, ReflectionReadsTheLayouts) {
     EXPECT_EQ(b.pushConstantBytes, std::uint32_t(kBilateralPushConstantBytes));
     const std::uint32_t junk[6] = {1, 2, 3, 4, 5, 6};
     EXPECT_THROW(reflect(Spirv{junk, 6}), Error);
+}
+
+// The host binds one descriptor set 0 of bindings 0..n-1, each a single storage buffer or combined image sampler.
+// The reflection counted decorated bindings only, so a module with a binding in set 1, a gap, a duplicate or a
+// uniform block passed the count check, and the driver crashed or the shader wrote into another buffer; each is
+// now named (ComputePipeline refuses it). Every embedded shader reads as bindable.
+TEST(GpuShaders, ReflectionNamesLayoutsTheHostCannotBind) {
+    for (const std::string& name : shaderNames()) {
+        const ShaderCode code = shaderCode(name);
+        EXPECT_EQ(reflect({code.words, code.wordCount}).unsupported, "") << name;
+    }
+    const std::vector<std::uint32_t> embedded(shaders::gtao.words, shaders::gtao.words + shaders::gtao.count);
+    const auto unsupported = [](const std::vector<std::uint32_t>& words) {
+        return reflect({words.data(), words.size()}).unsupported;
+    };
+    const std::vector<std::size_t> sets = testing::decorations(embedded, spirv::DecorationDescriptorSet);
+    const std::vector<std::size_t> bindings = testing::decorations(embedded, spirv::DecorationBinding);
+    ASSERT_GE(bindings.size(), 3u);
+    ASSERT_EQ(sets.size(), bindings.size());
+    std::vector<std::uint32_t> words = embedded;
+    words[sets[0] + 3] = 1;
+    EXPECT_NE(unsupported(words).find("is in descriptor set 1, the host binds set 0 only"), std::string::npos)
+        << unsupported(words);
+    words = embedded;
+    std::size_t highest = bindings[0];
+    for (std::size_t i : bindings)
+        if (words[i + 3] > words[highest + 3]) highest = i;
+    words[highest + 3] += 1;
+    EXPECT_NE(unsupported(words).find("bindings are not numbered 0 to"), std::string::npos) << unsupported(words);
+    words = embedded;
+    for (std::size_t i : bindings) words[i + 3] = words[i + 3] == 1 ? 0 : words[i + 3];
+    EXPECT_NE(unsupported(words).find("binding 0 is declared twice"), std::string::npos) << unsupported(words);
+    // A storage buffer's pointer type moved to the Uniform class: with its Block decoration, a uniform block.
+    words = embedded;
+    bool moved = false;
+    for (std::size_t i = 5; i < words.size() && (words[i] >> 16) != 0; i += words[i] >> 16)
+        if ((words[i] & 0xffffu) == spirv::OpTypePointer && words[i + 2] == spirv::StorageClassStorageBuffer) {
+            words[i + 2] = spirv::StorageClassUniform;
+            moved = true;
+        }
+    ASSERT_TRUE(moved) << "gtao.comp declares no StorageBuffer pointer";
+    EXPECT_NE(unsupported(words).find("neither a storage buffer nor a combined image sampler"), std::string::npos)
+        << unsupported(words);
+}
+
+// A malformed module is an obscura::Error, whatever is wrong with it: a type instruction too short for its
+// operands once threw std::length_error from a reversed range, and read past its end.
+TEST(GpuShaders, ReflectionRefusesShortTypeInstructions) {
+    for (const std::uint32_t op : {spirv::OpTypeInt, spirv::OpTypeVector, spirv::OpTypePointer, spirv::OpTypeStruct}) {
+        std::vector<std::uint32_t> words(shaders::alchemy.words, shaders::alchemy.words + shaders::alchemy.count);
+        words.insert(words.begin() + 5, (1u << 16) | op);  // a type instruction of one word: no result id
+        try {
+            reflect({words.data(), words.size()});
+            ADD_FAILURE() << "no error for a one-word type " << op;
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find("type instruction of 1 words"), std::string::npos) << e.what();
+        }
+    }
 }
 
 // The workgroup size a module declares: glslang writes it twice, as the LocalSize execution mode and as a
@@ -156,8 +215,15 @@ TEST(GpuContext, RejectsAMissingDevice) {
     }
     testutil::ScopedEnv device("OBSCURA_GPU_DEVICE", "x");
     EXPECT_THROW(Context{}, Error);
+    // The whole value, digits only: strtol took " 0" and "+0" but refused "0 ".
+    for (const char* bad : {" 0", "+0", "0 ", "1x", "-2"}) {
+        device.set(bad);
+        EXPECT_THROW(Context{}, Error) << "'" << bad << "'";
+    }
     device.set("0");
     EXPECT_EQ(Context{}.device().index, 0);
+    device.set("-1");  // the default device, as --gpu-device -1 asks
+    EXPECT_GE(Context{}.device().index, 0);
 }
 
 // Upload and download through staging buffers, in sizes that straddle the allocator's 64 MiB block (a

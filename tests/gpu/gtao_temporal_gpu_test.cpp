@@ -18,6 +18,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <memory>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -798,6 +799,24 @@ TEST(GpuGtaoTemporal, WrapperWithoutBentNormalsGivesTheSameVisibility) {
         EXPECT_EQ(aoOnly.framesRendered(), 3);
     }
     EXPECT_EQ(testing::validationReport(context), "");
+}
+
+// The Context is a movable shell around its state; a GtaoTemporal made on it keeps working when it moves (a struct
+// holding both, moved). It kept a pointer to the shell, and the next frame dereferenced the moved-from one.
+TEST(GpuGtaoTemporal, KeepsWorkingWhenItsContextMoves) {
+    if (deviceCount() == 0) GTEST_SKIP() << "no Vulkan device (install mesa-vulkan-drivers for lavapipe)";
+    ContextSettings settings;
+    settings.validation = true;
+    Context first(settings);
+    std::unique_ptr<Context> second;  // declared before the pass, so destroyed after it
+    const std::vector<GBuffer> gbuffers = path("stairs", 33, 21, 2);
+    GtaoTemporal moving(first, preset(ssao::GtaoQuality::Medium), mode(true, false));
+    const ssao::GtaoResult before = moving.frame(gbuffers[0]);
+    second = std::make_unique<Context>(std::move(first));
+    const ssao::GtaoResult& after = moving.frame(gbuffers[1]);
+    EXPECT_EQ(after.visibility.pixelCount(), before.visibility.pixelCount());
+    EXPECT_EQ(moving.framesRendered(), 2);
+    EXPECT_EQ(testing::validationReport(*second), "");
 }
 
 // The same validation and messages as ssao::GtaoTemporal.

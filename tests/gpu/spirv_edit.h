@@ -43,6 +43,16 @@ inline std::size_t definition(const std::vector<std::uint32_t>& words, std::uint
     return 0;
 }
 
+// The word indices of the OpDecorate instructions with `decoration` and one literal (Binding, DescriptorSet,
+// SpecId: the literal is at index + 3), in module order.
+inline std::vector<std::size_t> decorations(const std::vector<std::uint32_t>& words, std::uint32_t decoration) {
+    std::vector<std::size_t> found;
+    for (std::size_t i = 5; i < words.size() && (words[i] >> 16) != 0; i += words[i] >> 16)
+        if ((words[i] & 0xffffu) == spirv::OpDecorate && (words[i] >> 16) == 4 && words[i + 2] == decoration)
+            found.push_back(i);
+    return found;
+}
+
 // The module `words` with its workgroup x by y by 1: the LocalSize execution mode rewritten (where
 // `executionMode`), and the WorkgroupSize composite given the new size: where its x and y are specialization
 // constants (local_size_x_id), their defaults rewritten, as a module compiled with that size would hold them;
