@@ -118,6 +118,38 @@ TEST_F(Cli, RenderWritesFrameAndAovs) {
         EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << e.path();
 }
 
+// Each falloff of --ao raytraced reads its own parameters: exponential d alone (its rays reach 24 d), binary r,
+// alchemy r and u. The others' flags changed nothing, and the summary echoed the ignored r as if it had
+// applied; now each is a warning and the summary names what the falloff read.
+TEST_F(Cli, RayTracedFalloffsWarnOfTheParametersTheyDoNotRead) {
+    const std::string render = "render ceiling --size 16x9 --ao-rays 4 -o " + path("f.png") + " --ao raytraced ";
+    Result r = run(render + "--ao-falloff exponential --ao-radius 0.01 --ao-distance 3");
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_NE(r.out.find("warning: --ao-radius: applies to the binary and alchemy falloffs, not --ao-falloff exponential"),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("(exponential, d = 3 m, 4 rays)"), std::string::npos) << r.out;
+    r = run(render + "--ao-falloff binary --ao-radius 2 --ao-distance 3 --ao-u 0.2");
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_NE(r.out.find("warning: --ao-distance: applies to --ao-falloff exponential, not --ao-falloff binary"),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("warning: --ao-u: applies to --ao-falloff alchemy, not --ao-falloff binary"), std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("(binary, r = 2 m, 4 rays)"), std::string::npos) << r.out;
+    r = run(render + "--ao-falloff alchemy --ao-radius 2 --ao-u 0.2");
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_EQ(r.out.find("warning"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("(alchemy, r = 2 m, u = 0.2 m, 4 rays)"), std::string::npos) << r.out;
+}
+
+// A view of only sky has no pixel to measure: compare reported MAE, RMSE and max of 0 and exit 0, which a script
+// reads as exact agreement. It is an error naming the scene, and nothing is written.
+TEST_F(Cli, CompareRefusesAViewOfOnlySky) {
+    expectFailure("compare plane --size 16x9 --rays 4 -q --camera-from 0,3,0 --camera-to 0,10,0.1 -o " + path("c.png"),
+                  {"plane", "every pixel is sky: nothing to compare"});
+}
+
 // --aov-dir never replaces an input or the -o output, as -o itself may not: the environment read from the AOV
 // folder stayed and exit 0 wrote the lighting AOV over it; -o into the folder as ao.exr held the colour frame.
 TEST_F(Cli, AovDirNeverOverwritesAnInputOrTheOutput) {

@@ -132,6 +132,31 @@ TEST_F(GtaoCli, CompareReportsTheSamplesItTakesAndWhatItIgnores) {
     EXPECT_EQ(r.out.find("warning"), std::string::npos) << r.out;
 }
 
+// render --ao gtao warns of the GTAO flags its other flags leave unread, as ao and compare do: the mip ratio under
+// a sampling that does not read it, and the falloff's fade under the bitmask thickness, which counts an occluder
+// within the radius whole.
+TEST_F(GtaoCli, RenderWarnsOfFlagsItsSettingsDoNotRead) {
+    const std::string render = "render corner --size 16x9 -q -o " + path("f.exr") + " --ao gtao ";
+    Result r = run(render + "--gtao-mip-ratio 3");
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_NE(r.out.find("warning: --gtao-mip-ratio: applies to --gtao-sampling mip, planar-mip and planar-nearest, "
+                         "not planar"),
+              std::string::npos)
+        << r.out;
+    r = run(render + "--gtao-mip-ratio 3 --gtao-sampling planar-nearest");
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_EQ(r.out.find("warning"), std::string::npos) << r.out;
+    r = run(render + "--gtao-thickness bitmask --gtao-falloff-start 0.5");
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_NE(r.out.find("warning: --gtao-falloff-start: the bitmask thickness counts every occluder within the "
+                         "radius whole"),
+              std::string::npos)
+        << r.out;
+    r = run(render + "--gtao-thickness heuristic --gtao-falloff-start 0.5");
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_EQ(r.out.find("warning"), std::string::npos) << r.out;
+}
+
 // --gtao-sampling reaches the kernel: on the open plane planar samples give exactly 1 everywhere and nearest
 // (and mip, and planar-mip) ones darken a few far pixels (tests/ssao/gtao_test.cpp,
 // NearestSamplingDarkensAnOpenPlaneSlightly). Planar-nearest darkens none below 0.999 (its far samples alone

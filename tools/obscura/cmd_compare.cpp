@@ -140,6 +140,11 @@ void run(const CompareOptions& o) {
         Progress p("primary rays", showProgress);
         g = trace::renderGBuffer(tracer, camera, {}, [&](double f) { p(f); });
     }
+    // Errors over no pixels are no errors: a view of only sky reported MAE, RMSE and max of 0, which a script
+    // reads as exact agreement.
+    if (std::none_of(g.depth.pixels.begin(), g.depth.pixels.end(), [](float d) { return d < 1e30f; }))
+        fail(loaded.name, "the camera sees no surface, every pixel is sky: nothing to compare (aim it with "
+                          "--camera-from and --camera-to)");
     const Image sky = render::proceduralSky();
     const render::SH9 sh = render::projectEnvironment(sky);
     const render::ShadeSettings shading;

@@ -47,6 +47,7 @@ struct RenderOptions {
     AlchemyFlags alchemy;  // --ao alchemy
     BlurFlags blur;
     CLI::Option* radiusOption = nullptr;
+    CLI::Option *distanceOption = nullptr, *uOption = nullptr;
     GtaoOptions gtao;
     GpuFlags gpu;
     bool fusedBlur = false;  // --gpu-fused-blur
@@ -74,6 +75,16 @@ void run(const RenderOptions& o) {
     if (o.ao != "gtao") warnIgnored(o.gtaoFlags, "applies to --ao gtao" + notThis);
     if (o.ao != "alchemy" && o.ao != "gtao") warnIgnored(o.screenSpaceFlags, "applies to --ao alchemy or gtao" + notThis);
     if (fileExtension(o.output) == ".exr") warnIgnored(o.displayFlags, "applies to a PNG; an .exr output is linear radiance");
+    // Each falloff reads its own parameters: the exponential one d alone (its rays reach 24 d), the others r, and
+    // alchemy u. A value for another falloff changed nothing and was echoed in the summary as if it had.
+    if (o.ao == "raytraced") {
+        const std::string notThisFalloff = ", not --ao-falloff " + o.falloff;
+        if (o.falloff == "exponential")
+            warnIgnored({o.radiusOption}, "applies to the binary and alchemy falloffs" + notThisFalloff +
+                                              " (its reach is --ao-distance)");
+        if (o.falloff != "exponential") warnIgnored({o.distanceOption}, "applies to --ao-falloff exponential" + notThisFalloff);
+        if (o.falloff != "alchemy") warnIgnored({o.uOption}, "applies to --ao-falloff alchemy" + notThisFalloff);
+    }
     trace::ObscuranceSettings aoSettings;
     aoSettings.falloff = kFalloffs.at(o.falloff);
     aoSettings.radius = parseRadius("--ao-radius", o.radius);
@@ -222,7 +233,14 @@ void run(const RenderOptions& o) {
 
         std::printf("wrote %s: %dx%d, scene %s, AO %s", o.output.c_str(), camera.width, camera.height, loaded.name.c_str(),
                     o.ao.c_str());
-        if (o.ao == "raytraced") std::printf(" (%s, r = %s m, %d rays)", o.falloff.c_str(), o.radius.c_str(), o.rays);
+        if (o.ao == "raytraced") {  // the parameters the falloff reads
+            if (o.falloff == "exponential")
+                std::printf(" (exponential, d = %g m, %d rays)", double(o.distance), o.rays);
+            else if (o.falloff == "alchemy")
+                std::printf(" (alchemy, r = %s m, u = %g m, %d rays)", o.radius.c_str(), double(o.alchemyU), o.rays);
+            else
+                std::printf(" (binary, r = %s m, %d rays)", o.radius.c_str(), o.rays);
+        }
         if (o.ao == "alchemy")
             std::printf(" (%s, r = %g m, intensity %g, contrast %g, %d samples, blur %s%s%s)",
                         alchemy.formulation == ssao::AlchemyFormulation::Paper ? "paper" : "chapter", double(alchemy.radius),
@@ -287,9 +305,11 @@ void addRenderCommand(CLI::App& app) {
                         "exponential (rho = 1 - exp(ln(0.5) t / d))")
             ->check(CLI::IsMember({"binary", "alchemy", "exponential"}))
             ->capture_default_str();
-        cmd->add_option("--ao-distance", o->distance, "Half-visibility distance d of the exponential falloff, meters")
-            ->capture_default_str();
-        cmd->add_option("--ao-u", o->alchemyU, "Falloff constant u of the alchemy falloff, meters")->capture_default_str();
+        o->distanceOption =
+            cmd->add_option("--ao-distance", o->distance, "Half-visibility distance d of the exponential falloff, meters")
+                ->capture_default_str();
+        o->uOption =
+            cmd->add_option("--ao-u", o->alchemyU, "Falloff constant u of the alchemy falloff, meters")->capture_default_str();
     });
     cmd->add_option("--env", o->env, "Equirectangular environment (.hdr or .exr); default: a built-in procedural sky");
     o->displayFlags = optionsAddedBy(*cmd, [&] {

@@ -91,7 +91,7 @@ void validateGtaoMipRatioOverride(float mipRatio) {
         fail("--gtao-mip-ratio", "must be in [2, 64], or " + defaultMipRatioText());
 }
 
-void addGtaoSamplingOption(CLI::App& app, std::string& sampling, float& mipRatio, const std::string& lead) {
+const CLI::Option* addGtaoSamplingOption(CLI::App& app, std::string& sampling, float& mipRatio, const std::string& lead) {
     app.add_option("--gtao-sampling", sampling,
                    lead + ": planar (inverse depth interpolated over a planar 2x2 quad, on the slice line; 5 reads), "
                           "nearest (the nearest pixel, 1 read, as XeGTAO; far open ground at grazing angles darkens) or "
@@ -101,7 +101,7 @@ void addGtaoSamplingOption(CLI::App& app, std::string& sampling, float& mipRatio
                           "nearest's false horizons come from near samples of rotated slices)")
         ->check(CLI::IsMember(gtaoSamplingNames()))
         ->capture_default_str();
-    app.add_option("--gtao-mip-ratio", mipRatio, std::string("With --gtao-sampling mip or planar-mip: ") + kMipRatioHelp)
+    return app.add_option("--gtao-mip-ratio", mipRatio, std::string("With --gtao-sampling mip, planar-mip or planar-nearest: ") + kMipRatioHelp)
         ->capture_default_str();
 }
 
@@ -195,14 +195,16 @@ void GtaoOptions::add(CLI::App& app) {
     app.add_option("--gtao-thickness", thickness, "GTAO thin occluders: none, heuristic (eq. 9), bitmask")
         ->check(CLI::IsMember({"none", "heuristic", "bitmask"}))
         ->capture_default_str();
-    app.add_option("--gtao-falloff-start", falloffStart, "GTAO: fraction of the radius where the linear fade starts, [0, 1]")
-        ->capture_default_str();
+    falloffStartOption = app.add_option("--gtao-falloff-start", falloffStart,
+                                        "GTAO: fraction of the radius where the linear fade starts, [0, 1] (not with "
+                                        "--gtao-thickness bitmask, which counts an occluder within the radius whole)")
+                             ->capture_default_str();
     app.add_option("--gtao-beyond-radius", beyondRadius,
                    "GTAO: a horizon sample farther than the radius counts through the solid column behind it where "
                    "that comes within the radius (column), or not at all (drop)")
         ->check(CLI::IsMember({"column", "drop"}))
         ->capture_default_str();
-    addGtaoSamplingOption(app, sampling, mipRatio, "GTAO: how a horizon sample reads depth");
+    mipRatioOption = addGtaoSamplingOption(app, sampling, mipRatio, "GTAO: how a horizon sample reads depth");
     app.add_option("--gtao-step-power", stepPower,
                    "GTAO: horizon step distribution, distance ~ (k / steps)^power, [1, 4]; > 1 packs steps near the centre")
         ->capture_default_str();
@@ -270,6 +272,14 @@ void GtaoOptions::warnUnread() const {
         warnIgnored({specularOption}, "is written only as specular_occlusion.exr (--ao-output all); the frame's "
                                       "composite is diffuse");
     if (specular == "none" && roughnessOption) warnIgnored({roughnessOption}, "applies to --specular-occlusion");
+    // The sector mask has no partial occluder: a sample within the radius sets its sectors whole.
+    if (thickness == "bitmask" && falloffStartOption && falloffStart < 1.0f)
+        warnIgnored({falloffStartOption}, "the bitmask thickness counts every occluder within the radius whole, "
+                                          "without the fade");
+    const ssao::GtaoSampling s = gtaoSampling(sampling);
+    if (mipRatioOption && s != ssao::GtaoSampling::Mip && s != ssao::GtaoSampling::PlanarMip &&
+        s != ssao::GtaoSampling::PlanarNearest)
+        warnIgnored({mipRatioOption}, "applies to --gtao-sampling mip, planar-mip and planar-nearest, not " + sampling);
 }
 
 GtaoFrame renderGtaoFrames(const GtaoOptions& o, float radius, const trace::Tracer& tracer, const Camera& camera,

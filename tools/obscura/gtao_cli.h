@@ -65,17 +65,22 @@ struct GtaoOptions {
     // Every file renderGtaoFrames writes to `aovDir` with these flags (the numbered frames' too), and ao.exr.
     std::vector<std::string> aovFiles(const std::string& aovDir) const;
     // Warns of the given flags these ones leave unread: the composite is diffuse, so specular occlusion shows only
-    // as its AOV (--ao-output all), and --roughness only with it. renderGtaoFrames then skips that pass.
+    // as its AOV (--ao-output all), and --roughness only with it (renderGtaoFrames then skips that pass); the
+    // bitmask thickness counts a sample within r whole, without --gtao-falloff-start's fade; --gtao-mip-ratio
+    // applies to the mip and planar-nearest samplings.
     void warnUnread() const;
     bool writesSpecular() const { return specular != "none" && output == "all"; }
 
     const CLI::Option* specularOption = nullptr;  // set by add()
     const CLI::Option* roughnessOption = nullptr;
+    const CLI::Option* falloffStartOption = nullptr;
+    const CLI::Option* mipRatioOption = nullptr;
 };
 
 // --gtao-sampling (ssao::gtaoSamplingName's words) and --gtao-mip-ratio on `app`, the first's help starting with `lead`
 // (what the flag sets, for this command), and the sampling's value as the setting.
-void addGtaoSamplingOption(CLI::App& app, std::string& sampling, float& mipRatio, const std::string& lead);
+// Returns the --gtao-mip-ratio option, for a warning where the sampling does not read it.
+const CLI::Option* addGtaoSamplingOption(CLI::App& app, std::string& sampling, float& mipRatio, const std::string& lead);
 ssao::GtaoSampling gtaoSampling(const std::string& sampling);
 
 // --gtao-mip-ratio for the commands that run the registry's GTAO methods (compare, ao), whose sampling the
