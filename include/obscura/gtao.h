@@ -51,7 +51,8 @@ enum class GtaoSampling { Planar, Nearest, Mip, PlanarMip, PlanarNearest };
 struct GtaoSettings {
     float radius = 1.0f;            // r: m, (0, 1e4]; occluders farther than r from the point do not count
     float falloffStart = 1.0f;      // fraction of r where the conservative linear fade to 0 at r starts,
-                                    // [0, 1]; 1 = hard cut at r, which is what binary AO of radius r means
+                                    // [0, 1]; 1 = hard cut at r, which is what binary AO of radius r means.
+                                    // The bitmask thickness does not fade: a sample within r sets its sectors whole
     int sliceCount = 3;             // slice directions per pixel, [1, 64] (the `high` preset)
     int stepsPerSide = 3;           // horizon samples on each side of a slice, [1, 256]
     float maxRadiusPixels = 512.0f; // screen-space search radius clamp, pixels, [1, 8192]; bounds the cost
@@ -143,6 +144,11 @@ GtaoDepthMips buildGtaoDepthMips(const Image& depth, int levels);
 // depth with constants.mipLevels levels); the overloads without it throw obscura::Error for that mode.
 GtaoPixel gtaoPixel(const GtaoConstants& constants, const GBuffer& gbuffer, const GtaoDepthMips* mips, int x, int y,
                     int interleave);
+
+// How far (pixels) one side of a slice marches from pixel centre (px, py) in screen direction (dx, dy), unit:
+// the screen radius or the distance to the image's border less the first step's offset (minStepPixels),
+// whichever is shorter, and at least 0. Steps are spread over it, so none lands off the image.
+float gtaoSideReach(float px, float py, float dx, float dy, const GtaoConstants& constants, float screenRadius);
 
 struct GtaoResult {
     Image visibility;  // 1 channel, [0, 1]; sky 1

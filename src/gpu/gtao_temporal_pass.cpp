@@ -419,6 +419,7 @@ const ssao::GtaoResult& GtaoTemporal::frame(const GBuffer& g) {
     // ssao::GtaoTemporal::frame's checks and messages.
     g.validateDepthNormalShape("gtao temporal");
     g.validatePixels("gtao temporal");  // the CPU's check of the depths and normals; the shaders check nothing
+    if (g.depth.pixelCount() > 0) g.camera.validate();  // as computeGtao: the constants' projection comes from it
     if (frame_ > 0 && (w != width_ || h != height_))
         fail("gtao temporal", "frame size changed from " + std::to_string(width_) + "x" + std::to_string(height_) +
                                   " to " + std::to_string(w) + "x" + std::to_string(h));

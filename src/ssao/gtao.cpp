@@ -262,6 +262,13 @@ GtaoPixel gtaoPixel(const GtaoConstants& c, const GBuffer& g, int x, int y, int 
     return gtaoPixel(c, g, nullptr, x, y, interleave);
 }
 
+float gtaoSideReach(float px, float py, float dx, float dy, const GtaoConstants& c, float screenRadius) {
+    const float tx = dx > 0.0f ? (float(c.width) - px) / dx : dx < 0.0f ? -px / dx : 1e30f;
+    const float ty = dy > 0.0f ? (float(c.height) - py) / dy : dy < 0.0f ? -py / dy : 1e30f;
+    // Less the first step's offset, so the last step stays inside; never below 0, which would turn the march.
+    return std::max(std::min(screenRadius, std::min(tx, ty) - c.minStepPixels), 0.0f);
+}
+
 GtaoPixel gtaoPixel(const GtaoConstants& c, const GBuffer& g, const GtaoDepthMips* mips, int x, int y, int interleave) {
     GtaoPixel out;
     const float depth = g.depth.at(x, y);
@@ -289,7 +296,6 @@ GtaoPixel gtaoPixel(const GtaoConstants& c, const GBuffer& g, const GtaoDepthMip
 
     float visibility = 0.0f, unoccluded = 0.0f;
     Vec3 bent{};
-    const float minS = c.minStepPixels / screenRadius;
     for (int slice = 0; slice < c.sliceCount; ++slice) {
         const float phi = (float(slice) + sliceJitter) / float(c.sliceCount) * kPi;
         const float cosPhi = std::cos(phi), sinPhi = std::sin(phi);
@@ -307,14 +313,18 @@ GtaoPixel gtaoPixel(const GtaoConstants& c, const GBuffer& g, const GtaoDepthMip
         const float lowCos0 = std::cos(n + kHalfPi), lowCos1 = std::cos(n - kHalfPi);
         float horizonCos0 = lowCos0, horizonCos1 = lowCos1;
         std::uint32_t occluded = 0;  // bitmask mode: sector k covers [n - pi/2 + k pi/32, + pi/32)
+        // Each side marches over what the image holds: its steps spread over the screen radius or the distance to
+        // the border, whichever is shorter. (Spread over the whole radius, the steps past the border were dropped,
+        // so a larger radius found less occlusion: a corner at r = 100 m came out open.)
+        const float reach[2] = {gtaoSideReach(float(x) + 0.5f, float(y) + 0.5f, cosPhi, -sinPhi, c, screenRadius),
+                                gtaoSideReach(float(x) + 0.5f, float(y) + 0.5f, -cosPhi, sinPhi, c, screenRadius)};
 
         for (int step = 0; step < c.stepsPerSide; ++step) {
-            float s = (float(step) + stepJitter) / float(c.stepsPerSide);
-            s = std::pow(s, c.stepPower) + minS;
-            const float offset = s * screenRadius;
-            const int level = c.mipLevels > 0 ? gtaoMipLevel(offset, c.mipTexelScale, c.mipLevels) : 0;
-            const bool planar = gtaoSamplingPlanarAt(c.sampling, offset, c.mipTexelScale);
+            const float s = std::pow((float(step) + stepJitter) / float(c.stepsPerSide), c.stepPower);
             for (int side = 0; side < 2; ++side) {
+                const float offset = s * reach[side] + c.minStepPixels;
+                const int level = c.mipLevels > 0 ? gtaoMipLevel(offset, c.mipTexelScale, c.mipLevels) : 0;
+                const bool planar = gtaoSamplingPlanarAt(c.sampling, offset, c.mipTexelScale);
                 const float sign = side == 0 ? 1.0f : -1.0f;
                 const float sx = float(x) + 0.5f + sign * offset * cosPhi;
                 const float sy = float(y) + 0.5f - sign * offset * sinPhi;
@@ -429,6 +439,10 @@ void checkGtaoBuffers(const GBuffer& gbuffer, const GtaoConstants& constants) {
     // A NaN depth or normal would give NaN visibility without a word (and reach float-to-int conversions on
     // the CPU); as ssao::alchemyAO does, name the first bad pixel instead.
     gbuffer.validatePixels("gtao");
+    // The constants' projection comes from this camera: a field of view of 0, 180 or NaN made the screen radius
+    // NaN or negative, and every pixel came out unoccluded without a word (ssao::alchemyAO refuses it). An empty
+    // G-buffer has nothing to project and gives empty images.
+    if (gbuffer.depth.pixelCount() > 0) gbuffer.camera.validate();
 }
 
 GtaoResult computeGtao(const GBuffer& gbuffer, const GtaoConstants& constants) {

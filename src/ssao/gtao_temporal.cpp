@@ -198,6 +198,7 @@ const GtaoResult& GtaoTemporal::frame(const GBuffer& g) {
     const int w = g.width(), h = g.height();
     g.validateDepthNormalShape("gtao temporal");
     g.validatePixels("gtao temporal");  // computeGtao's check of the depths and normals
+    if (g.depth.pixelCount() > 0) g.camera.validate();  // as computeGtao: the constants' projection comes from it
     if (frame_ > 0 && (w != previousCamera_.width || h != previousCamera_.height))
         fail("gtao temporal", "frame size changed from " + std::to_string(previousCamera_.width) + "x" +
                                   std::to_string(previousCamera_.height) + " to " + std::to_string(w) + "x" +

@@ -10,6 +10,7 @@
 #include "gpu/shaders/layouts.h"
 #include "gpu/spirv.h"
 
+#include "obscura/alchemy.h"
 #include "obscura/error.h"
 #include "obscura/gpu.h"
 #include "obscura/gtao.h"
@@ -289,6 +290,47 @@ TEST(GpuGtao, AnotherWorkgroupSizeGivesTheSameResult) {
               std::string::npos)
         << clashed;
     EXPECT_EQ(testing::validationReport(context), "");
+}
+
+// A radius past the image: the shader spreads each side's steps over what the image holds, as the CPU does
+// (gtaoSideReach), at every sampling.
+TEST(GpuGtao, ARadiusPastTheImageMatchesTheCpu) {
+    OBSCURA_GPU_CONTEXT(context);
+    const GBuffer g = testing::render("corner", 96, 64);
+    for (ssao::GtaoSampling sampling : {ssao::GtaoSampling::Planar, ssao::GtaoSampling::PlanarMip}) {
+        ssao::GtaoSettings s = preset(ssao::GtaoQuality::High);
+        s.radius = 100.0f;
+        s.maxRadiusPixels = 8192.0f;
+        s.sampling = sampling;
+        expectMatch(context, g, ssao::gtaoConstants(s, g.camera), std::string("r 100, ") + ssao::gtaoSamplingName(sampling));
+    }
+    EXPECT_EQ(testing::validationReport(context), "");
+}
+
+// The host sets specialization constant_ids 0 to n - 1. A module that declared as many but numbered one past them
+// passed the count check, and that constant kept its default without a word; it is refused, naming it. A
+// pipeline whose making throws leaves nothing behind: a null entry once crashed the context's next submission,
+// from any pass (here Alchemy's), and the same call fails again with the same message.
+TEST(GpuGtao, ASpecializationConstantPastTheHostsIsRefused) {
+    std::vector<std::uint32_t> words(shaders::gtao.words, shaders::gtao.words + shaders::gtao.count);
+    bool renumbered = false;
+    for (std::size_t i : testing::decorations(words, spirv::DecorationSpecId))
+        if (words[i + 3] == std::uint32_t(kGtaoSpecBeyondRadius)) {
+            words[i + 3] = 40;
+            renumbered = true;
+        }
+    ASSERT_TRUE(renumbered);
+    testing::ContextWithModule other("gtao", words);
+    const GBuffer g = testing::render("plane", 16, 8);
+    for (int attempt = 0; attempt < 2; ++attempt) {
+        const std::string refused =
+            testing::errorMessage([&] { computeGtao(other.context(), g, preset(ssao::GtaoQuality::High)); });
+        EXPECT_NE(refused.find(", 40; the host sets constant_ids 0 to"), std::string::npos)
+            << refused;
+    }
+    const Image ao = alchemyAO(other.context(), g, ssao::AlchemySettings{});
+    EXPECT_EQ(ao.pixelCount(), g.depth.pixelCount());
+    EXPECT_EQ(testing::validationReport(other.context()), "");
 }
 
 // lavapipe ends every loop of a shader invocation after 65535 iterations in all, silently: GTAO with 64 slices x

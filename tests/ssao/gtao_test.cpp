@@ -130,6 +130,30 @@ TEST(Gtao, FootOfAnInfiniteWallIsOneHalf) {
     EXPECT_EQ(checked, 3);
 }
 
+// A radius past the image: each side's steps are spread over what the image holds. Spread over the whole screen
+// radius, the steps past the border were dropped, so a larger radius found less occlusion: with 4 steps and the
+// clamp at 8192 pixels the foot of the wall read 1 (no occlusion) at r = 100 m and 1e4 m, and 0.509 at 4 m.
+TEST(Gtao, ARadiusPastTheImageStillFindsTheWall) {
+    GBuffer g = wallFootView();
+    for (float radius : {4.0f, 100.0f, 1e4f}) {
+        GtaoSettings s = dense(radius, 32, 4);
+        s.maxRadiusPixels = 8192.0f;
+        const GtaoConstants c = gtaoConstants(s, g.camera);
+        for (int x : {96, 128, 160}) {
+            const int y = footRow(g, x);
+            ASSERT_GE(y, 0);
+            const GtaoPixel p = gtaoPixel(c, g, x, y);
+            EXPECT_NEAR(p.visibility, 0.5f, 0.01f) << "r " << radius << ", pixel " << x << "," << y;
+        }
+    }
+    // A side whose border is nearer than the first step takes no step: nothing is sampled off the image.
+    GtaoConstants c = gtaoConstants(dense(1.0f, 1, 1), g.camera);
+    EXPECT_EQ(gtaoSideReach(0.5f, 10.5f, -1.0f, 0.0f, c, 300.0f), 0.0f);
+    EXPECT_FLOAT_EQ(gtaoSideReach(10.5f, 10.5f, -1.0f, 0.0f, c, 300.0f), 10.5f - c.minStepPixels);
+    EXPECT_FLOAT_EQ(gtaoSideReach(10.5f, 10.5f, 1.0f, 0.0f, c, 3.0f), 3.0f);
+    EXPECT_FLOAT_EQ(gtaoSideReach(10.5f, 250.5f, 0.6f, 0.8f, c, 1e4f), (256.0f - 250.5f) / 0.8f - c.minStepPixels);
+}
+
 TEST(Gtao, FloorCentreOfAWellFromAbove) {
     // Round well, radius a = 1, depth h = 2, seen from 3 m above its rim: the opening subtends a cone of
     // half-angle atan(a/h) from the floor centre; cosine-weighted that is a^2 / (a^2 + h^2) = 0.2 and

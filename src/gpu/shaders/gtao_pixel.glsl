@@ -136,6 +136,13 @@ struct GtaoPixel {
     vec3 bentNormal;
 };
 
+// gtaoSideReach (gtao.cpp): the screen radius or the distance to the border less the first step, at least 0.
+float sideReach(float px, float py, float dx, float dy, float screenRadius) {
+    const float tx = dx > 0.0 ? (float(k.width) - px) / dx : dx < 0.0 ? -px / dx : 1e30;
+    const float ty = dy > 0.0 ? (float(k.height) - py) / dy : dy < 0.0 ? -py / dy : 1e30;
+    return max(min(screenRadius, min(tx, ty) - k.minStepPixels), 0.0);
+}
+
 GtaoPixel gtaoPixel(int x, int y, int interleave) {
     GtaoPixel result = GtaoPixel(1.0, vec3(0.0));
     const uint c = uint(y) * uint(k.width) + uint(x);
@@ -162,7 +169,6 @@ GtaoPixel gtaoPixel(int x, int y, int interleave) {
 
     float visibility = 0.0, unoccluded = 0.0;
     vec3 bent = vec3(0.0);
-    const float minS = k.minStepPixels / screenRadius;
     for (int slice = 0; slice < k.sliceCount; ++slice) {
         const float phi = (float(slice) + sliceJitter) / float(k.sliceCount) * kPi;
         const float cosPhi = cos(phi), sinPhi = sin(phi);
@@ -183,17 +189,21 @@ GtaoPixel gtaoPixel(int x, int y, int interleave) {
         const float lowCos0 = -sinN, lowCos1 = sinN;
         float horizonCos0 = lowCos0, horizonCos1 = lowCos1;
         uint occluded = 0u;
+        // Each side marches over what the image holds (gtaoSideReach): steps spread past the border were dropped,
+        // and a larger radius found less occlusion.
+        const float reach0 = sideReach(float(x) + 0.5, float(y) + 0.5, cosPhi, -sinPhi, screenRadius);
+        const float reach1 = sideReach(float(x) + 0.5, float(y) + 0.5, -cosPhi, sinPhi, screenRadius);
 
         for (int step = 0; step < k.stepsPerSide; ++step) {
             float s = (float(step) + stepJitter) / float(k.stepsPerSide);
             // std::pow(s, 1) is s exactly; the GPU's pow (exp2 of log2) is not.
-            s = (k.stepPower == 1.0 ? s : pow(s, k.stepPower)) + minS;
-            const float offset = s * screenRadius;
-            // gtaoMipLevel: the largest l <= mipLevels with 2^l <= offset * mipTexelScale, by its highest bit.
-            const int level =
-                gtaoSamplingReadsMips(kSampling) ? clamp(findMSB(int(offset * k.mipTexelScale)), 0, k.mipLevels) : 0;
-            const bool planar = gtaoSamplingPlanarAt(kSampling, offset, k.mipTexelScale);
+            s = k.stepPower == 1.0 ? s : pow(s, k.stepPower);
             [[unroll]] for (int side = 0; side < 2; ++side) {
+                const float offset = s * (side == 0 ? reach0 : reach1) + k.minStepPixels;
+                // gtaoMipLevel: the largest l <= mipLevels with 2^l <= offset * mipTexelScale, by its highest bit.
+                const int level =
+                    gtaoSamplingReadsMips(kSampling) ? clamp(findMSB(int(offset * k.mipTexelScale)), 0, k.mipLevels) : 0;
+                const bool planar = gtaoSamplingPlanarAt(kSampling, offset, k.mipTexelScale);
                 const float sign = side == 0 ? 1.0 : -1.0;
                 const float sx = float(x) + 0.5 + sign * offset * cosPhi;
                 const float sy = float(y) + 0.5 - sign * offset * sinPhi;
