@@ -24,6 +24,10 @@ struct QualityChannel {
     double pointMae = 0, pointMax = 0;     // per-vertex point sampling (settings.rays rays) against the reference
     double bakedSmoothMae = 0, pointSmoothMae = 0;  // over vertices off creases (no face turns > 30 degrees)
     double bakedJump = 0, pointJump = 0, referenceJump = 0;  // gradientJump(), 1/m
+    // Where bakedMax is: the welded vertex (world space, m), its baked value (clamped to [0, 1]) and the
+    // reference there, so a large max can be looked at rather than guessed at.
+    Vec3 bakedMaxAt{};
+    double bakedMaxValue = 0, bakedMaxReference = 0;
 };
 
 struct QualityResult {

@@ -263,7 +263,8 @@ QualityResult compareWithDense(const Scene& scene, const BakeSettings& settings,
             if (!used[v]) continue;
             const std::size_t k = v * nc + std::size_t(c);
             const double ref = reference[k];
-            const double eb = std::fabs(std::clamp(double(baked[k]), 0.0, 1.0) - ref), ep = std::fabs(double(point[k]) - ref);
+            const double value = std::clamp(double(baked[k]), 0.0, 1.0);
+            const double eb = std::fabs(value - ref), ep = std::fabs(double(point[k]) - ref);
             r.bakedMae += eb;
             r.pointMae += ep;
             if (!crease[v]) {
@@ -271,7 +272,12 @@ QualityResult compareWithDense(const Scene& scene, const BakeSettings& settings,
                 r.pointSmoothMae += ep;
                 ++smooth;
             }
-            r.bakedMax = std::max(r.bakedMax, eb);
+            if (eb > r.bakedMax || count == 0) {
+                r.bakedMax = eb;
+                r.bakedMaxAt = mesh.positions[v];
+                r.bakedMaxValue = value;
+                r.bakedMaxReference = ref;
+            }
             r.pointMax = std::max(r.pointMax, ep);
             ++count;
         }

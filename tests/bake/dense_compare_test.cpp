@@ -12,6 +12,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
 using namespace obscura;
 using namespace obscura::bake;
 
@@ -71,4 +75,33 @@ TEST(BakeQuality, RefineSplitsLongEdges) {
         area += 0.5 * double(length(n));
     }
     EXPECT_NEAR(area, 0.5, 1e-6);
+}
+
+// Where the largest error sits, reported so it can be looked at. On `corner` it is one vertex from an end of a
+// concave line where two faces meet: the walls' top end of the line between them, or a wall's free end on the
+// floor (0.4 and 0.2 m edges: the former, (0, 9.84, 0) and (0, 9.92, 0); 0.1 m: the latter, (20, 0.04, 0)). Along
+// such a line half of the hemisphere is the other face at no distance (the reference on the walls' line is the
+// foot-of-a-wall value 0.5 up to the top), and past its end the rays escape: within one element the reference
+// moves by 0.2, which a piecewise-linear fit averages over (measured at 0.2 m edges: +0.03 along the walls'
+// line, +0.11 one vertex below its top, where the reference jumps from 0.50 to 0.68 at the top itself).
+TEST(BakeQuality, TheLargestErrorIsReportedWhereItIs) {
+    Scene corner = makeBuiltinScene("corner").scene;
+    Scene scene = refineScene(corner, 0.4f, refinementFocus(corner, 20.0f), 1.0f);
+    BakeSettings settings;
+    settings.rays = 32;
+    settings.distances = {2.0f};
+    QualityResult q = compareWithDense(scene, settings, 128);
+    ASSERT_EQ(q.channels.size(), 1u);
+    const QualityChannel& c = q.channels[0];
+    std::printf("[ dense ] corner: bake max %.3f at (%.3f, %.3f, %.3f), baked %.3f, reference %.3f\n", c.bakedMax,
+                double(c.bakedMaxAt.x), double(c.bakedMaxAt.y), double(c.bakedMaxAt.z), c.bakedMaxValue, c.bakedMaxReference);
+    EXPECT_NEAR(std::fabs(c.bakedMaxValue - c.bakedMaxReference), c.bakedMax, 1e-12);
+    EXPECT_GT(c.bakedMax, 0.05);
+    EXPECT_GE(c.bakedMaxValue, 0.0);
+    EXPECT_LE(c.bakedMaxValue, 1.0);
+    // The ends of the concave lines: the walls' top, and each wall's free end on the floor.
+    float nearest = 1e30f;
+    for (const Vec3 end : {Vec3{0, 10, 0}, Vec3{20, 0, 0}, Vec3{0, 0, 20}})
+        nearest = std::min(nearest, length(c.bakedMaxAt - end));
+    EXPECT_LT(nearest, 0.5f);
 }

@@ -32,6 +32,14 @@ struct QualityOptions {
     bool json = false;
 };
 
+// The worst baked vertex as one whitespace-free table field: "x,y,z(baked/reference)".
+std::string worst(const bake::QualityChannel& c) {
+    char text[128];
+    std::snprintf(text, sizeof text, "%.3f,%.3f,%.3f(%.3f/%.3f)", double(c.bakedMaxAt.x), double(c.bakedMaxAt.y),
+                  double(c.bakedMaxAt.z), c.bakedMaxValue, c.bakedMaxReference);
+    return text;
+}
+
 void runQuality(const QualityOptions& o) {
     ThreadLimit limit(o.threads, "--threads");
     if (!(o.maxEdge > 0.0f)) fail("--max-edge", "must be > 0");
@@ -56,18 +64,18 @@ void runQuality(const QualityOptions& o) {
     if (names.empty()) fail("--scenes", "no scene given");
     nlohmann::json report;
     if (!o.json)
-        std::printf("%-9s %8s %8s %6s %9s %9s %9s %9s %9s %9s %9s %9s %9s %7s\n", "scene", "vertices", "smooth", "d (m)",
+        std::printf("%-9s %8s %8s %6s %9s %9s %9s %9s %9s %9s %9s %9s %9s %7s %s\n", "scene", "vertices", "smooth", "d (m)",
                     "bake MAE", "bake max", "smoothMAE", "point MAE", "point max", "smoothMAE", "J bake", "J point", "J ref",
-                    "time s");
+                    "time s", "bake max at x,y,z (baked/ref)");
     for (const std::string& name : names) {
         BuiltinScene b = makeBuiltinScene(name);
         Scene refined = bake::refineScene(b.scene, o.maxEdge, bake::refinementFocus(b.scene, 20.0f), o.grading);
         bake::QualityResult q = bake::compareWithDense(refined, settings, o.referenceRays);
         for (const bake::QualityChannel& c : q.channels) {
             if (!o.json)
-                std::printf("%-9s %8zu %8zu %6g %9.4f %9.4f %9.4f %9.4f %9.4f %9.4f %9.3f %9.3f %9.3f %7.1f\n", name.c_str(),
+                std::printf("%-9s %8zu %8zu %6g %9.4f %9.4f %9.4f %9.4f %9.4f %9.4f %9.3f %9.3f %9.3f %7.1f %s\n", name.c_str(),
                             q.comparedVertices, q.smoothVertices, c.distance, c.bakedMae, c.bakedMax, c.bakedSmoothMae,
-                            c.pointMae, c.pointMax, c.pointSmoothMae, c.bakedJump, c.pointJump, c.referenceJump, q.seconds);
+                            c.pointMae, c.pointMax, c.pointSmoothMae, c.bakedJump, c.pointJump, c.referenceJump, q.seconds, worst(c).c_str());
             report["scenes"].push_back({{"scene", name},
                                         {"vertices", q.vertices},
                                         {"compared_vertices", q.comparedVertices},
@@ -85,6 +93,9 @@ void runQuality(const QualityOptions& o) {
                                         {"gradient_jump_baked", c.bakedJump},
                                         {"gradient_jump_point", c.pointJump},
                                         {"gradient_jump_reference", c.referenceJump},
+                                        {"baked_max_at_m", {c.bakedMaxAt.x, c.bakedMaxAt.y, c.bakedMaxAt.z}},
+                                        {"baked_max_value", c.bakedMaxValue},
+                                        {"baked_max_reference", c.bakedMaxReference},
                                         {"seconds", q.seconds}});
         }
         std::fflush(stdout);  // a long run shows each scene as it finishes
