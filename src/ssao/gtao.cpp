@@ -394,7 +394,8 @@ GtaoPixel gtaoPixel(const GtaoConstants& c, const GBuffer& g, const GtaoDepthMip
             float h1 = std::acos(std::clamp(horizonCos0, -1.0f, 1.0f));
             // Samples on the surface's own plane come back within float noise of its horizon (up to 5e-4 rad
             // where acos is steep); they are that horizon, so an open surface integrates exactly like `open`.
-            // Snapping moves A by at most 2e-3^2 / 2, the integrand vanishing at the hemisphere's edge.
+            // Snapping moves a slice's A by at most 2e-3^2 / 2 under the cosine weighting, whose integrand
+            // vanishes at the hemisphere's edge, and by at most 1e-3 under App. A's uniform one (|sin s| / 2 <= 1/2).
             h0 = h0 - n < -kHalfPi + 2e-3f ? n - kHalfPi : std::min(h0, n + kHalfPi);
             h1 = h1 - n > kHalfPi - 2e-3f ? n + kHalfPi : std::max(h1, n - kHalfPi);
             ArcWeights w = arc(c, h0, h1, n);

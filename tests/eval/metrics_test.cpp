@@ -62,12 +62,15 @@ TEST(Methods, RegistryFindsAndRejectsNames) {
     }
     // A flat plane facing the camera: every method gives 1, and its reference names a radius. But
     // gtao-nearest and gtao-mip: their samples, at pixel centres off the slice line, see the plane a little
-    // above the slice's horizon (docs/QUALITY.md), which costs up to 1e-3 here (measured 3.2e-4 at worst for
-    // each, 2026-11-25). gtao-planar-mip reads near samples as planar ones, and at 16x12 every sample is near.
+    // above the slice's horizon (docs/QUALITY.md), and nearer samples by larger angles. At 16x12 the radius
+    // reaches far past the image: since each side's steps spread over what the image holds (gtaoSideReach),
+    // all of them land within 8 pixels, and the worst pixel reads 0.9861 (measured 2026-11-28; 1 - 3.2e-4
+    // when the steps past the border were dropped). gtao-planar-mip reads near samples as planar ones, and at
+    // 16x12 every sample is near.
     GBuffer g = flat(16, 12);
     for (const AoMethod& m : aoMethods()) {
         Image ao = m.compute(g, MethodOptions{});
-        const float tolerance = m.name == "gtao-nearest" || m.name == "gtao-mip" ? 1e-3f : 0.0f;
+        const float tolerance = m.name == "gtao-nearest" || m.name == "gtao-mip" ? 0.02f : 0.0f;
         for (float v : ao.pixels) EXPECT_NEAR(v, 1.0f, tolerance) << m.name;
         EXPECT_GT(m.reference(MethodOptions{}, 64).radius, 0.0f) << m.name;
     }
