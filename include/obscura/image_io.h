@@ -24,6 +24,10 @@ Image readExr(const std::string& path);
 // the display window (overscan) left out. readExr gives the data window alone, which for a map a compositor
 // cropped to its non-black pixels put the sky's rows where the ground's go.
 Image readExrDisplayWindow(const std::string& path);
+// The EXR whose data window is its display window, for images whose pixels are a camera's frame (a G-buffer);
+// fails naming both windows otherwise. readExr dropped an offset data window's position without a word, so a
+// depth and a normal buffer could pair up misaligned.
+Image readExrFrame(const std::string& path);
 // readImage, but an .exr by readExrDisplayWindow: what an environment map is read with.
 Image readEnvironmentImage(const std::string& path);
 // Writes every channel as 32-bit float. Channel names come from image.channelNames when it has one per

@@ -10,7 +10,9 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
+#include <type_traits>
 
 namespace obscura {
 
@@ -24,12 +26,24 @@ nlohmann::json rows(const Mat4& m) {
     return r;
 }
 
+// A JSON number as a float: read as the double it is and refused, naming the field and the value as written,
+// where no float holds it. get<float>() is a static_cast from double, undefined past the float range (1e39 came
+// out inf, and the message spoke of an infinity the file did not hold), and 1e-50 became 0.
+float toFloat(const nlohmann::json& value, const std::string& field, const std::string& what) {
+    const double d = value.get<double>();
+    const double magnitude = std::fabs(d);
+    if (magnitude > double(std::numeric_limits<float>::max()) ||
+        (magnitude > 0.0 && magnitude < double(std::numeric_limits<float>::min())))
+        fail(what, "\"" + field + "\" is " + numberText(d) + ", beyond what a float holds");
+    return float(d);
+}
+
 Vec3 readVec(const nlohmann::json& j, const char* key, const std::string& what) {
     if (!j.contains(key)) fail(what, std::string("missing \"") + key + "\"");
     const auto& a = j.at(key);
     if (!a.is_array() || a.size() != 3 || !a[0].is_number() || !a[1].is_number() || !a[2].is_number())
         fail(what, std::string("\"") + key + "\" must be an array of 3 numbers");
-    return {a[0].get<float>(), a[1].get<float>(), a[2].get<float>()};
+    return {toFloat(a[0], key, what), toFloat(a[1], key, what), toFloat(a[2], key, what)};
 }
 
 template <class T>
@@ -39,7 +53,10 @@ T readNumber(const nlohmann::json& j, const char* key, const std::string& what, 
         return fallback;
     }
     if (!j.at(key).is_number()) fail(what, std::string("\"") + key + "\" must be a number");
-    return j.at(key).get<T>();
+    if constexpr (std::is_same_v<T, float>)
+        return toFloat(j.at(key), key, what);
+    else
+        return j.at(key).get<T>();
 }
 
 // get<int>() wraps an integer beyond int (4294967360 became 64), truncates a fraction (64.9 became 64) and is

@@ -357,6 +357,21 @@ Image readExrWindows(const std::string& path, Imath::Box2i* displayWindow, Imath
 
 Image readExr(const std::string& path) { return readExrWindows(path, nullptr, nullptr); }
 
+Image readExrFrame(const std::string& path) {
+    Imath::Box2i display, window;
+    Image data = readExrWindows(path, &display, &window);
+    const auto box = [](const Imath::Box2i& b) {
+        std::string text = "(";  // appended, not "(" + ...: GCC 12 warns (-Wrestrict) of that falsely
+        text += std::to_string(b.min.x) + ", " + std::to_string(b.min.y) + ")-(" + std::to_string(b.max.x) + ", " +
+                std::to_string(b.max.y) + ")";
+        return text;
+    };
+    if (!(display == window))
+        fail(path, "data window " + box(window) + " is not its display window " + box(display) +
+                       ": a G-buffer's pixels must fill the camera's frame");
+    return data;
+}
+
 Image readExrDisplayWindow(const std::string& path) {
     Imath::Box2i display, window;
     Image data = readExrWindows(path, &display, &window);

@@ -8,6 +8,10 @@
 
 #include "obscura/gpu.h"
 
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfOutputFile.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -84,6 +88,70 @@ TEST_F(AlchemyCli, NormalsNamedRgbAreReadAsXyz) {
     expectFailure("ao --depth " + path("aov/depth.exr") + " --normal " + path("rgbw-normal.exr") + " --camera " +
                       path("aov/camera.json") + " -o " + path("x.exr"),
                   {"rgbw-normal.exr", "normal needs 3 channels, has 4"});
+}
+
+// G-buffers as renderers write them. A depth beside colour channels (R, G, B, A and Z) or an alpha (A, Z) was
+// refused though --help promised "a channel named Z"; a normal buffer's alpha before X, Y, Z (XYZA) too. Each
+// now gives the render's own AO. A normal buffer passed as --depth is still refused, naming its channels. A sky
+// written as the far plane (1e4) blamed the normals, whose zero there was never wrong; camera.json numbers past
+// the float range were reported as the infinity they were cast to; a depth whose data window is offset in its
+// display window was read as if it began at the origin.
+TEST_F(AlchemyCli, GBufferFilesAsRenderersWriteThem) {
+    Result r = run("render demo --size 48x32 -q --ao alchemy --ao-samples 8 --blur none -o " + path("f.png") +
+                   " --aov-dir " + path("aov"));
+    ASSERT_EQ(r.code, 0) << r.out;
+    const obscura::Image depth = obscura::readExr(path("aov/depth.exr")), normal = obscura::readExr(path("aov/normal.exr"));
+    const obscura::Image expected = obscura::readExr(path("aov/ao.exr"));
+    const std::string camera = " --camera " + path("aov/camera.json") + " --ao-samples 8 --blur none -o " + path("ao.exr");
+    const auto packed = [](const obscura::Image& from, std::vector<std::string> names, int at, float fill) {
+        obscura::Image out(from.width, from.height, int(names.size()), fill);
+        out.channelNames = std::move(names);
+        for (std::size_t i = 0; i < from.pixelCount(); ++i)
+            for (int c = 0; c < from.channels; ++c)
+                out.pixels[i * std::size_t(out.channels) + std::size_t(at + c)] = from.pixels[i * std::size_t(from.channels) + std::size_t(c)];
+        return out;
+    };
+    // readExr orders a layer R, G, B, A, then X, Y, Z: the depth lands last, the normals' alpha first.
+    obscura::writeExr(path("rgbaz.exr"), packed(depth, {"R", "G", "B", "A", "Z"}, 4, 0.5f));
+    obscura::writeExr(path("az.exr"), packed(depth, {"A", "Z"}, 1, 1.0f));
+    obscura::writeExr(path("xyza.exr"), packed(normal, {"A", "X", "Y", "Z"}, 1, 1.0f));
+    for (const auto& [d, n] : {std::pair{"rgbaz.exr", "aov/normal.exr"}, std::pair{"az.exr", "xyza.exr"}}) {
+        r = run(std::string("ao --depth ") + path(d) + " --normal " + path(n) + camera);
+        ASSERT_EQ(r.code, 0) << d << " " << n << ": " << r.out;
+        EXPECT_EQ(obscura::readExr(path("ao.exr")).pixels, expected.pixels) << d << " " << n;
+    }
+    expectFailure("ao --depth " + path("aov/normal.exr") + camera,
+                  {"normal.exr", "depth needs 1 channel or one named Z, has 3 (X, Y, Z)"});
+
+    obscura::Image farPlane = depth;
+    for (float& d : farPlane.pixels)
+        if (std::isinf(d)) d = 1e4f;
+    obscura::writeExr(path("far.exr"), farPlane);
+    expectFailure("ao --depth " + path("far.exr") + " --normal " + path("aov/normal.exr") + camera,
+                  {"normal.exr", "is zero where", "far.exr has depth 10000", "write sky as +inf"});
+
+    std::ifstream in(path("aov/camera.json"));
+    nlohmann::json json = nlohmann::json::parse(in);
+    json["position"][0] = 1e39;
+    std::ofstream(path("far-camera.json")) << json.dump();
+    expectFailure("ao --depth " + path("aov/depth.exr") + " --camera " + path("far-camera.json") + " -o " + path("x.exr"),
+                  {"far-camera.json", "\"position\" is 1e+39, beyond what a float holds"});
+
+    {
+        const Imath::Box2i display({0, 0}, {depth.width - 1, depth.height - 1});
+        const Imath::Box2i data({5, 3}, {depth.width + 4, depth.height + 2});
+        Imf::Header header(display, data);
+        header.channels().insert("Z", Imf::Channel(Imf::FLOAT));
+        Imf::FrameBuffer frame;
+        char* base = reinterpret_cast<char*>(const_cast<float*>(depth.pixels.data())) -
+                     (std::ptrdiff_t(data.min.y) * depth.width + data.min.x) * std::ptrdiff_t(sizeof(float));
+        frame.insert("Z", Imf::Slice(Imf::FLOAT, base, sizeof(float), sizeof(float) * std::size_t(depth.width)));
+        Imf::OutputFile out(path("offset.exr").c_str(), header);
+        out.setFrameBuffer(frame);
+        out.writePixels(depth.height);
+    }
+    expectFailure("ao --depth " + path("offset.exr") + camera,
+                  {"offset.exr", "data window (5, 3)-(52, 34) is not its display window (0, 0)-(47, 31)"});
 }
 
 // What `ao` once took or refused without reason: --method alchemy-chapter with --ao-formulation paper ran the

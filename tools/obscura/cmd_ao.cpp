@@ -38,27 +38,40 @@ struct AoOptions {
     std::vector<const CLI::Option*> alchemyOnlyFlags;
 };
 
-// The whole image when it has exactly names.size() channels (three and an alpha for three), or the channels
-// `names` of a combined G-buffer EXR (the one `obscura gbuffer -o g.exr` writes: Z, N.X, N.Y, N.Z, albedo.*);
-// otherwise fails naming the file.
+// The whole image when it has exactly names.size() channels (three and an alpha for three), the channel named Z
+// of a depth file without X or Y channels (a renderer's RGBA + Z, or depth + alpha), or the channels `names` of a
+// combined G-buffer EXR (the one `obscura gbuffer -o g.exr` writes: Z, N.X, N.Y, N.Z, albedo.*); otherwise fails
+// naming the file and its channels.
 Image channels(const Image& img, const std::vector<std::string>& names, const std::string& path, const char* what) {
     const int n = int(names.size());
+    const auto& cn = img.channelNames;
+    const bool named = int(cn.size()) == img.channels;
+    const auto has = [&](const std::string& name) { return std::find(cn.begin(), cn.end(), name) != cn.end(); };
     std::vector<int> index;
-    // Engines dump their normal buffers as RGBA: the alpha after R, G, B (as readExr orders them, whatever the
-    // file's own order) is left out.
-    const bool alphaAfter = img.channels == n + 1 && int(img.channelNames.size()) == img.channels &&
-                            (img.channelNames.back() == "A" || img.channelNames.back() == "a");
-    if (img.channels == n || (n == 3 && alphaAfter)) {
-        for (int c = 0; c < n; ++c) index.push_back(c);
+    // Engines dump their normal buffers as RGBA: the alpha (A, or a layer's .A) is left out, wherever readExr's
+    // order puts it (after R, G, B; before X, Y, Z).
+    int alpha = -1;
+    for (int c = 0; named && c < img.channels; ++c) {
+        const std::string& name = cn[std::size_t(c)];
+        if (name == "A" || name == "a" || (name.size() > 2 && name.ends_with(".A"))) alpha = c;
+    }
+    if (img.channels == n || (n == 3 && img.channels == 4 && alpha >= 0)) {
+        for (int c = 0; c < img.channels; ++c)
+            if (img.channels == n || c != alpha) index.push_back(c);
     } else {
-        const auto& cn = img.channelNames;
-        const bool combined = std::find(cn.begin(), cn.end(), "N.X") != cn.end();
+        // A depth file's Z: not a normal buffer's (X, Y, Z), which passed as --depth must be refused.
+        const bool depthZ = n == 1 && names[0] == "Z" && has("Z") && !has("X") && !has("Y");
+        const bool combined = has("N.X");
         for (const std::string& name : names)
-            for (int c = 0; combined && c < int(cn.size()); ++c)
+            for (int c = 0; (combined || depthZ) && c < int(cn.size()); ++c)
                 if (cn[std::size_t(c)] == name) index.push_back(c);
-        if (int(index.size()) != n)
-            fail(path, std::string(what) + " needs " + std::to_string(n) + " channel" + (n > 1 ? "s" : "") + ", has " +
-                           std::to_string(img.channels));
+        if (int(index.size()) != n) {
+            std::string list;
+            for (const std::string& name : cn) list += (list.empty() ? "" : ", ") + name;
+            fail(path, std::string(what) + " needs " + std::to_string(n) + " channel" + (n > 1 ? "s" : "") +
+                           (n == 1 ? " or one named Z" : "") + ", has " + std::to_string(img.channels) +
+                           (list.empty() ? "" : " (" + list + ")"));
+        }
     }
     Image out(img.width, img.height, n);
     for (std::size_t i = 0; i < out.pixelCount(); ++i)
@@ -78,7 +91,7 @@ void checkSize(const Image& img, const Camera& camera, const std::string& path, 
 // obscurance or tilts the horizons without a word. Far from 1 it is most likely another buffer or an
 // encoding: albedo, zeros, or n * 0.5 + 0.5 (whose camera-facing (0, 0, 1) is 1.22 long). Sky pixels are
 // never read. 10% either way leaves room for half-float storage and for normals interpolated unnormalized.
-void checkUnitNormals(const GBuffer& g, const std::string& path) {
+void checkUnitNormals(const GBuffer& g, const std::string& path, const std::string& depthPath) {
     std::size_t bad = 0;
     int firstX = 0, firstY = 0;
     float firstLength = 0.0f;
@@ -96,6 +109,13 @@ void checkUnitNormals(const GBuffer& g, const std::string& path) {
             if (length >= 0.9f && length <= 1.1f) continue;
             if (bad++ == 0) firstX = x, firstY = y, firstLength = length;
         }
+    // A zero normal under a finite depth is most often a sky written as the far plane (1e4, 65504): a surface to
+    // the estimators (docs/FORMATS.md), and the normals were not the file at fault.
+    if (bad > 0 && firstLength < 1e-3f)
+        fail(path, "normal at pixel (" + std::to_string(firstX) + ", " + std::to_string(firstY) + ") is zero where " +
+                       depthPath + " has depth " + numberText(g.depth.at(firstX, firstY)) + " (" + std::to_string(bad) +
+                       " pixel" + (bad > 1 ? "s" : "") + " with normals outside [0.9, 1.1]): if that depth is the far "
+                       "plane, write sky as +inf (or 1e30 and more)");
     if (bad > 0)
         fail(path, "normal at pixel (" + std::to_string(firstX) + ", " + std::to_string(firstY) + ") has length " +
                        numberText(firstLength) + " (" + std::to_string(bad) + " pixel" + (bad > 1 ? "s" : "") +
@@ -141,7 +161,7 @@ void run(const AoOptions& o) {
 
     GBuffer g;
     g.camera = readCameraJson(o.camera);
-    g.depth = channels(readImage(o.depth), {"Z"}, o.depth, "depth");
+    g.depth = channels(readExrFrame(o.depth), {"Z"}, o.depth, "depth");
     checkSize(g.depth, g.camera, o.depth, o.camera);
     if (o.method.starts_with("alchemy") && (g.width() <= 2 * alchemy.guardBand || g.height() <= 2 * alchemy.guardBand))
         fail("--ao-guard-band", std::to_string(alchemy.guardBand) + " px on every side leaves nothing of " + o.depth +
@@ -157,9 +177,9 @@ void run(const AoOptions& o) {
         alchemy.normalsFromDepth = true;
         g.normal = ssao::normalsFromDepth(g.depth, g.camera);
     } else {
-        g.normal = channels(readImage(o.normal), {"N.X", "N.Y", "N.Z"}, o.normal, "normal");
+        g.normal = channels(readExrFrame(o.normal), {"N.X", "N.Y", "N.Z"}, o.normal, "normal");
         checkSize(g.normal, g.camera, o.normal, o.camera);
-        checkUnitNormals(g, o.normal);  // surface pixels only: a sky pixel's normal is never read
+        checkUnitNormals(g, o.normal, o.depth);  // surface pixels only: a sky pixel's normal is never read
         // A G-buffer holds (0, 0, 0) under the sky (GBuffer::normal); whatever the file holds there goes. The
         // surface normals within the accepted lengths are made unit, as ssao::prepareGBuffer does: Alchemy's
         // v.n scales with the length (AO moved by up to 0.082 for normals 1.09 long, 0.090 for 0.91).
@@ -204,7 +224,8 @@ void addAoCommand(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand(
         "ao", "Screen-space AO of your own depth (+ normal) buffers and camera (formats in docs/FORMATS.md)");
     cmd->add_option("--depth", o->depth,
-                    "Linear view depth EXR: 1 channel, or a channel named Z; meters along -Z, +inf for sky")
+                    "Linear view depth EXR: 1 channel, or a channel named Z (not beside X and Y: a normal buffer); "
+                    "meters along -Z, +inf (or 1e30 and more) for sky")
         ->required();
     cmd->add_option("--normal", o->normal,
                     "View-space unit normal EXR: 3 channels (R G B A: the alpha is left out), or N.X N.Y N.Z. Required "
