@@ -42,7 +42,14 @@ namespace {
 std::string temporaryPathFor(const std::string& path) {
     // The pid keeps concurrent processes apart, the counter concurrent threads of this one.
     static std::atomic<unsigned long> counter{0};
-    return path + ".tmp-" + std::to_string(getpid()) + "-" + std::to_string(counter++);
+    const std::string suffix = ".tmp-" + std::to_string(getpid()) + "-" + std::to_string(counter++);
+    // Beside the output, in a name a file system takes: a valid output name of 230 bytes and more once became a
+    // temporary past NAME_MAX (255 on Linux), and the write failed with "File name too long".
+    const fs::path target(path);
+    const std::string name = target.filename().string();
+    constexpr std::size_t kMaxName = 255;
+    if (name.size() + suffix.size() <= kMaxName) return path + suffix;
+    return (target.parent_path() / (name.substr(0, kMaxName - suffix.size()) + suffix)).string();
 }
 
 // Creating the temporary up front (exclusively, so a stale or foreign file is never reused) turns a

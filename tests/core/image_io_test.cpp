@@ -892,6 +892,21 @@ TEST_F(ImageIoTest, AtomicWriteUsesTemporaryBesideTargetThenRenames) {
     EXPECT_EQ(listDirectory(), (std::vector<std::string>{"out.bin"}));
 }
 
+// An output name of 250 bytes is valid (NAME_MAX is 255 on Linux), but the temporary beside it, the name and
+// ".tmp-PID-N", was not: the write failed with "File name too long". The temporary now keeps within it.
+TEST_F(ImageIoTest, AtomicWriteTakesTheLongestNames) {
+    const std::string png = std::string(246, 'n') + ".png", exr = std::string(246, 'n') + ".exr";
+    ASSERT_EQ(png.size(), 250u);
+    obscura::writePng(file(png), Image(2, 2, 3, 0.5f));
+    EXPECT_EQ(obscura::readPng(file(png)).width, 2);
+    obscura::writeExr(file(exr), Image(2, 2, 1, 0.5f));
+    obscura::writeExr(file(exr), Image(2, 2, 1, 0.25f));  // and over it
+    EXPECT_EQ(obscura::readExr(file(exr)).pixels[0], 0.25f);
+    std::vector<std::string> names = listDirectory();
+    std::sort(names.begin(), names.end());
+    EXPECT_EQ(names, (std::vector<std::string>{exr, png}));
+}
+
 TEST_F(ImageIoTest, AtomicWriteThatThrowsMidwayLeavesNoFiles) {
     const std::string path = file("out.bin");
     EXPECT_THROW(obscura::writeAtomically(path,
