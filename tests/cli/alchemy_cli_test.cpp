@@ -322,7 +322,9 @@ TEST_F(AlchemyCli, AoRejectsBadBuffers) {
     // with the length: AO moved by up to 0.082 for normals 1.09 long, 0.090 for 0.91).
     ASSERT_EQ(run("ao --depth " + path("g/depth.exr") + " --normal " + path("g/normal.exr") + cam + " -o " +
                   path("unit_ao.exr")).code, 0);
-    for (const auto& [scale, ok] : {std::pair{0.95f, true}, std::pair{1.09f, true}, std::pair{0.85f, false}}) {
+    // 1e20: finite, its squares not (the message said "length inf").
+    for (const auto& [scale, ok] : {std::pair{0.95f, true}, std::pair{1.09f, true}, std::pair{0.85f, false},
+                                    std::pair{1e20f, false}}) {
         obscura::Image scaled = normal;
         for (float& v : scaled.pixels) v *= scale;
         obscura::writeExr(path("scaled.exr"), scaled);
@@ -335,8 +337,14 @@ TEST_F(AlchemyCli, AoRejectsBadBuffers) {
             ASSERT_EQ(unit.pixels.size(), scaledAo.pixels.size());
             for (std::size_t i = 0; i < unit.pixels.size(); ++i)
                 EXPECT_NEAR(scaledAo.pixels[i], unit.pixels[i], 1e-5f) << scale << " pixel " << i;
-        } else
+        } else if (scale < 1.0f) {
             expectFailure(args, {"scaled.exr", "has length 0.8"});
+        } else {
+            expectFailure(args, {"scaled.exr", "has length", "outside [0.9, 1.1]"});
+            const std::string out = run(args).out;
+            EXPECT_EQ(out.find("length inf"), std::string::npos) << out;
+            EXPECT_TRUE(out.find("e+19") != std::string::npos || out.find("e+20") != std::string::npos) << out;
+        }
     }
     // Sky written as a finite 1e31, which every pass reads as sky: its zero normals are not checked either
     // (the plane's view has a row of sky at this size).

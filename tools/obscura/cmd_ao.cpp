@@ -103,9 +103,9 @@ void checkUnitNormals(const GBuffer& g, const std::string& path, const std::stri
             if (!std::isfinite(g.normal.at(x, y, 0)) || !std::isfinite(g.normal.at(x, y, 1)) ||
                 !std::isfinite(g.normal.at(x, y, 2)))
                 fail(path, "normal at pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") is not finite");
-            const float length = std::sqrt(g.normal.at(x, y, 0) * g.normal.at(x, y, 0) +
-                                           g.normal.at(x, y, 1) * g.normal.at(x, y, 1) +
-                                           g.normal.at(x, y, 2) * g.normal.at(x, y, 2));
+            // hypot: the squares of a finite 1e20 overflowed, and the message spoke of a length of inf.
+            const float length = float(std::hypot(double(g.normal.at(x, y, 0)), double(g.normal.at(x, y, 1)),
+                                                  double(g.normal.at(x, y, 2))));
             if (length >= 0.9f && length <= 1.1f) continue;
             if (bad++ == 0) firstX = x, firstY = y, firstLength = length;
         }
