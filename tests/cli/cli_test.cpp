@@ -77,6 +77,10 @@ TEST_F(Cli, BadFlagValues) {
     expectFailure("render plane" + kFast + "-o " + path("f.jpg"), {"f.jpg", "unsupported output format"});
     expectFailure("render plane" + kFast + "-o " + path("nodir/f.png"), {"does not exist"});
     expectFailure("render nosuchscene" + kFast + "-o " + path("f.png"), {"nosuchscene"});
+    // A command line that names no command, or none at all: exit 2, and the word that is no command named
+    // (CLI11 said only "A subcommand is required"); `bench` alone exited 1 without "(see --help)".
+    expectFailure("frobnicate -o " + path("f.png"), {"unknown command 'frobnicate'", "render", "(see --help)"}, 2);
+    expectFailure("bench", {"bench: needs a subcommand", "(see --help)"}, 2);
 }
 
 // An empty value ("--threads $UNSET") is a command-line error in every command, not 0 for a number or "not given"

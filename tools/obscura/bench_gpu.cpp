@@ -459,7 +459,8 @@ void addGpuBench(CLI::App& bench) {
             if (o->gpu) fail("--gpu", "times the GPU passes by itself; give it without a subcommand");
             return;
         }
-        if (!o->gpu) fail("bench", "needs a subcommand (trace, alchemy, gtao, bake-quality) or --gpu");
+        // A command line that asks for nothing: exit 2 with the others of its kind (main), not 1.
+        if (!o->gpu) throw CLI::ValidationError("bench", "needs a subcommand (trace, alchemy, gtao, bake-quality) or --gpu");
         runGpuBench(*o);
     });
 }

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <exception>
 #include <new>
+#include <string>
 
 int main(int argc, char** argv) {
     CLI::App app{"Obscura: ambient occlusion and obscurance, screen-space, baked and ray-traced ground truth.\n"
@@ -25,6 +26,20 @@ int main(int argc, char** argv) {
     obscura::cli::addCompareCommand(app);
     obscura::cli::addBakeCommand(app);
     obscura::cli::refuseEmptyValues(app);
+    // A first word that is no command: CLI11 reports only that a subcommand is required, without naming it.
+    if (argc > 1 && argv[1][0] != '-') {
+        std::string known;
+        bool found = false;
+        for (const CLI::App* sub : app.get_subcommands({})) {
+            found = found || sub->get_name() == argv[1];
+            known += (known.empty() ? "" : ", ") + sub->get_name();
+        }
+        if (!found) {
+            std::fprintf(stderr, "obscura: error: unknown command '%s' (commands: %s) (see --help)\n", argv[1],
+                         known.c_str());
+            return 2;
+        }
+    }
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
