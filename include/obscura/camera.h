@@ -61,7 +61,8 @@ struct Camera {
 };
 
 // `base` with its position turned by `radians` about the world's vertical (+Y) through its target, looking
-// at the same target: the camera path the temporal passes are shown and tested on.
+// at the same target, its up vector turned with it (a rigid turn: a vertical up stays as it is): the camera
+// path the temporal passes are shown and tested on.
 Camera turnedAboutTarget(const Camera& base, float radians);
 
 } // namespace obscura

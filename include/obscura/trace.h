@@ -114,6 +114,11 @@ private:
 // offset is twice to five times what each needed. (A fixed 1e-4 of |p| was 100 times too large for well-shaped
 // triangles: 0.1 m at 1 km from the origin, which took a 1 m gap's occlusion from 0.25 to 0.20.)
 float selfHitOffset(Vec3 a, Vec3 b, Vec3 c, Vec3 p, float scale = 0.0f);
+// The least offset any ray leaving a surface within `bounds` gets (selfHitOffset of the best-shaped triangle at the
+// point of the box nearest the origin, by the largest |coordinate|), m. A scene far from the origin has little
+// float precision left: 8 m rooms 1e7 m out start every ray some 10 m off its surface, past any radius, and
+// ray-traced AO came out 1 everywhere. Callers compare it with their reach (r, d) and refuse or warn.
+float selfHitOffsetFloor(const Bounds& bounds);
 
 using Progress = std::function<void(double fraction)>;
 

@@ -198,7 +198,12 @@ void sanitizeScene(Scene& scene, const std::string& what, std::size_t* dropped) 
                 if (mesh.normals[i] == Vec3{})
                     fail(what, "vertex " + std::to_string(i) + " of mesh '" + mesh.name + "' has a zero-length normal");
     // Counted over instances: triangles in meshes nothing places are not in the scene either.
-    if (scene.triangleCount() == 0) fail(what, "no triangles");
+    // Say why where triangles were there and were dropped: "no triangles" of a file of faces read as a bad file.
+    if (scene.triangleCount() == 0)
+        fail(what, removed == 0 ? std::string("no triangles")
+                   : "no triangles left: " +
+                         (removed == 1 ? std::string("its one triangle is") : "all " + std::to_string(removed) + " are") +
+                         " degenerate (zero area, or too small for the mesh's extent)");
 }
 
 } // namespace obscura

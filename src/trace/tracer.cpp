@@ -244,6 +244,17 @@ float selfHitOffset(Vec3 a, Vec3 b, Vec3 c, Vec3 p, float scale) {
     return float(kSelfHitPerUlpScale * m * aspect);
 }
 
+float selfHitOffsetFloor(const Bounds& bounds) {
+    if (bounds.empty()) return 0.0f;
+    // The box's point of least largest |coordinate|: each axis's own nearest value to 0.
+    double m = 0;
+    for (int a = 0; a < 3; ++a) {
+        const double lo = double(bounds.lo[a]), hi = double(bounds.hi[a]);
+        m = std::max(m, lo <= 0.0 && hi >= 0.0 ? 0.0 : std::min(std::abs(lo), std::abs(hi)));
+    }
+    return float(kSelfHitPerUlpScale * m * kMinAspect);
+}
+
 float Tracer::selfHitOffset(const Hit& hit, Vec3 origin, Vec3 p) const {
     const auto [a, b, c] = worldTriangle(hit);
     return trace::selfHitOffset(a, b, c, p, maxAbsComponent(origin));

@@ -7,6 +7,8 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -145,6 +147,57 @@ TEST_F(Cli, RayTracedFalloffsWarnOfTheParametersTheyDoNotRead) {
     ASSERT_EQ(r.code, 0) << r.out;
     EXPECT_EQ(r.out.find("warning"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("(alchemy, r = 2 m, u = 0.2 m, 4 rays)"), std::string::npos) << r.out;
+}
+
+// A closed box of side `size` m centred on (x, 0, 0), faces inward, as OBJ text.
+std::string boxObj(double x, double size) {
+    const double h = 0.5 * size;
+    std::string obj;
+    for (int k = 0; k < 8; ++k) {
+        char line[128];
+        std::snprintf(line, sizeof line, "v %.17g %.17g %.17g\n", x + ((k & 1) ? h : -h), (k & 2) ? h : -h, (k & 4) ? h : -h);
+        obj += line;
+    }
+    // Inward-facing quads (a room seen from inside), as triangles.
+    obj += "f 1 2 4\nf 1 4 3\nf 5 7 8\nf 5 8 6\nf 1 5 6\nf 1 6 2\nf 3 4 8\nf 3 8 7\nf 1 3 7\nf 1 7 5\nf 2 6 8\nf 2 8 4\n";
+    return obj;
+}
+
+// Far from the origin float precision runs out: rays leave each surface 2.5e-7 x 4 of its largest coordinate
+// off it, and a room 1e7 m out traced AO of exactly 1 everywhere (at the origin, mean 0.82), bake likewise. Past
+// a quarter of the reach it is an error naming the flag; from 1% a warning; near the origin nothing.
+TEST_F(Cli, RayTracedAoFarFromTheOriginIsRefusedOrWarned) {
+    write("far.obj", boxObj(1e7, 8));
+    write("mid.obj", boxObj(5e4, 8));
+    write("near.obj", boxObj(0, 8));
+    const std::string flags = " --size 16x9 --ao-rays 4 -q --ao raytraced --ao-radius 1 -o " + path("f.png");
+    expectFailure("render " + path("far.obj") + flags + " --camera-from 10000001,0,1 --camera-to 10000000,0,0",
+                  {"--ao-radius", "far.obj is so far from the origin", "move the scene nearer the origin"});
+    expectFailure("bake " + path("far.obj") + " -o " + path("b.csv") + " --rays 4 -q --distance 1",
+                  {"--distance", "far.obj is so far from the origin"});
+    Result r = run("render " + path("mid.obj") + flags + " --camera-from 50001,0,1 --camera-to 50000,0,0");
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_NE(r.out.find("warning: --ao-radius: " + path("mid.obj") + " is so far from the origin"), std::string::npos)
+        << r.out;
+    r = run("render " + path("near.obj") + flags + " --camera-from 1,0,1 --camera-to 0,0,0");
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_EQ(r.out.find("warning"), std::string::npos) << r.out;
+}
+
+// The default framing and a moved camera keep the scene between the near and far planes: a 40 um room was
+// framed with a near plane of 0.1 mm, past the room, and a camera moved 300 m out by --camera-from kept the
+// default framing's far plane (208 m for this 8 m room); both rendered as sky without a word.
+TEST_F(Cli, TheCameraKeepsTheSceneBetweenItsPlanes) {
+    write("tiny.obj", boxObj(0, 4e-5));
+    write("room.obj", boxObj(0, 8));
+    const auto surfacePixels = [&](const std::string& args) {
+        const Result r = run(args + " --size 16x9 --ao-rays 4 -q -o " + path("f.png") + " --aov-dir " + path("aov"));
+        EXPECT_EQ(r.code, 0) << r.out;
+        const obscura::Image depth = obscura::readExr(path("aov/depth.exr"));
+        return std::count_if(depth.pixels.begin(), depth.pixels.end(), [](float d) { return std::isfinite(d); });
+    };
+    EXPECT_GT(surfacePixels("render " + path("tiny.obj")), 0);
+    EXPECT_GT(surfacePixels("render " + path("room.obj") + " --camera-from 0,1,300 --camera-to 0,0,0 --fov 5"), 0);
 }
 
 // A view of only sky has no pixel to measure: compare reported MAE, RMSE and max of 0 and exit 0, which a script

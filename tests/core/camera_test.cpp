@@ -148,6 +148,19 @@ TEST(Camera, TurnedAboutTargetRotatesThePositionAboutTheVertical) {
     const double before = std::hypot(double(demo.position.x) - 1e6, double(demo.position.z));
     const double after = std::hypot(double(turned.position.x) - 1e6, double(turned.position.z));
     EXPECT_NEAR(after, before, 0.07);  // half an ulp of 1e6 in float is 0.03
+    // The up vector turns with the camera. Held fixed, an up of +X became parallel to the view a quarter turn
+    // on, and the frame's camera was refused after the frames before it were rendered.
+    Camera sideways = c;
+    sideways.position = {0.0f, 1.0f, 1.5f};
+    sideways.target = {0.0f, 1.0f, 0.0f};
+    sideways.up = {1.0f, 0.0f, 0.0f};
+    for (float turn : {0.25f, 0.5f, 1.0f, 1.5f}) {
+        const Camera turnedSideways = turnedAboutTarget(sideways, turn * kPi);
+        EXPECT_NEAR(dot(normalize(turnedSideways.target - turnedSideways.position), turnedSideways.up), 0.0f, 1e-6f) << turn;
+        EXPECT_NEAR(length(turnedSideways.up), 1.0f, 1e-6f) << turn;
+        EXPECT_NO_THROW(turnedSideways.validate()) << turn;
+    }
+    EXPECT_EQ(turnedAboutTarget(c, 1.0f).up, c.up);  // a vertical up, to the bit
 }
 
 // An infinite far plane passed validate; clipFromView then held NaN (inf / -inf) and the camera file

@@ -189,7 +189,10 @@ TEST(SceneSanitize, NoTriangles) {
     Mesh m = quadXY();
     m.indices = {0, 1, 1};
     onlyDegenerate.add(m);
-    EXPECT_EQ(messageOf(onlyDegenerate, "scene.ply"), "scene.ply: no triangles");
+    // Triangles were there: the message says they were all dropped, not that the file had none.
+    EXPECT_EQ(messageOf(onlyDegenerate, "scene.ply"),
+              "scene.ply: no triangles left: its one triangle is degenerate (zero area, or too small for the mesh's "
+              "extent)");
     Scene unplaced;  // triangles, but no instance puts them in the world
     unplaced.meshes.push_back(quadXY());
     EXPECT_EQ(messageOf(unplaced, "scene.ply"), "scene.ply: no triangles");

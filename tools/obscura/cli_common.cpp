@@ -6,6 +6,7 @@
 #include "obscura/image_io.h"
 #include "obscura/statistics.h"
 #include "obscura/scene_io.h"
+#include "obscura/trace.h"
 
 #include <CLI/CLI.hpp>
 
@@ -54,9 +55,21 @@ LoadedScene loadSceneArgument(const std::string& argument) {
     float distance = radius / std::sin(0.5f * 60.0f * kPi / 180.0f);
     out.camera.position = c + normalize(Vec3{0.5f, 0.45f, 1.0f}) * distance;
     out.camera.target = c;
-    out.camera.nearZ = std::max(1e-4f, distance * 1e-4f);
+    // Relative only: an absolute floor of 0.1 mm put the near plane past a 40 um scene, which rendered as sky.
+    out.camera.nearZ = distance * 1e-4f;
     out.camera.farZ = distance * 10.0f + radius * 10.0f;
     return out;
+}
+
+void checkRayReach(const LoadedScene& scene, float reach, const std::string& flag) {
+    const float offset = trace::selfHitOffsetFloor(scene.scene.bounds());
+    if (!(reach > 0.0f) || !std::isfinite(reach) || offset < 0.01f * reach) return;
+    const std::string why = scene.name + " is so far from the origin that float precision starts every ray at least " +
+                            numberText(offset) + " m off its surface, " + numberText(100.0f * offset / reach) +
+                            "% of " + numberText(reach) + " m";
+    if (offset >= 0.25f * reach) fail(flag, why + ": move the scene nearer the origin");
+    std::fprintf(stderr, "obscura: warning: %s: %s; the AO is lighter for it (move the scene nearer the origin)\n",
+                 flag.c_str(), why.c_str());
 }
 
 Vec3 parseVec3(const std::string& flag, const std::string& text) {
@@ -159,6 +172,16 @@ Camera CameraOptions::apply(const LoadedScene& scene) const {
     }
     if (nearGiven) c.nearZ = nearZ;
     if (farGiven) c.farZ = farZ;
+    // A camera moved by --camera-from or --camera-to keeps the whole scene in reach: the default framing's far
+    // plane, set for its own position, clipped a scene seen from farther away to sky.
+    if ((!from.empty() || !to.empty()) && !farGiven && !scene.scene.instances.empty()) {
+        const Bounds b = scene.scene.bounds();
+        float reach = 0.0f;
+        for (int k = 0; k < 8; ++k)
+            reach = std::max(reach, length(Vec3{(k & 1) ? b.hi.x : b.lo.x, (k & 2) ? b.hi.y : b.lo.y,
+                                                (k & 4) ? b.hi.z : b.lo.z} - c.position));
+        if (std::isfinite(reach)) c.farZ = std::max(c.farZ, 2.0f * reach);
+    }
     try {
         c.validate();
     } catch (const Error& e) {

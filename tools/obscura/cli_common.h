@@ -26,6 +26,10 @@ struct LoadedScene {
     Camera camera;  // the built-in default, or one framing a file's bounds
 };
 LoadedScene loadSceneArgument(const std::string& argument);
+// Ray-traced AO of reach `reach` (m: a radius r, or an exponential falloff's d) over `scene`: fails naming `flag`
+// where the float precision left at the scene's distance from the origin starts every ray a quarter of the reach
+// or more off its surface (trace::selfHitOffsetFloor), and warns from 1% of it. Such a scene's AO came out 1.
+void checkRayReach(const LoadedScene& scene, float reach, const std::string& flag);
 
 // "x,y,z" -> Vec3; throws obscura::Error naming the flag.
 Vec3 parseVec3(const std::string& flag, const std::string& text);

@@ -103,6 +103,8 @@ void runBake(BakeOptions& o) {
     auto t0 = std::chrono::steady_clock::now();
     LoadedScene loaded = loadSceneArgument(o.input);
     const double loadSeconds = secondsSince(t0);
+    checkRayReach(loaded, *std::min_element(s.distances.begin(), s.distances.end()),
+                  o.distanceOption->count() > 0 ? "--distance" : "--distances");
 
     const bool show = progressWanted(o.quiet);
     std::mutex mutex;

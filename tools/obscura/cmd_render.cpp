@@ -156,6 +156,9 @@ void run(const RenderOptions& o) {
     const std::unique_ptr<gpu::Context> context = o.gpu.open();
     LoadedScene loaded = loadSceneArgument(o.scene);
     Camera camera = o.camera.apply(loaded);
+    if (o.ao == "raytraced")  // the reach the falloff reads: d, or r
+        checkRayReach(loaded, aoSettings.falloff == trace::Falloff::Exponential ? aoSettings.halfDistance : aoSettings.radius,
+                      aoSettings.falloff == trace::Falloff::Exponential ? "--ao-distance" : "--ao-radius");
 
     Image environment = o.env.empty() ? render::proceduralSky() : readEnvironmentImage(o.env);
     if (environment.channels < 3) fail(o.env, "environment needs 3 colour channels, has " + std::to_string(environment.channels));
