@@ -188,10 +188,16 @@ Image normalsFromDepth(const Image& depth, const Camera& camera) {
             for (int x = 0; x < w; ++x) {
                 Vec3 n{0, 0, 1};
                 if (!isSkyDepth(depth.at(x, y))) {
-                    const Vec3 p = position(x, y);
+                    // Scaled by 1/depth before any product: at depths of 1e21 the cross product's squares overflowed
+                    // float and the normal came out NaN (`ao` then blamed a normal buffer it had made itself). The
+                    // directions do not change; 1e-30 bounds the scale for depths nearer than any scene.
+                    const float scale = 1.0f / std::max(depth.at(x, y), 1e-30f);
+                    const Vec3 unscaled = position(x, y), p = unscaled * scale;
                     const bool alongX = usable(x - 1, y) || usable(x + 1, y), alongY = usable(x, y - 1) || usable(x, y + 1);
-                    const Vec3 ddx = !alongX ? Vec3{} : prefer(x, y, 1, 0) ? position(x + 1, y) - p : p - position(x - 1, y);
-                    const Vec3 ddy = !alongY ? Vec3{} : prefer(x, y, 0, 1) ? position(x, y + 1) - p : p - position(x, y - 1);
+                    const Vec3 ddx = !alongX ? Vec3{}
+                                     : (prefer(x, y, 1, 0) ? position(x + 1, y) - unscaled : unscaled - position(x - 1, y)) * scale;
+                    const Vec3 ddy = !alongY ? Vec3{}
+                                     : (prefer(x, y, 0, 1) ? position(x, y + 1) - unscaled : unscaled - position(x, y - 1)) * scale;
                     if (alongX && alongY) {
                         // Pixel y grows downwards, so cross(ddy, ddx) points out of a camera-facing plane.
                         n = normalize(cross(ddy, ddx));

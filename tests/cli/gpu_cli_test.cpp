@@ -708,7 +708,7 @@ TEST_F(GpuCommands, BenchGpuRejectsBadArguments) {
     expectFailure("bench --gpu --frames-per-submit 0", {"--frames-per-submit", "[1, 64]"});
     expectFailure("bench --gpu --frames-per-submit 65", {"--frames-per-submit", "[1, 64]"});
     expectFailure("bench --gpu --gpu-device 99 --sizes 8x8 --frames 1", {"--gpu-device", "99"});
-    expectFailure("bench", {"bench", "--gpu"});
+    expectFailure("bench", {"bench", "--gpu"}, 2);  // a command line that asks for nothing: a usage error
 }
 
 // OBSCURA_SHADER_DIR: NAME.spv there replaces the embedded shader NAME, for timing a changed shader without a

@@ -48,10 +48,14 @@ void main() {
     const int x = q.x, y = q.y;
     vec3 n = vec3(0.0);
     if (depthAt(x, y) < 1e30) {
-        const vec3 p = position(x, y);
+        // Scaled by 1/depth before any product, as the CPU's (products of depths near 1e21 overflow float).
+        const float scale = 1.0 / max(depthAt(x, y), 1e-30);
+        const vec3 unscaled = position(x, y), p = unscaled * scale;
         const bool alongX = usable(x - 1, y) || usable(x + 1, y), alongY = usable(x, y - 1) || usable(x, y + 1);
-        const vec3 ddx = !alongX ? vec3(0.0) : prefer(x, y, 1, 0) ? position(x + 1, y) - p : p - position(x - 1, y);
-        const vec3 ddy = !alongY ? vec3(0.0) : prefer(x, y, 0, 1) ? position(x, y + 1) - p : p - position(x, y - 1);
+        const vec3 ddx = !alongX ? vec3(0.0)
+                         : (prefer(x, y, 1, 0) ? position(x + 1, y) - unscaled : unscaled - position(x - 1, y)) * scale;
+        const vec3 ddy = !alongY ? vec3(0.0)
+                         : (prefer(x, y, 0, 1) ? position(x, y + 1) - unscaled : unscaled - position(x, y - 1)) * scale;
         if (alongX && alongY) {
             n = normalize(cross(ddy, ddx));
             if (dot(n, p) > 0.0) n = -n;
