@@ -101,6 +101,11 @@ const char* qualityName(GtaoQuality quality);
 // The --gtao-sampling words, in GtaoSampling's order: "planar", "nearest", "mip", "planar-mip", "planar-nearest".
 inline constexpr int kGtaoSamplingCount = 5;
 const char* gtaoSamplingName(GtaoSampling sampling);
+// Whether the sampling reads GtaoSettings::mipDistanceRatio: the depth MIP samplings, and planar-nearest for where
+// its nearest-pixel samples start. The CLI's warnings and the methods' registry ask the same question.
+inline constexpr bool gtaoSamplingReadsMipRatio(GtaoSampling s) {
+    return s == GtaoSampling::Mip || s == GtaoSampling::PlanarMip || s == GtaoSampling::PlanarNearest;
+}
 
 // The pure function between settings and kernel: camera projection, radius and falloff, slice and step
 // counts. `interleaved` rotates each pixel's slices by its place in the 4x4 pattern and by frameIndex

@@ -43,10 +43,6 @@ void applySampleOptions(ssao::GtaoSettings& s, const MethodOptions& o) {
 
 int horizonSamples(const ssao::GtaoSettings& s) { return 2 * s.sliceCount * s.stepsPerSide; }
 
-bool readsMipRatio(ssao::GtaoSampling s) {
-    return s == ssao::GtaoSampling::Mip || s == ssao::GtaoSampling::PlanarMip || s == ssao::GtaoSampling::PlanarNearest;
-}
-
 // GTAO with a preset and the override's counts. Its integral is binary AO of the same radius (default 1 m).
 ssao::GtaoSettings gtaoSettings(ssao::GtaoQuality quality, ssao::GtaoSampling sampling, const MethodOptions& o) {
     ssao::GtaoSettings s;
@@ -78,7 +74,7 @@ AoMethod gtao(const char* name, const char* description, ssao::GtaoQuality quali
                 return ref;
             },
             [quality, sampling](const MethodOptions& o) { return horizonSamples(gtaoSettings(quality, sampling, o)); },
-            readsMipRatio(sampling)};
+            ssao::gtaoSamplingReadsMipRatio(sampling)};
 }
 
 // GTAO at half resolution (ssao::computeGtaoHalfResolution) with its measured counts unless the override
@@ -109,7 +105,7 @@ AoMethod gtaoHalf(const char* name, const char* description,
                 ref.rays = rays;
                 return ref;
             },
-            [settings](const MethodOptions& o) { return horizonSamples(settings(o)); }, readsMipRatio(sampling)};
+            [settings](const MethodOptions& o) { return horizonSamples(settings(o)); }, ssao::gtaoSamplingReadsMipRatio(sampling)};
 }
 
 } // namespace

@@ -15,16 +15,29 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <utility>
+#include <vector>
 
 using namespace obscura;
 using namespace obscura::bake;
 
-TEST(BakeQuality, StairsAgainstDenseRayTracing) {
-    Scene stairs = makeBuiltinScene("stairs").scene;
-    Scene scene = refineScene(stairs, 0.15f, refinementFocus(stairs, 20.0f), 1.0f);
+namespace {
+
+// A built-in scene refined to `edge` m near its objects, baked with `rays` rays per sample at the distances, and
+// compared with a `referenceRays`-ray reference at every vertex.
+QualityResult compareBuiltin(const char* name, float edge, int rays, int referenceRays, std::vector<float> distances) {
+    const Scene builtin = makeBuiltinScene(name).scene;
+    const Scene scene = refineScene(builtin, edge, refinementFocus(builtin, 20.0f), 1.0f);
     BakeSettings settings;
-    settings.rays = 64;
-    QualityResult q = compareWithDense(scene, settings, 512);
+    settings.rays = rays;
+    settings.distances = std::move(distances);
+    return compareWithDense(scene, settings, referenceRays);
+}
+
+} // namespace
+
+TEST(BakeQuality, StairsAgainstDenseRayTracing) {
+    QualityResult q = compareBuiltin("stairs", 0.15f, 64, 512, BakeSettings{}.distances);
     ASSERT_EQ(q.channels.size(), 2u);
     for (const QualityChannel& c : q.channels) {
         std::printf("[ dense ] d %g: bake MAE %.4f (max %.3f), point MAE %.4f; gradient jump bake %.3f, point %.3f, "
@@ -43,12 +56,7 @@ TEST(BakeQuality, StairsAgainstDenseRayTracing) {
 // 14839 vertices of `spheres` refined to 0.2 m were judged hidden, and the rest measured against references of
 // 0 (bake max 1.0). Spheres resting on a floor hide next to nothing.
 TEST(BakeQuality, ConvexSurfacesAreMeasuredFromOutside) {
-    Scene spheres = makeBuiltinScene("spheres").scene;
-    Scene scene = refineScene(spheres, 0.2f, refinementFocus(spheres, 20.0f), 1.0f);
-    BakeSettings settings;
-    settings.rays = 32;
-    settings.distances = {2.0f};
-    QualityResult q = compareWithDense(scene, settings, 128);
+    QualityResult q = compareBuiltin("spheres", 0.2f, 32, 128, {2.0f});
     ASSERT_EQ(q.channels.size(), 1u);
     std::printf("[ dense ] spheres: %zu of %zu vertices hidden, bake MAE %.4f (max %.3f)\n", q.hiddenVertices,
                 q.vertices, q.channels[0].bakedMae, q.channels[0].bakedMax);
@@ -85,12 +93,7 @@ TEST(BakeQuality, RefineSplitsLongEdges) {
 // moves by 0.2, which a piecewise-linear fit averages over (measured at 0.2 m edges: +0.03 along the walls'
 // line, +0.11 one vertex below its top, where the reference jumps from 0.50 to 0.68 at the top itself).
 TEST(BakeQuality, TheLargestErrorIsReportedWhereItIs) {
-    Scene corner = makeBuiltinScene("corner").scene;
-    Scene scene = refineScene(corner, 0.4f, refinementFocus(corner, 20.0f), 1.0f);
-    BakeSettings settings;
-    settings.rays = 32;
-    settings.distances = {2.0f};
-    QualityResult q = compareWithDense(scene, settings, 128);
+    QualityResult q = compareBuiltin("corner", 0.4f, 32, 128, {2.0f});
     ASSERT_EQ(q.channels.size(), 1u);
     const QualityChannel& c = q.channels[0];
     std::printf("[ dense ] corner: bake max %.3f at (%.3f, %.3f, %.3f), baked %.3f, reference %.3f\n", c.bakedMax,

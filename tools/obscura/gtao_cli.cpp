@@ -276,10 +276,10 @@ void GtaoOptions::warnUnread() const {
     if (thickness == "bitmask" && falloffStartOption && falloffStart < 1.0f)
         warnIgnored({falloffStartOption}, "the bitmask thickness counts every occluder within the radius whole, "
                                           "without the fade");
-    const ssao::GtaoSampling s = gtaoSampling(sampling);
-    if (mipRatioOption && s != ssao::GtaoSampling::Mip && s != ssao::GtaoSampling::PlanarMip &&
-        s != ssao::GtaoSampling::PlanarNearest)
-        warnIgnored({mipRatioOption}, "applies to --gtao-sampling mip, planar-mip and planar-nearest, not " + sampling);
+    // Given, not merely defaulted (render's ratio defaults to 7, not to ao's and compare's 0 for "none").
+    if (mipRatioOption && mipRatioOption->count() > 0)
+        warnGtaoMipRatioUnread(mipRatio, ssao::gtaoSamplingReadsMipRatio(gtaoSampling(sampling)),
+                               "--gtao-sampling " + sampling + " does not read it");
 }
 
 GtaoFrame renderGtaoFrames(const GtaoOptions& o, float radius, const trace::Tracer& tracer, const Camera& camera,
