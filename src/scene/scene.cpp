@@ -6,9 +6,11 @@
 #include "core/face_geometry.h"
 
 #include <algorithm>
+#include <array>
 #include <cassert>
 #include <cmath>
 #include <limits>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -67,25 +69,84 @@ std::size_t Scene::triangleCount() const {
     return n;
 }
 
+namespace {
+
+// One face's weighted normal at each of its corners, or false for a face without area or a vertex out of range.
+// |cross| is twice the area, so cross * angle weights by area and by the corner's angle: a vertex's normal then
+// does not depend on how a flat region around it happens to be split into triangles.
+bool cornerNormals(const Mesh& mesh, std::size_t t, std::uint32_t (&v)[3], Vec3 (&w)[3]) {
+    const std::size_t n = mesh.positions.size();
+    for (int k = 0; k < 3; ++k) v[k] = mesh.indices[t + std::size_t(k)];
+    if (v[0] >= n || v[1] >= n || v[2] >= n) return false;  // left for sanitizeScene to report
+    const Vec3 p[3] = {mesh.positions[v[0]], mesh.positions[v[1]], mesh.positions[v[2]]};
+    const Vec3 areaNormal = cross(p[1] - p[0], p[2] - p[0]);
+    const float len = length(areaNormal);
+    if (!(len > 0) || !std::isfinite(len)) return false;
+    for (int k = 0; k < 3; ++k) {
+        Vec3 a = p[(k + 1) % 3] - p[k], b = p[(k + 2) % 3] - p[k];
+        // atan2 stays accurate for the tiny and near-straight angles where acos(dot) loses digits.
+        w[k] = areaNormal * std::atan2(length(cross(a, b)), dot(a, b));
+    }
+    return true;
+}
+
+// A sum this much smaller than the sum of its terms' lengths cancelled: the faces around the vertex face both
+// ways, as in a double-sided mesh that lists each face twice with opposite windings over shared vertices. Single-sided
+// geometry cancels this far only at a knife edge whose two faces meet at under 0.012 degrees.
+constexpr float kCancelled = 1e-4f;
+
+} // namespace
+
 void computeSmoothNormals(Mesh& mesh) {
     if (mesh.normals.size() == mesh.positions.size()) return;
     const std::size_t n = mesh.positions.size();
     std::vector<Vec3> sum(n, Vec3{});
+    std::vector<float> weight(n, 0.0f);
     for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
-        const std::uint32_t v[3] = {mesh.indices[t], mesh.indices[t + 1], mesh.indices[t + 2]};
-        if (v[0] >= n || v[1] >= n || v[2] >= n) continue;  // left for sanitizeScene to report
-        const Vec3 p[3] = {mesh.positions[v[0]], mesh.positions[v[1]], mesh.positions[v[2]]};
-        // |cross| is twice the area, so cross * angle weights by area and by the corner's angle: a vertex's
-        // normal then does not depend on how a flat region around it happens to be split into triangles.
-        Vec3 areaNormal = cross(p[1] - p[0], p[2] - p[0]);
-        float len = length(areaNormal);
-        if (!(len > 0) || !std::isfinite(len)) continue;
+        std::uint32_t v[3];
+        Vec3 w[3];
+        if (!cornerNormals(mesh, t, v, w)) continue;
         for (int k = 0; k < 3; ++k) {
-            Vec3 a = p[(k + 1) % 3] - p[k], b = p[(k + 2) % 3] - p[k];
-            // atan2 stays accurate for the tiny and near-straight angles where acos(dot) loses digits.
-            float angle = std::atan2(length(cross(a, b)), dot(a, b));
-            sum[v[k]] += areaNormal * angle;
+            sum[v[k]] += w[k];
+            weight[v[k]] += length(w[k]);
         }
+    }
+    std::vector<std::uint8_t> cancelled(n, 0);
+    bool anyCancelled = false;
+    for (std::size_t i = 0; i < n; ++i)
+        if (weight[i] > 0 && !(length(sum[i]) > kCancelled * weight[i])) cancelled[i] = 1, anyCancelled = true;
+    if (anyCancelled) {
+        // Sum again around those vertices, counting each face once whatever its winding: the first listing of a
+        // vertex triple stands for the surface, and the reversed copy after it is its back. A wall then keeps its
+        // own normal, not the up vector, and a double-sided room's corner the bisector of its first-listed faces.
+        std::set<std::array<std::uint32_t, 3>> seen;
+        std::vector<Vec3> aligned(n, Vec3{}), largest(n, Vec3{});
+        for (std::size_t i = 0; i < n; ++i)
+            if (cancelled[i]) sum[i] = Vec3{};
+        for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+            std::uint32_t v[3];
+            Vec3 w[3];
+            if (!cornerNormals(mesh, t, v, w) || !(cancelled[v[0]] || cancelled[v[1]] || cancelled[v[2]])) continue;
+            std::array<std::uint32_t, 3> key{v[0], v[1], v[2]};
+            std::sort(key.begin(), key.end());
+            if (!seen.insert(key).second) continue;
+            for (int k = 0; k < 3; ++k)
+                if (cancelled[v[k]]) {
+                    sum[v[k]] += w[k];
+                    if (length(w[k]) > length(largest[v[k]])) largest[v[k]] = w[k];
+                }
+        }
+        // Faces reversed without being exact copies (each side triangulated its own way) still cancel: then
+        // every term is turned to the side of the largest one, which at least keeps the normal across the surface.
+        for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+            std::uint32_t v[3];
+            Vec3 w[3];
+            if (!cornerNormals(mesh, t, v, w) || !(cancelled[v[0]] || cancelled[v[1]] || cancelled[v[2]])) continue;
+            for (int k = 0; k < 3; ++k)
+                if (cancelled[v[k]]) aligned[v[k]] += dot(w[k], largest[v[k]]) < 0 ? -w[k] : w[k];
+        }
+        for (std::size_t i = 0; i < n; ++i)
+            if (cancelled[i] && !(length(sum[i]) > kCancelled * weight[i])) sum[i] = aligned[i];
     }
     mesh.normals.resize(n);
     for (std::size_t i = 0; i < n; ++i) {

@@ -107,6 +107,50 @@ TEST(SceneNormals, CornerIsWeightedByAngleNotByTriangleCount) {
     expectNear(m.normals[0], {-k, -k, -k});
 }
 
+// A double-sided mesh that lists each face twice, once per winding, over shared vertices: the two sides' normals
+// cancel. The first listing stands for the surface (its normal, not the up vector), even when the reversed copy
+// starts from another corner, so its float normal differs from the negation in the last bits.
+TEST(SceneNormals, DoubleSidedFacesKeepTheFirstListedSide) {
+    Mesh m = quadXY();
+    m.indices.insert(m.indices.end(), {2, 1, 0, 3, 2, 0});  // the back, starting elsewhere
+    computeSmoothNormals(m);
+    for (Vec3 n : m.normals) expectNear(n, {0, 0, 1});
+
+    // The cube corner of the test above, each face then repeated reversed: still the corner's own normal.
+    Mesh c;
+    c.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {1, 0, 1}, {0, 0, 1}, {0, 1, 1}};
+    c.indices = {0, 3, 2, 0, 2, 1, 0, 1, 5, 1, 4, 5, 0, 5, 6, 0, 6, 3};
+    for (std::size_t t = 0; t < 18; t += 3) c.indices.insert(c.indices.end(), {c.indices[t + 1], c.indices[t], c.indices[t + 2]});
+    computeSmoothNormals(c);
+    const float k = 1 / std::sqrt(3.0f);
+    expectNear(c.normals[0], {-k, -k, -k});
+}
+
+// Each side triangulated its own way (the front split along 0-2, the back along 1-3): no face is an exact reversed
+// copy, so the terms are turned to one side. The normal still crosses the surface.
+TEST(SceneNormals, DoubleSidedFacesSplitDifferentlyStayAcrossTheSurface) {
+    Mesh m = quadXY();
+    m.indices.insert(m.indices.end(), {1, 0, 3, 1, 3, 2});
+    computeSmoothNormals(m);
+    for (Vec3 n : m.normals) {
+        EXPECT_NEAR(std::fabs(n.z), 1.0f, 1e-6f);
+        EXPECT_NEAR(n.x, 0.0f, 1e-6f);
+        EXPECT_NEAR(n.y, 0.0f, 1e-6f);
+    }
+}
+
+// A thin wedge folded to 1 degree is single-sided geometry whose normals nearly cancel, but not past the threshold:
+// its edge keeps the bisector.
+TEST(SceneNormals, AThinWedgeKeepsItsBisector) {
+    const float half = 0.5f * 3.14159265f / 180.0f;  // half of 1 degree
+    Mesh m;
+    m.positions = {{0, 0, 0}, {0, 0, 1}, {std::cos(half), std::sin(half), 0}, {std::cos(half), -std::sin(half), 0}};
+    m.indices = {0, 1, 2, 0, 3, 1};  // upper face facing +y-ish, lower face facing -y-ish
+    computeSmoothNormals(m);
+    expectNear(m.normals[0], {-1, 0, 0}, 1e-5f);
+    expectNear(m.normals[1], {-1, 0, 0}, 1e-5f);
+}
+
 TEST(SceneNormals, VertexWithoutValidFaceGetsUp) {
     Mesh m = quadXY();
     m.positions.push_back({5, 5, 5});        // in no triangle

@@ -2,10 +2,12 @@
 #include "obscura/builtin_scenes.h"
 #include "obscura/mesh_builder.h"
 #include "obscura/parallel.h"
+#include "obscura/scene.h"
 #include "obscura/trace.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -171,4 +173,42 @@ TEST(BuiltinScenes, GeneratedLevelHitsItsBudget) {
     Scene again = generateLevel(200000, 3);
     EXPECT_EQ(again.triangleCount(), level.triangleCount());
     EXPECT_EQ(again.instances.back().worldFromObject.m[0][3], level.instances.back().worldFromObject.m[0][3]);
+}
+
+// A double-sided copy of a scene (each face listed again with the opposite winding, over the same vertices) is
+// seen as the scene itself: the same G-buffer normals and the same obscurance. Its vertex normals once cancelled
+// to the up vector, which turned every wall's shading normal along the wall.
+TEST(GBuffer, DoubleSidedMeshesSeeLikeSingleSided) {
+    BuiltinScene single = makeBuiltinScene("demo");
+    BuiltinScene twice = single;
+    for (Mesh& m : single.scene.meshes) {
+        m.normals.clear();
+        computeSmoothNormals(m);
+    }
+    for (Mesh& m : twice.scene.meshes) {
+        const std::size_t count = m.indices.size();
+        for (std::size_t t = 0; t < count; t += 3)
+            m.indices.insert(m.indices.end(), {m.indices[t + 2], m.indices[t + 1], m.indices[t]});
+        m.normals.clear();
+        computeSmoothNormals(m);
+    }
+    Camera cam = single.camera;
+    cam.width = 64;
+    cam.height = 36;
+    Tracer a(single.scene), b(twice.scene);
+    GBuffer ga = renderGBuffer(a, cam), gb = renderGBuffer(b, cam);
+    float worstNormal = 0;
+    for (int y = 0; y < cam.height; ++y)
+        for (int x = 0; x < cam.width; ++x) {
+            ASSERT_EQ(ga.isSky(x, y), gb.isSky(x, y)) << x << "," << y;
+            if (!ga.isSky(x, y)) worstNormal = std::max(worstNormal, length(ga.viewNormal(x, y) - gb.viewNormal(x, y)));
+        }
+    EXPECT_LE(worstNormal, 1e-4f);
+    ObscuranceSettings settings;
+    settings.radius = 1.0f;
+    settings.rays = 32;
+    const Image aoA = ambientObscurance(a, ga, settings), aoB = ambientObscurance(b, gb, settings);
+    double diff = 0;
+    for (std::size_t i = 0; i < aoA.pixels.size(); ++i) diff += std::fabs(double(aoA.pixels[i]) - double(aoB.pixels[i]));
+    EXPECT_LE(diff / double(aoA.pixels.size()), 1e-3);
 }
