@@ -15,6 +15,7 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <string>
 
 namespace obscura::trace {
 
@@ -119,6 +120,11 @@ float selfHitOffset(Vec3 a, Vec3 b, Vec3 c, Vec3 p, float scale = 0.0f);
 // float precision left: 8 m rooms 1e7 m out start every ray some 10 m off its surface, past any radius, and
 // ray-traced AO came out 1 everywhere. Callers compare it with their reach (r, d) and refuse or warn.
 float selfHitOffsetFloor(const Bounds& bounds);
+// Why rays of this reach (r, or d for the exponential falloff; m) from surfaces within `bounds`, named `scene` in the
+// text, start too far off those surfaces: "" when selfHitOffsetFloor is under 1% of the reach. From 25% (`refuse`
+// set) AO reads 1 everywhere, and ObscuranceEstimator and bake::traceSamples throw with this text; between, the
+// AO is lighter, and the CLI warns.
+std::string rayReachProblem(const Bounds& bounds, float reach, const std::string& scene, bool& refuse);
 
 using Progress = std::function<void(double fraction)>;
 

@@ -49,6 +49,10 @@ namespace detail {
 
 SampleTracer::SampleTracer(const trace::Tracer& tracer, const BakeSettings& settings)
     : tracer_(tracer), settings_(settings), directions_(settings.rays), stream_(tracer) {
+    bool refuse = false;
+    const std::string why = trace::rayReachProblem(
+        tracer.bounds(), *std::min_element(settings.distances.begin(), settings.distances.end()), "the scene", refuse);
+    if (refuse) fail("--distances", why);
     for (std::size_t c = 0; c < settings.distances.size(); ++c) {
         d_[c] = settings.distances[c];
         a_[c] = std::log(0.5f) / d_[c];

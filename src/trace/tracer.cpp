@@ -255,6 +255,16 @@ float selfHitOffsetFloor(const Bounds& bounds) {
     return float(kSelfHitPerUlpScale * m * kMinAspect);
 }
 
+std::string rayReachProblem(const Bounds& bounds, float reach, const std::string& scene, bool& refuse) {
+    refuse = false;
+    const float offset = selfHitOffsetFloor(bounds);
+    if (!(reach > 0.0f) || !std::isfinite(reach) || offset < 0.01f * reach) return "";
+    refuse = offset >= 0.25f * reach;
+    return scene + " is so far from the origin that float precision starts every ray at least " + numberText(offset) +
+           " m off its surface, " + numberText(100.0f * offset / reach) + "% of " + numberText(reach) +
+           " m; move the scene nearer the origin";
+}
+
 float Tracer::selfHitOffset(const Hit& hit, Vec3 origin, Vec3 p) const {
     const auto [a, b, c] = worldTriangle(hit);
     return trace::selfHitOffset(a, b, c, p, maxAbsComponent(origin));

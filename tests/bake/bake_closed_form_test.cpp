@@ -6,6 +6,7 @@
 // tolerances below are 3 of those i.i.d. per-sample sigmas, and the mean over the interior vertices is held
 // to a tenth of that, which also catches a bias.
 #include "obscura/bake.h"
+#include "obscura/error.h"
 #include "obscura/mesh_builder.h"
 #include "obscura/parallel.h"
 #include "obscura/trace.h"
@@ -17,6 +18,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <string>
 
 using namespace obscura;
 using namespace obscura::bake;
@@ -272,4 +274,57 @@ TEST(BakeDeterminism, OneAndTwoThreadsGiveTheSameBits) {
     ASSERT_EQ(one.values.size(), two.values.size());
     EXPECT_EQ(std::memcmp(one.values.data(), two.values.data(), one.values.size() * sizeof(float)), 0);
     EXPECT_EQ(one.invalidSamples, two.invalidSamples);
+}
+
+// Float precision far from the origin starts every ray metres off its surface: an 8 m room 1e7 m out read AO 1
+// everywhere, for library callers as for the CLI. The estimator and the bake refuse such a scene, naming the
+// setting; 5e4 m out the rays start 2.5% of a 2 m reach off (the CLI warns, the library goes on); at the origin
+// nothing is said.
+TEST(RayReach, TheLibraryRefusesAScenePastFloatPrecision) {
+    const auto roomAt = [](float x) {
+        Scene scene;
+        Mesh room;
+        build::addBox(room, {-4, 0, -4}, {4, 3, 4});
+        scene.add(room, Mat4::translation({x, 0, 0}));
+        return scene;
+    };
+    const auto messageOf = [](const auto& f) -> std::string {
+        try {
+            f();
+        } catch (const Error& e) {
+            return e.what();
+        }
+        return "(no error)";
+    };
+    trace::ObscuranceSettings binary;
+    binary.radius = 2.0f;
+    trace::ObscuranceSettings exponential;
+    exponential.falloff = trace::Falloff::Exponential;
+    exponential.halfDistance = 2.0f;
+    BakeSettings bake;
+    bake.distances = {2.0f, 8.0f};
+    for (float x : {0.0f, 5e4f, 1e7f}) {
+        const Scene scene = roomAt(x);
+        const trace::Tracer tracer(scene);
+        const std::string b = messageOf([&] { trace::ObscuranceEstimator est(tracer, binary); });
+        const std::string e = messageOf([&] { trace::ObscuranceEstimator est(tracer, exponential); });
+        const std::string s = messageOf([&] { traceSamples(tracer, SampleSet{}, bake); });
+        bool refuse = true;
+        const std::string why = trace::rayReachProblem(scene.bounds(), 2.0f, "room", refuse);
+        if (x < 1e7f) {
+            EXPECT_EQ(b, "(no error)") << x;
+            EXPECT_EQ(e, "(no error)") << x;
+            EXPECT_EQ(s, "(no error)") << x;
+            EXPECT_FALSE(refuse) << x;
+            EXPECT_EQ(why.empty(), x == 0.0f) << why;
+        } else {
+            EXPECT_NE(b.find("ao-radius"), std::string::npos) << b;
+            EXPECT_NE(e.find("ao-distance"), std::string::npos) << e;
+            EXPECT_NE(s.find("--distances"), std::string::npos) << s;
+            for (const std::string* m : {&b, &e, &s})
+                EXPECT_NE(m->find("move the scene nearer the origin"), std::string::npos) << *m;
+            EXPECT_TRUE(refuse);
+            EXPECT_NE(why.find("room is so far from the origin"), std::string::npos) << why;
+        }
+    }
 }

@@ -62,14 +62,11 @@ LoadedScene loadSceneArgument(const std::string& argument) {
 }
 
 void checkRayReach(const LoadedScene& scene, float reach, const std::string& flag) {
-    const float offset = trace::selfHitOffsetFloor(scene.scene.bounds());
-    if (!(reach > 0.0f) || !std::isfinite(reach) || offset < 0.01f * reach) return;
-    const std::string why = scene.name + " is so far from the origin that float precision starts every ray at least " +
-                            numberText(offset) + " m off its surface, " + numberText(100.0f * offset / reach) +
-                            "% of " + numberText(reach) + " m";
-    if (offset >= 0.25f * reach) fail(flag, why + ": move the scene nearer the origin");
-    std::fprintf(stderr, "obscura: warning: %s: %s; the AO is lighter for it (move the scene nearer the origin)\n",
-                 flag.c_str(), why.c_str());
+    bool refuse = false;
+    const std::string why = trace::rayReachProblem(scene.scene.bounds(), reach, scene.name, refuse);
+    if (refuse) fail(flag, why);
+    if (!why.empty())
+        std::fprintf(stderr, "obscura: warning: %s: %s (the AO is lighter for it)\n", flag.c_str(), why.c_str());
 }
 
 Vec3 parseVec3(const std::string& flag, const std::string& text) {
