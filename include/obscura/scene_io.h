@@ -14,6 +14,7 @@ namespace obscura {
 struct LoadInfo {
     std::size_t droppedTriangles = 0;
     std::size_t skippedPrimitives = 0;  // glTF primitives that are not triangles (points, lines)
+    std::size_t colouredPrimitives = 0; // glTF triangle primitives with a COLOR_0, which the bake's glTF replaces
 };
 
 // Dispatches on the extension. The result has normals for every mesh (computed when the file has none)

@@ -82,7 +82,8 @@ struct Target {
 
 // The loader's order: the default scene's roots (every parentless node without scenes), depth first,
 // children in order; per node with a mesh, its triangle primitives. `reached` marks the nodes visited.
-// The loader checks only the nodes it visits: a node outside the tree may name any child.
+// The loader checks only the nodes it visits: a node outside the tree may name any child. The file is read again
+// here, after the bake: one changed meanwhile must fail as the loader would, not index past its nodes or loop.
 std::vector<Target> loaderOrder(const tinygltf::Model& model, const std::string& path, std::vector<char>& reached) {
     const std::vector<int> roots = loader::sceneRoots(model, path);
     reached.assign(model.nodes.size(), 0);
@@ -92,11 +93,16 @@ std::vector<Target> loaderOrder(const tinygltf::Model& model, const std::string&
         while (!stack.empty()) {
             const int n = stack.back();
             stack.pop_back();
+            if (n < 0 || std::size_t(n) >= model.nodes.size() || reached[std::size_t(n)])
+                fail(path, "changed while it was baked (node " + std::to_string(n) + " is out of range or reached twice)");
             reached[std::size_t(n)] = 1;
             const tinygltf::Node& node = model.nodes[std::size_t(n)];
+            if (node.mesh >= 0 && std::size_t(node.mesh) >= model.meshes.size())
+                fail(path, "changed while it was baked (node " + std::to_string(n) + " names mesh " +
+                               std::to_string(node.mesh) + ", out of range)");
             if (node.mesh >= 0)
                 for (std::size_t p = 0; p < model.meshes[std::size_t(node.mesh)].primitives.size(); ++p)
-                    if (model.meshes[std::size_t(node.mesh)].primitives[p].mode == TINYGLTF_MODE_TRIANGLES)
+                    if (loader::isTriangleMode(model.meshes[std::size_t(node.mesh)].primitives[p].mode))
                         targets.push_back({n, p});
             for (auto c = node.children.rbegin(); c != node.children.rend(); ++c) stack.push_back(*c);
         }
@@ -160,7 +166,12 @@ void writeGltfWithAttributes(const std::string& inputPath, const Scene& scene, c
         }
         const tinygltf::Primitive& source = model.meshes[std::size_t(node.mesh)].primitives[targets[i].primitive];
         const std::size_t first = attributes.first[i], vertices = attributes.first[i + 1] - first;
-        const tinygltf::Accessor& positions = model.accessors[std::size_t(source.attributes.at("POSITION"))];
+        const auto position = source.attributes.find("POSITION");
+        if (position == source.attributes.end() || position->second < 0 ||
+            std::size_t(position->second) >= model.accessors.size())
+            fail(inputPath, "changed while it was baked (node " + std::to_string(n) + " primitive " +
+                                std::to_string(targets[i].primitive) + " has no POSITION accessor)");
+        const tinygltf::Accessor& positions = model.accessors[std::size_t(position->second)];
         if (positions.count != vertices)
             fail(inputPath, "node " + std::to_string(n) + " primitive " + std::to_string(targets[i].primitive) + " has " +
                                 std::to_string(positions.count) + " positions, the scene " + std::to_string(vertices));

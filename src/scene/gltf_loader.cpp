@@ -39,6 +39,10 @@ public:
                 ext == "KHR_mesh_quantization" || ext == "EXT_mesh_gpu_instancing")
                 bad("requires extension " + ext + ", which is not supported");
         for (int r : loader::sceneRoots(model_, path_)) visit(r);
+        // Said here, with why: sanitizeScene's "no triangles" named no cause for a file of points or lines.
+        if (scene_.instances.empty() && info_.skippedPrimitives > 0)
+            bad("no triangles: its " + std::to_string(info_.skippedPrimitives) + " primitive" +
+                (info_.skippedPrimitives == 1 ? " is" : "s are") + " points or lines (modes 0-3), which are not read");
         return std::move(scene_);
     }
 
@@ -67,14 +71,53 @@ private:
             visited_[n] = 1;
             const tinygltf::Node& node = model_.nodes[n];
             Mat4 world = e.parent * localTransform(node, n);
-            if (node.mesh >= 0) addInstances(node, n, world);
+            if (node.mesh >= 0) {
+                checkPlacement(node, n);
+                addInstances(node, n, world);
+            }
             for (auto c = node.children.rbegin(); c != node.children.rend(); ++c) stack.push_back({*c, world});
         }
+    }
+
+    static std::string nodeName(const tinygltf::Node& node, std::size_t n) {
+        return "node " + std::to_string(n) + (node.name.empty() ? "" : " '" + node.name + "'");
+    }
+
+    // What would place a mesh elsewhere than its node's transform, or move its vertices, is refused rather than
+    // read wrong: the geometry baked and traced must be the geometry a viewer draws.
+    void checkPlacement(const tinygltf::Node& node, std::size_t n) const {
+        // A skinned mesh is placed by its joints; the node's own transform is ignored (glTF 3.7.3.3). Baked at
+        // the node's transform, a cube skinned in place but under a node 50 m up read A = 1 in the air.
+        if (node.skin >= 0)
+            bad(nodeName(node, n) + " has a skinned mesh (skin " + std::to_string(node.skin) +
+                "), placed by its joints, which are not read; remove the skin to bake the mesh where its node puts it");
+        // Instanced by the extension, one node draws many copies; read without it, one. Files list it in
+        // extensionsUsed only, not always in extensionsRequired.
+        if (node.extensions.count("EXT_mesh_gpu_instancing"))
+            bad(nodeName(node, n) + " uses EXT_mesh_gpu_instancing, which is not supported");
+        if (std::size_t(node.mesh) >= model_.meshes.size()) return;  // addInstances names it
+        const tinygltf::Mesh& mesh = model_.meshes[std::size_t(node.mesh)];
+        // The default pose moves the vertices by the weighted morph targets (glTF 3.7.2.2); the base shape alone is
+        // right only where every weight is 0.
+        const std::vector<double>& weights = node.weights.empty() ? mesh.weights : node.weights;
+        bool morphed = false;
+        for (const tinygltf::Primitive& prim : mesh.primitives) morphed = morphed || !prim.targets.empty();
+        for (double w : weights)
+            if (morphed && w != 0.0)
+                bad(nodeName(node, n) + ": mesh " + std::to_string(node.mesh) + " has morph target weight " +
+                    numberText(w) + "; morph targets are not applied, so only weights of 0 can be read");
     }
 
     Mat4 localTransform(const tinygltf::Node& node, std::size_t n) const {
         if (!node.matrix.empty()) {
             if (node.matrix.size() != 16) bad("node " + std::to_string(n) + ": matrix must have 16 numbers");
+            // An affine matrix (glTF 5.25: it must decompose to TRS). A last row other than 0, 0, 0, 1 divided the
+            // sampled points by w while the ray tracer, which takes three rows, did not.
+            const std::vector<double>& mx = node.matrix;
+            if (mx[3] != 0.0 || mx[7] != 0.0 || mx[11] != 0.0 || mx[15] != 1.0)
+                bad(nodeName(node, n) + ": matrix's last row is (" + numberText(mx[3]) + ", " +
+                    numberText(mx[7]) + ", " + numberText(mx[11]) + ", " + numberText(mx[15]) +
+                    "), not (0, 0, 0, 1)");
             float v[16];
             for (int i = 0; i < 16; ++i) v[i] = float(node.matrix[std::size_t(i)]);
             return Mat4::fromColumnMajor(v);
@@ -121,11 +164,13 @@ private:
         const tinygltf::Mesh& src = model_.meshes[std::size_t(meshIndex)];
         const tinygltf::Primitive& prim = src.primitives[p];
         int index = -1;
-        if (prim.mode != TINYGLTF_MODE_TRIANGLES) {
+        std::string where = "mesh " + std::to_string(meshIndex) + " primitive " + std::to_string(p);
+        if (prim.mode < 0 || prim.mode > 6) bad(where + ": mode " + std::to_string(prim.mode) + " is not a glTF mode (0-6)");
+        if (!loader::isTriangleMode(prim.mode)) {
             ++info_.skippedPrimitives;
         } else {
-            std::string where = "mesh " + std::to_string(meshIndex) + " primitive " + std::to_string(p);
             Mesh m = readPrimitive(prim, where);
+            if (prim.attributes.count("COLOR_0")) ++info_.colouredPrimitives;
             m.name = src.name.empty() ? std::string("mesh").append(std::to_string(meshIndex)) : src.name;
             if (src.primitives.size() > 1) m.name.append("#").append(std::to_string(p));
             index = int(scene_.meshes.size());
@@ -155,7 +200,9 @@ private:
             m.indices.resize(m.positions.size());
             std::iota(m.indices.begin(), m.indices.end(), 0u);
         }
-        if (m.indices.size() % 3 != 0)
+        if (prim.mode == TINYGLTF_MODE_TRIANGLE_STRIP || prim.mode == TINYGLTF_MODE_TRIANGLE_FAN)
+            m.indices = listFromStripOrFan(m.indices, prim.mode == TINYGLTF_MODE_TRIANGLE_FAN);
+        else if (m.indices.size() % 3 != 0)
             bad(where + " has " + std::to_string(m.indices.size()) + " indices, not a multiple of 3");
         if (prim.material >= 0) {
             if (std::size_t(prim.material) >= model_.materials.size())
@@ -165,6 +212,19 @@ private:
             if (c.size() >= 3) m.baseColor = {float(c[0]), float(c[1]), float(c[2])};
         }
         return m;
+    }
+
+    // Triangle i of a strip is (v_i, v_i+1+i%2, v_i+2-i%2), keeping each triangle's winding; of a fan
+    // (v_i+1, v_i+2, v_0) (glTF 3.7.2.1). The vertices, and so the bake's per-vertex output, stay the file's.
+    static std::vector<std::uint32_t> listFromStripOrFan(const std::vector<std::uint32_t>& v, bool fan) {
+        std::vector<std::uint32_t> out;
+        for (std::size_t i = 0; i + 2 < v.size(); ++i) {
+            if (fan)
+                out.insert(out.end(), {v[i + 1], v[i + 2], v[0]});
+            else
+                out.insert(out.end(), {v[i], v[i + 1 + i % 2], v[i + 2 - i % 2]});
+        }
+        return out;
     }
 
     const tinygltf::Accessor& accessor(int index, const char* role) const {
@@ -202,7 +262,8 @@ private:
                     std::to_string(elementSize) + " bytes)");
             v.stride = bv.byteStride;
         }
-        if (v.count == 0) return v;
+        // The schema's minimum: an empty accessor holds no geometry, and the bake's output would repeat it.
+        if (v.count == 0) bad(name + " has count 0 (glTF requires at least 1)");
         // (count - 1) * stride + elementSize + byteOffset <= byteLength, written so nothing overflows.
         const std::size_t avail = bv.byteLength;
         bool fits = acc.byteOffset <= avail && elementSize <= avail - acc.byteOffset &&

@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <new>
+#include <string>
 #include <system_error>
 #include <vector>
 
@@ -35,6 +36,18 @@ bool readRegularFile(std::vector<unsigned char>* out, std::string* err, const st
     return tinygltf::ReadWholeFile(out, err, file, user);
 }
 
+// tinygltf quotes a data: URI it cannot decode whole: a 1 MB buffer gave a 1.4 MB line. Its contents are
+// left out; the message keeps what names the buffer.
+std::string withoutDataUris(std::string text) {
+    for (std::size_t at = text.find("data:"); at != std::string::npos; at = text.find("data:", at + 1)) {
+        const std::size_t comma = text.find(',', at), end = text.find_first_of(" \"'\n", at);
+        if (comma == std::string::npos || (end != std::string::npos && comma > end)) continue;
+        const std::size_t stop = end == std::string::npos ? text.size() : end;
+        if (stop - comma > 16) text.replace(comma + 1, stop - comma - 1, "... (" + std::to_string(stop - comma - 1) + " characters)");
+    }
+    return text;
+}
+
 } // namespace
 
 void readTinyGltf(const std::string& path, bool binary, tinygltf::Model& model) {
@@ -53,7 +66,7 @@ void readTinyGltf(const std::string& path, bool binary, tinygltf::Model& model) 
         fail(path, std::string("not a valid glTF file (") + firstLine(e.what()) + ")");
     }
     // tinygltf can fill err and still succeed (a misaligned chunk), so only the return value decides.
-    if (!ok) fail(path, err.empty() ? "not a valid glTF file" : firstLine(err));
+    if (!ok) fail(path, err.empty() ? "not a valid glTF file" : withoutDataUris(firstLine(err)));
 }
 
 std::vector<int> sceneRoots(const tinygltf::Model& model, const std::string& path) {

@@ -20,4 +20,8 @@ void readTinyGltf(const std::string& path, bool binary, tinygltf::Model& model);
 // Throws obscura::Error naming `path` for a "scene" that is not one of the scenes (it read scene 0 silently).
 std::vector<int> sceneRoots(const tinygltf::Model& model, const std::string& path);
 
+// Whether a primitive of this mode is read as triangles: TRIANGLES, TRIANGLE_STRIP and TRIANGLE_FAN (glTF 3.7.2.1).
+// The loader and the writer agree on it, so the writer's primitives follow the loader's meshes.
+inline bool isTriangleMode(int mode) { return mode == 4 || mode == 5 || mode == 6; }
+
 } // namespace obscura::loader

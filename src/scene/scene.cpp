@@ -186,6 +186,8 @@ namespace {
 
 void checkMesh(const Mesh& mesh, const std::string& what) {
     const std::size_t n = mesh.positions.size();
+    // Named, so a file of many meshes says which one.
+    const std::string label = mesh.name.empty() ? "an unnamed mesh" : "mesh '" + mesh.name + "'";
     // Albedo is the fraction of light a surface reflects: above 1 the multi-bounce fit and the composite would
     // add light, below 0 (or NaN) darken past black. glTF bounds baseColorFactor to [0, 1]; OBJ's Kd and PLY's
     // float colours are read in the same range.
@@ -197,9 +199,12 @@ void checkMesh(const Mesh& mesh, const std::string& what) {
         fail(what, "mesh '" + mesh.name + "' has " + std::to_string(mesh.indices.size()) +
                        " indices, not a multiple of 3");
     for (std::uint32_t i : mesh.indices)
-        if (i >= n) fail(what, "index " + std::to_string(i) + " out of range (" + std::to_string(n) + " vertices)");
+        if (i >= n)
+            fail(what, label + ": index " + std::to_string(i) + " out of range (" + std::to_string(n) +
+                           " vertices)");
     for (std::size_t i = 0; i < n; ++i) {
-        if (!isFinite(mesh.positions[i])) fail(what, "vertex " + std::to_string(i) + " has a non-finite position");
+        if (!isFinite(mesh.positions[i]))
+            fail(what, "vertex " + std::to_string(i) + " of " + label + " has a non-finite position");
         if (maxAbsComponent(mesh.positions[i]) > kMaxSceneCoordinate)
             fail(what, "vertex " + std::to_string(i) + " of mesh '" + mesh.name + "' lies " +
                            numberText(maxAbsComponent(mesh.positions[i])) + " m from the origin, beyond " +
@@ -209,7 +214,8 @@ void checkMesh(const Mesh& mesh, const std::string& what) {
         fail(what, "mesh '" + mesh.name + "' has " + std::to_string(mesh.normals.size()) + " normals for " +
                        std::to_string(n) + " vertices");
     for (std::size_t i = 0; i < mesh.normals.size(); ++i) {
-        if (!isFinite(mesh.normals[i])) fail(what, "vertex " + std::to_string(i) + " has a non-finite normal");
+        if (!isFinite(mesh.normals[i]))
+            fail(what, "vertex " + std::to_string(i) + " of " + label + " has a non-finite normal");
     }
 }
 
@@ -228,7 +234,9 @@ void sanitizeScene(Scene& scene, const std::string& what, std::size_t* dropped) 
         if (inst.mesh >= scene.meshes.size())
             fail(what, "instance " + std::to_string(i) + " refers to mesh " + std::to_string(inst.mesh) + " (" +
                            std::to_string(scene.meshes.size()) + " meshes)");
-        if (!isFinite(inst.worldFromObject)) fail(what, "instance " + std::to_string(i) + " has a non-finite transform");
+        if (!isFinite(inst.worldFromObject))
+            fail(what, "instance " + std::to_string(i) + (inst.name.empty() ? "" : " ('" + inst.name + "')") +
+                           " has a non-finite transform");
     }
     // Every check before the removal: removeDegenerateTriangles may assume valid indices.
     for (const Mesh& mesh : scene.meshes) checkMesh(mesh, what);

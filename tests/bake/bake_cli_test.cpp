@@ -114,6 +114,35 @@ TEST_F(BakeCli, GltfInputKeepsItsNodesAndGetsAttributes) {
     EXPECT_EQ(obscura::loadScene(path("h.gltf")).triangleCount(), obscura::loadScene(data("hierarchy.gltf")).triangleCount());
 }
 
+// A strip and a fan (skipped once, so they neither occluded nor were baked) get their attributes per file vertex
+// like a triangle list; a COLOR_0 the bake replaces is said.
+TEST_F(BakeCli, StripsAndFansAreBakedAndAReplacedColourIsSaid) {
+    // Two unit squares side by side in z = 0, 4 corners each: strip order, then fan order 1 m to the right.
+    const float xyz[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 1, 0, 0, 2, 0, 0, 2, 1, 0, 1, 1, 0,
+                         1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1};  // then white COLOR_0
+    std::ofstream(path("strips.bin"), std::ios::binary).write(reinterpret_cast<const char*>(xyz), sizeof xyz);
+    std::ofstream(path("strips.gltf"))
+        << R"({"asset": {"version": "2.0"}, "nodes": [{"mesh": 0}], "meshes": [{"primitives": [)"
+           R"({"attributes": {"POSITION": 0, "COLOR_0": 2}, "mode": 5}, {"attributes": {"POSITION": 1}, "mode": 6}]}],)"
+           R"( "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3"},)"
+           R"({"bufferView": 0, "byteOffset": 48, "componentType": 5126, "count": 4, "type": "VEC3"},)"
+           R"({"bufferView": 0, "byteOffset": 96, "componentType": 5126, "count": 4, "type": "VEC3"}],)"
+           R"( "bufferViews": [{"buffer": 0, "byteLength": 192}], "buffers": [{"byteLength": 192, "uri": "strips.bin"}]})";
+    Result r = run("bake " + path("strips.gltf") + " -o " + path("strips_out.gltf") + " --rays 8 -q");
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_NE(r.out.find("the COLOR_0 of 1 primitive is replaced by the baked grey"), std::string::npos) << r.out;
+    nlohmann::json out = nlohmann::json::parse(readBytes(path("strips_out.gltf")));
+    for (const auto& prim : out["meshes"][0]["primitives"]) {
+        EXPECT_TRUE(prim["attributes"].contains("_AO_SHORT")) << prim.dump();
+        EXPECT_EQ(out["accessors"][prim["attributes"]["COLOR_0"].get<int>()]["count"], 4) << prim.dump();
+    }
+    EXPECT_EQ(obscura::loadScene(path("strips_out.gltf")).triangleCount(), 4u);
+    // Without a COLOR_0 in the input, nothing is said.
+    Result plain = run("bake " + data("hierarchy.gltf") + " -o " + path("h2.gltf") + kFast);
+    ASSERT_EQ(plain.code, 0) << plain.out;
+    EXPECT_EQ(plain.out.find("COLOR_0"), std::string::npos) << plain.out;
+}
+
 TEST_F(BakeCli, OcclusionToPlyAndCsv) {
     Result r = run("bake " + data("cube.obj") + " --mode occlusion --distance 2 -o " + path("cube.ply") + kFast);
     ASSERT_EQ(r.code, 0) << r.out;

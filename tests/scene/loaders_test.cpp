@@ -142,7 +142,7 @@ TEST(LoaderGltf, AccessorOutOfRange) {
     expectLoadError("accessor_out_of_range.gltf", "POSITION accessor 0 reads past the end of its buffer view");
 }
 TEST(LoaderGltf, IndexOutOfRange) {
-    EXPECT_EQ(loadError(data("bad_index.gltf")), data("bad_index.gltf") + ": index 7 out of range (4 vertices)");
+    EXPECT_EQ(loadError(data("bad_index.gltf")), data("bad_index.gltf") + ": mesh 'quad#0': index 7 out of range (4 vertices)");
 }
 
 // Hand-edited variants of a one-triangle file, each lying in one way that a careless reader would follow
@@ -192,6 +192,15 @@ TEST(LoaderGltf, LyingFilesGiveErrors) {
          "POSITION accessor 0 has no buffer view (its 30000000 elements would all be 0)"},
         {"", node, R"({"componentType": 5126, "count": 18446744073709551615, "type": "VEC3"})", view,
          "POSITION accessor 0 has no buffer view"},
+        // Placed or shaped otherwise than the node's transform says: read as it was, the bake was wrong silently.
+        {R"("skins": [{"joints": [0]}],)", R"({"mesh": 0, "skin": 0, "name": "hero"})", acc + "}", view,
+         "node 0 'hero' has a skinned mesh (skin 0), placed by its joints, which are not read"},
+        {R"("extensionsUsed": ["EXT_mesh_gpu_instancing"],)",
+         R"({"mesh": 0, "extensions": {"EXT_mesh_gpu_instancing": {"attributes": {}}}})", acc + "}", view,
+         "node 0 uses EXT_mesh_gpu_instancing, which is not supported"},
+        {"", R"({"mesh": 0, "matrix": [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 2]})", acc + "}", view,
+         "node 0: matrix's last row is (0, 0, 0, 2), not (0, 0, 0, 1)"},
+        {"", node, acc + R"(, "count": 0})", view, "POSITION accessor 0 has count 0 (glTF requires at least 1)"},
     };
     TempDir dir;
     for (const Case& c : cases) {
@@ -206,6 +215,75 @@ TEST(LoaderGltf, LyingFilesGiveErrors) {
         EXPECT_NE(msg.find(path + ": "), std::string::npos) << msg;
         EXPECT_NE(msg.find(c.expected), std::string::npos) << msg;
     }
+}
+
+// Meshes whose primitives differ from the one-triangle template: positions from a .bin beside the file.
+std::string primitivesGltf(const TempDir& dir, const std::string& meshes, const std::string& nodes = R"({"mesh": 0})") {
+    // A unit square, corners in strip order (0,0), (1,0), (0,1), (1,1), then in fan order (0,0), (1,0), (1,1), (0,1).
+    const float xyz[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+    dir.write("square.bin", std::string(reinterpret_cast<const char*>(xyz), sizeof xyz));
+    return dir.write("primitives.gltf",
+                     R"({"asset": {"version": "2.0"}, "nodes": [)" + nodes + R"(], "meshes": )" + meshes +
+                         R"(, "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3"},)"
+                         R"({"bufferView": 0, "byteOffset": 48, "componentType": 5126, "count": 4, "type": "VEC3"}],)"
+                         R"( "bufferViews": [{"buffer": 0, "byteLength": 96}], "buffers": [{"byteLength": 96, "uri": "square.bin"}]})");
+}
+
+// A data: URI that does not decode to its byteLength was quoted whole in the message, one line of 1.4 MB for a
+// 1 MB buffer. The contents are cut; the message still names the file and the buffer.
+TEST(LoaderGltf, AnUndecodableDataUriIsNotQuotedWhole) {
+    TempDir dir;
+    const std::string uri = "data:application/octet-stream;base64," + std::string(40000, 'A');
+    const std::string path = dir.write(
+        "long.gltf", R"({"asset": {"version": "2.0"}, "buffers": [{"byteLength": 30004, "uri": ")" + uri + R"("}]})");
+    const std::string msg = loadError(path);
+    EXPECT_NE(msg.find(path + ": "), std::string::npos) << msg.substr(0, 400);
+    EXPECT_NE(msg.find("characters)"), std::string::npos) << msg.substr(0, 400);
+    EXPECT_LT(msg.size(), 400u) << msg.substr(0, 400);
+}
+
+// Strips and fans are triangles too (glTF 3.7.2.1): read in the file's vertex order with every triangle's
+// winding kept, so each faces +z as the square does. They were skipped, and occluded nothing.
+TEST(LoaderGltf, StripsAndFansAreReadAsTriangles) {
+    TempDir dir;
+    for (const auto& [mode, accessor] : {std::pair{5, 0}, std::pair{6, 1}}) {
+        SCOPED_TRACE(mode);
+        LoadInfo info;
+        const Scene s = loadScene(primitivesGltf(dir, R"([{"primitives": [{"attributes": {"POSITION": )" +
+                                                          std::to_string(accessor) + R"(}, "mode": )" +
+                                                          std::to_string(mode) + "}]}]"),
+                                  &info);
+        EXPECT_EQ(info.skippedPrimitives, 0u);
+        ASSERT_EQ(s.meshes.size(), 1u);
+        const Mesh& m = s.meshes[0];
+        EXPECT_EQ(m.positions.size(), 4u);
+        ASSERT_EQ(m.indices.size(), 6u);
+        for (std::size_t t = 0; t < 6; t += 3) {
+            const Vec3 n = cross(m.positions[m.indices[t + 1]] - m.positions[m.indices[t]],
+                                 m.positions[m.indices[t + 2]] - m.positions[m.indices[t]]);
+            EXPECT_NEAR(n.z, 1.0f, 1e-6f) << t;  // each half of the unit square, facing +z
+        }
+        for (Vec3 n : m.normals) expectNear(n, {0, 0, 1});
+    }
+}
+
+// Morph targets are not applied: weights of 0 (the base shape) load; any other weight, on the mesh or on the node
+// that overrides it, is refused. Points alone are "no triangles", said with why.
+TEST(LoaderGltf, MorphWeightsModesAndPointsAreChecked) {
+    TempDir dir;
+    const std::string morphed = R"([{"primitives": [{"attributes": {"POSITION": 0}, "mode": 5, "targets": [{"POSITION": 1}]}], )";
+    EXPECT_NO_THROW(loadScene(primitivesGltf(dir, morphed + R"("weights": [0]}])")));
+    std::string msg = loadError(primitivesGltf(dir, morphed + R"("weights": [1]}])"));
+    EXPECT_NE(msg.find("node 0: mesh 0 has morph target weight 1; morph targets are not applied"), std::string::npos) << msg;
+    msg = loadError(primitivesGltf(dir, morphed + R"("weights": [0]}])", R"({"mesh": 0, "weights": [0.5]})"));
+    EXPECT_NE(msg.find("has morph target weight 0.5"), std::string::npos) << msg;
+    msg = loadError(primitivesGltf(dir, R"([{"primitives": [{"attributes": {"POSITION": 0}, "mode": 9}]}])"));
+    EXPECT_NE(msg.find("mesh 0 primitive 0: mode 9 is not a glTF mode (0-6)"), std::string::npos) << msg;
+    msg = loadError(primitivesGltf(dir, R"([{"primitives": [{"attributes": {"POSITION": 0}, "mode": 0}, )"
+                                        R"({"attributes": {"POSITION": 1}, "mode": 1}]}])"));
+    EXPECT_NE(msg.find("no triangles: its 2 primitives are points or lines (modes 0-3), which are not read"),
+              std::string::npos)
+        << msg;
 }
 
 // The type check leaves the contents of data: URIs out of what it parses by following the JSON's strings: names
@@ -674,7 +752,7 @@ TEST(LoaderPly, MalformedAsciiVariantsGiveErrors) {
         {header + "0 0 0\n1 abc 0\n0 1 0\n3 0 1 2\n", "line 11: expected a number, got 'abc'"},
         {header + "0 0 0\n1 0 0\n0 1 0\n3 0 1.5 2\n", "line 13: expected an integer, got '1.5'"},
         {header + "0 0 0\n1 0 0\n0 1 0\n3 0 -1 2\n", "face 0: index -1 out of range (3 vertices)"},
-        {header + "0 0 0\n1 0 0\nnan 1 0\n3 0 1 2\n", "vertex 2 has a non-finite position"},
+        {header + "0 0 0\n1 0 0\nnan 1 0\n3 0 1 2\n", "vertex 2 of mesh 'bad' has a non-finite position"},
         {header + "0 0 0\n1 0 0\n", "truncated: expected 3 vertices, got 2"},
         {header + "0 0 0\n1 0 0\n0 1 0\n3 0 1\n", "truncated: expected 1 face, got 0"},
         {"ply\nformat ascii 1.0\nelement vertex 1000000\nproperty float x\nproperty float y\nproperty float z\n"

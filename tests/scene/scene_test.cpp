@@ -304,7 +304,7 @@ TEST(SceneSanitize, IndexOutOfRange) {
     m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
     m.indices = {0, 1, 7};
     s.add(m);
-    EXPECT_EQ(messageOf(s, "x.gltf"), "x.gltf: index 7 out of range (3 vertices)");
+    EXPECT_EQ(messageOf(s, "x.gltf"), "x.gltf: an unnamed mesh: index 7 out of range (3 vertices)");
 }
 
 TEST(SceneSanitize, NonFinitePositionAndNormal) {
@@ -312,13 +312,13 @@ TEST(SceneSanitize, NonFinitePositionAndNormal) {
     Mesh m = quadXY();
     m.positions[2].y = std::nanf("");
     s.add(m);
-    EXPECT_EQ(messageOf(s, "scene.obj"), "scene.obj: vertex 2 has a non-finite position");
+    EXPECT_EQ(messageOf(s, "scene.obj"), "scene.obj: vertex 2 of mesh 'quad' has a non-finite position");
     Scene t;
     Mesh n = quadXY();
     computeSmoothNormals(n);
     n.normals[3].z = std::numeric_limits<float>::infinity();
     t.add(n);
-    EXPECT_EQ(messageOf(t, "scene.obj"), "scene.obj: vertex 3 has a non-finite normal");
+    EXPECT_EQ(messageOf(t, "scene.obj"), "scene.obj: vertex 3 of mesh 'quad' has a non-finite normal");
 }
 
 TEST(SceneSanitize, IndexCountAndNormalCountMustFit) {
@@ -343,7 +343,7 @@ TEST(SceneSanitize, InstancesMustPointAtMeshesAndBeFinite) {
     Mat4 bad;
     bad.m[0][3] = std::numeric_limits<float>::infinity();
     t.add(quadXY(), bad);
-    EXPECT_EQ(messageOf(t, "a.glb"), "a.glb: instance 0 has a non-finite transform");
+    EXPECT_EQ(messageOf(t, "a.glb"), "a.glb: instance 0 ('quad') has a non-finite transform");
 }
 
 // The generated level built walls and partitions as one box per storey, each box's top face on the next one's

@@ -42,6 +42,7 @@ LoadedScene loadSceneArgument(const std::string& argument) {
     LoadInfo info;
     out.scene = loadScene(argument, &info);
     out.name = argument;
+    out.colouredPrimitives = info.colouredPrimitives;
     if (info.droppedTriangles > 0)
         std::fprintf(stderr, "obscura: warning: %s: dropped %zu degenerate triangle%s\n", argument.c_str(),
                      info.droppedTriangles, info.droppedTriangles == 1 ? "" : "s");

@@ -24,6 +24,7 @@ struct LoadedScene {
     std::string name;
     Scene scene;
     Camera camera;  // the built-in default, or one framing a file's bounds
+    std::size_t colouredPrimitives = 0;  // glTF triangle primitives with a COLOR_0 (LoadInfo)
 };
 LoadedScene loadSceneArgument(const std::string& argument);
 // Ray-traced AO of reach `reach` (m: a radius r, or an exponential falloff's d) over `scene`: fails naming `flag`

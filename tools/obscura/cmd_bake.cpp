@@ -105,6 +105,10 @@ void runBake(BakeOptions& o) {
     const double loadSeconds = secondsSince(t0);
     checkRayReach(loaded, *std::min_element(s.distances.begin(), s.distances.end()),
                   o.distanceOption->count() > 0 ? "--distance" : "--distances");
+    // A glTF's own vertex colours (a tint, an alpha) are replaced by the baked grey: said, not done quietly.
+    if (loaded.colouredPrimitives > 0 && (fileExtension(o.output) == ".glb" || fileExtension(o.output) == ".gltf"))
+        std::fprintf(stderr, "obscura: warning: %s: the COLOR_0 of %zu primitive%s is replaced by the baked grey\n",
+                     o.input.c_str(), loaded.colouredPrimitives, loaded.colouredPrimitives == 1 ? "" : "s");
 
     const bool show = progressWanted(o.quiet);
     std::mutex mutex;
