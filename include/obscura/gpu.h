@@ -56,6 +56,7 @@ struct DeviceInfo {
     std::string driver;             // the driver's name and version, e.g. "llvmpipe Mesa 22.3.6"
     double timestampPeriodNs = 0;   // ns per timestamp tick; 0 when the compute queue has no timestamps
     bool pipelineStatistics = false;  // the context captures pipeline statistics (asked for, and offered)
+    std::uint32_t maxImageDimension2D = 0;  // texels a side of the largest 2-D texture (an environment map)
 };
 
 // What the driver says of one compiled pipeline (Context::pipelineReports). A compute pipeline usually has

@@ -3,6 +3,7 @@
 #include "gpu/context.h"
 #include "gpu/check.h"
 #include "gpu/compute_pipeline.h"
+#include "gpu/spirv.h"
 
 #include "obscura/error.h"
 
@@ -20,9 +21,12 @@ namespace {
 
 constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
 
+// Unset, empty or "0": off; "1": on. Anything else is refused: "true" once left the layers off without a word.
 bool envFlag(const char* name) {
     const char* v = std::getenv(name);
-    return v && std::strcmp(v, "1") == 0;
+    if (!v || *v == '\0' || std::strcmp(v, "0") == 0) return false;
+    if (std::strcmp(v, "1") == 0) return true;
+    fail(name, std::string("must be 0 or 1, got '") + v + "'");
 }
 
 VKAPI_ATTR VkBool32 VKAPI_CALL recordMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
@@ -190,6 +194,7 @@ Context::Context(const ContextSettings& settings) : impl_(std::make_unique<Impl>
     c.info.name = c.properties.deviceName;
     c.info.index = index;
     c.info.discrete = c.properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU;
+    c.info.maxImageDimension2D = c.properties.limits.maxImageDimension2D;
     c.info.apiVersion = c.properties.apiVersion;
     if (c.properties.apiVersion < VK_API_VERSION_1_2)
         fail("Vulkan device '" + c.info.name + "'",
@@ -370,6 +375,12 @@ Spirv Context::Impl::shaderCode(const std::string& name, const Spirv& embedded) 
         std::vector<std::uint32_t> words(bytes.size() / 4);
         std::memcpy(words.data(), bytes.data(), bytes.size());
         if (words[0] != 0x07230203u) fail(file.string(), "is not SPIR-V (no magic number)");
+        // Read once here, so a malformed module is named by its file, not only as "SPIR-V".
+        try {
+            reflect({words.data(), words.size()});
+        } catch (const Error& e) {
+            fail(file.string(), std::string("is not a module the host can read (") + e.what() + ")");
+        }
         known = shaderFiles.emplace(name, std::move(words)).first;
     }
     return Spirv{known->second.data(), known->second.size()};

@@ -276,6 +276,15 @@ void GtaoTemporalPasses::recordFused(VkCommandBuffer cmd, const ssao::GtaoConsta
     // accumulates fusedOutputTile pixels of the grid along each axis.
     const int tileX = fusedOutputTile(phase, int(pipeline.layout().localSize[0]));
     const int tileY = fusedOutputTile(phase, int(pipeline.layout().localSize[1]));
+    // A candidate shader no wider than the window accumulates nothing: a tile of 0 divided the dispatch by zero.
+    if (tileX < 1 || tileY < 1) {
+        const int side = ssao::reconstructWindowSide(phase);
+        fail("shader gtao_temporal_fused", "has workgroups of " + std::to_string(pipeline.layout().localSize[0]) + "x" +
+                                               std::to_string(pipeline.layout().localSize[1]) + ": the " +
+                                               std::to_string(side) + "x" + std::to_string(side) +
+                                               " reconstruction window needs at least " + std::to_string(side) +
+                                               " invocations a side");
+    }
     // In binding order: kTemporalBindingDepth, Normal, kFusedBindingDepthMips, TemporalConstants, then
     // kTemporalBindingPreviousDepth ... kTemporalBindingBentViewOut.
     pipeline.dispatch(cmd, {&b.depth, &b.normal, &b.depthMips, Resource(&temporalConstants_, offset, sizeof tk),

@@ -743,14 +743,46 @@ TEST_F(GpuCommands, ShaderDirReplacesEmbeddedShaders) {
     obscura::gpu::testing::writeModule(path("bad/gtao.spv"), junk, 6);
     shaderDir.set(path("bad"));
     expectFailure(bench, {path("bad/gtao.spv"), "is not SPIR-V"});
+    // The magic number, then an instruction that says it is longer than the file: named by its file (it was
+    // "SPIR-V: truncated instruction", which named nothing).
+    const std::uint32_t truncated[6] = {0x07230203u, 0x00010500u, 0, 10, 0, (9u << 16) | 17u};
+    obscura::gpu::testing::writeModule(path("bad/gtao.spv"), truncated, 6);
+    expectFailure(bench, {path("bad/gtao.spv") + ": is not a module the host can read (SPIR-V:"});
 
     shaderDir.set(path("nowhere"));
     expectFailure(bench, {"OBSCURA_SHADER_DIR", "nowhere", "is not a folder"});
 }
 
+// The GPU holds the environment as one texture. One wider than the device can hold was refused only after the
+// scene was traced, in the device's words ("cannot hold a 16385x2 texture") without naming --env's file. The
+// CPU path takes it; the GPU path now refuses it before any work, naming the file and the limit.
+TEST_F(GpuCommands, RenderRefusesAnEnvironmentPastTheDevicesTextureLimit) {
+    std::uint32_t limit = 0;
+    {
+        obscura::gpu::Context context;
+        limit = context.device().maxImageDimension2D;
+    }
+    ASSERT_GT(limit, 0u);
+    obscura::writeExr(path("wide.exr"), obscura::Image(int(limit) + 1, 1, 3, 0.5f));
+    expectFailure("render plane --size 16x8 -q --ao gtao --gpu --env " + path("wide.exr") + " -o " + path("f.png"),
+                  {path("wide.exr") + ": " + std::to_string(limit + 1) + "x1 exceeds the " + std::to_string(limit) +
+                   " texels a side"});
+    obscura::writeExr(path("fits.exr"), obscura::Image(int(limit), 1, 3, 0.5f));
+    const CliResult fits = runCli("render plane --size 16x8 -q --ao gtao --gpu --env " + path("fits.exr") + " -o " + path("g.png"));
+    EXPECT_EQ(fits.code, 0) << fits.out;
+}
+
 TEST_F(GpuCommands, RenderRejectsABadDevice) {
     expectFailure("render plane --size 16x8 -q --ao gtao --gpu --gpu-device 99 -o " + path("f.png"), {"--gpu-device", "99"});
     expectFailure("render plane --size 16x8 -q --ao gtao --gpu --gpu-device -4 -o " + path("f.png"), {"--gpu-device"});
+    // Without --gpu the device flag was ignored without a word, and the work ran on the CPU.
+    expectFailure("render plane --size 16x8 -q --ao gtao --gpu-device 3 -o " + path("f.png"), {"--gpu-device: needs --gpu"});
+    expectFailure("ao --depth nowhere.exr --camera nowhere.json --gpu-device 0 -o " + path("f.exr"),
+                  {"--gpu-device: needs --gpu"});
+    // OBSCURA_VALIDATION is 0 or 1: "true" left the validation layers off, silently.
+    obscura::testutil::ScopedEnv validation("OBSCURA_VALIDATION", "true");
+    expectFailure("render plane --size 16x8 -q --ao gtao --gpu -o " + path("f.png"),
+                  {"OBSCURA_VALIDATION: must be 0 or 1, got 'true'"});
 }
 
 } // namespace

@@ -3,12 +3,14 @@
 // allowed.
 #include "gpu_test_util.h"
 #include "gtao_difference.h"
+#include "spirv_edit.h"
 #include "ssao/gtao_scenes.h"
 
 #include "gpu/buffer.h"
 #include "gpu/context.h"
 #include "gpu/gtao_temporal_pass.h"
 #include "gpu/image_planes.h"
+#include "gpu/spirv.h"
 
 #include "obscura/error.h"
 #include "obscura/gpu_temporal.h"
@@ -627,6 +629,32 @@ TEST(GpuGtaoTemporal, FusedPassGivesTheFrameOfTheThreeDispatches) {
         }
     }
     EXPECT_EQ(testing::validationReport(context), "");
+}
+
+// The fused pass dispatches by the workgroup its module declares (a candidate may try another). One no wider than
+// the reconstruction window accumulates no grid pixel: it is refused in one line naming the shader. A 4 x 4 module
+// under the 5 x 5 window once divided the dispatch by zero (SIGFPE); a 3 x 3 one asked for 4294967290 workgroups.
+TEST(GpuGtaoTemporal, FusedRefusesAWorkgroupNarrowerThanItsWindow) {
+    const std::vector<std::uint32_t> embedded(shaders::gtao_temporal_fused.words,
+                                              shaders::gtao_temporal_fused.words + shaders::gtao_temporal_fused.count);
+    const DemoPath in;
+    const int w = DemoPath::w, h = DemoPath::h;
+    for (const auto& [x, y] : {std::pair{4u, 4u}, std::pair{16u, 3u}}) {
+        testing::ContextWithModule other("gtao_temporal_fused", testing::withWorkgroupSize(embedded, x, y));
+        Context::Impl& c = other.context().impl();
+        GtaoTemporalPasses fused(c, in.settings, mode(true, true, true), w, h, {.fused = true});
+        Buffer depth = uploadChannels(c, in.gbuffers[0].depth, 1), normal = uploadNormals(c, in.gbuffers[0].normal, false);
+        const std::string refused = testing::errorMessage([&] {
+            c.submit([&](VkCommandBuffer cmd) {
+                fused.record(cmd, GtaoTemporalFrameInputs{depth, normal, in.gbuffers[0].camera, 0, nullptr});
+            });
+        });
+        EXPECT_NE(refused.find("shader gtao_temporal_fused: has workgroups of " + std::to_string(x) + "x" +
+                               std::to_string(y) + ": the 5x5 reconstruction window needs at least 5 invocations a side"),
+                  std::string::npos)
+            << refused;
+        EXPECT_EQ(testing::validationReport(other.context()), "");
+    }
 }
 
 // The public gpu::GtaoTemporal with its formats (GtaoTemporalFormats): with packedNormals it uploads the

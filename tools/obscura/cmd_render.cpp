@@ -162,6 +162,12 @@ void run(const RenderOptions& o) {
 
     Image environment = o.env.empty() ? render::proceduralSky() : readEnvironmentImage(o.env);
     if (environment.channels < 3) fail(o.env, "environment needs 3 colour channels, has " + std::to_string(environment.channels));
+    // Before the scene is traced: the GPU holds the environment as one texture, which has a size limit.
+    if (const std::uint32_t side = context ? context->device().maxImageDimension2D : 0;
+        side > 0 && (std::uint32_t(environment.width) > side || std::uint32_t(environment.height) > side))
+        fail(o.env, std::to_string(environment.width) + "x" + std::to_string(environment.height) + " exceeds the " +
+                        std::to_string(side) + " texels a side that device '" + context->device().name +
+                        "' can hold (--gpu); resample it, or render without --gpu");
     render::SH9 sh;
     try {
         sh = render::projectEnvironment(environment);

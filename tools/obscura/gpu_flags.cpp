@@ -13,13 +13,15 @@ void GpuFlags::add(CLI::App& app, const std::string& what, const std::string& no
     app.add_flag("--gpu", gpu,
                  "Run " + what + " as Vulkan compute passes (the first discrete GPU, else e.g. lavapipe). " +
                      (note.empty() ? "" : note + " ") + "OBSCURA_VALIDATION=1 turns on the validation layers");
-    app.add_option("--gpu-device", device,
+    deviceOption = app.add_option("--gpu-device", device,
                    "Vulkan device index with --gpu (-1: OBSCURA_GPU_DEVICE, else the first discrete GPU)")
         ->capture_default_str();
 }
 
 void GpuFlags::validate() const {
     if (device < -1) fail("--gpu-device", "must be a device index >= 0 (or -1: the default device)");
+    if (!gpu && deviceOption && deviceOption->count() > 0)
+        fail("--gpu-device", "needs --gpu: without it everything runs on the CPU");
 }
 
 std::unique_ptr<gpu::Context> GpuFlags::open() const {

@@ -8,6 +8,7 @@
 
 namespace CLI {
 class App;
+class Option;
 }
 
 namespace obscura::cli {
@@ -19,6 +20,7 @@ struct GpuFlags {
     // the commands that report it, not flags of every command.
     bool pipelineStatistics = false;
     bool pipelineInternals = false;
+    const CLI::Option* deviceOption = nullptr;  // set by add(): --gpu-device given without --gpu is refused
 
     // `what` completes the --gpu help: "Run <what> as Vulkan compute passes ..."; `note`, if any, follows it.
     void add(CLI::App& app, const std::string& what, const std::string& note = "");
