@@ -38,6 +38,8 @@ constexpr int kCabinetSlats = 30;
 Scene generateLevel(std::size_t triangles, std::uint32_t seed = 1);
 // The budgets generateLevel is meant for; the CLI's --triangles are held to them.
 constexpr long long kMinLevelTriangles = 4000, kMaxLevelTriangles = 200000000;
+// The largest budget whose level fits a .glb (32-bit length): the level's file holds about 27.1 bytes a triangle.
+constexpr long long kMaxGlbLevelTriangles = 150000000;
 // Throws obscura::Error naming `flag` for a budget outside [kMinLevelTriangles, kMaxLevelTriangles].
 void checkLevelTriangles(const std::string& flag, long long triangles);
 

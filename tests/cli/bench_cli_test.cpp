@@ -70,6 +70,9 @@ TEST_F(BenchCli, BadArgumentsFailWithOneLine) {
     // 4742-triangle level labelled "level-100"); a bad scene name fails before the table's header.
     expectFailure("bench trace --triangles 100", {"--triangles", "[4000, 200000000]", "got 100"});
     expectFailure("bench trace --triangles -1", {"--triangles", "got -1"});
+    // 0 once meant "no level" though the range said otherwise, and --scene beside a budget was ignored.
+    expectFailure("bench trace --triangles 0", {"--triangles", "got 0"});
+    expectFailure("bench trace --scene well --triangles 4000", {"--scene: and --triangles both name the scene"});
     expectFailure("bench bake-quality --scenes stairs,nope", {"--scenes", "'nope'"});
     expectFailure("bench gtao --repeats 101", {"--repeat"});
     expectFailure("bench gtao --radius -1", {"--radius"});

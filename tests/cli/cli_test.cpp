@@ -98,6 +98,14 @@ TEST_F(Cli, DirectoryNamedLikeABuiltInSceneDoesNotHideIt) {
     EXPECT_EQ(first.code, 0) << first.out;
     EXPECT_EQ(again.code, 0) << again.out;
     EXPECT_TRUE(fs::exists(dir / "plane" / "depth.exr"));
+    // Nor does a file that is no scene file (no built-in name has an extension): a stray `demo` (a build's binary)
+    // in the working directory made a plain `obscura render` fail with "demo: unknown scene format ''".
+    std::ofstream(dir / "demo") << "#!/bin/sh\n";
+    fs::current_path(dir);
+    const Result stray = run("render --size 16x12 -q -o stray.png");
+    fs::current_path(before);
+    EXPECT_EQ(stray.code, 0) << stray.out;
+    EXPECT_TRUE(fs::exists(dir / "stray.png"));
 }
 
 TEST_F(Cli, EmptyValuesAreRefused) {
@@ -281,6 +289,18 @@ TEST_F(Cli, ScenesListsEveryBuiltin) {
     expectFailure("scenes --seed 9", {"--seed", "give --generate level"});
     expectFailure("scenes --generate level --triangles -1 -o " + path("x.glb"),
                   {"--triangles: must be in [4000, 200000000], got -1"});
+    // The budget as --help writes it, "2e8", was "Could not convert"; a huge one was quoted as 2^63 - 1.
+    expectFailure("scenes --generate level --triangles 99999999999999999999 -o " + path("x.glb"),
+                  {"--triangles: must be in [4000, 200000000], got 99999999999999999999"});
+    expectFailure("scenes --generate level --triangles 4.5e3.1 -o " + path("x.glb"),
+                  {"--triangles: expected a whole number of triangles", "got \"4.5e3.1\""});
+    expectFailure("scenes --generate level --triangles 4000.5 -o " + path("x.glb"), {"expected a whole number"});
+    // Past about 1.58e8 triangles a .glb cannot state its length: refused before generating, not after.
+    expectFailure("scenes --generate level --triangles 1.6e8 -o " + path("x.glb"),
+                  {"--triangles: 160000000 would make a .glb past the 4 GiB", "write .gltf"});
+    const Result small = run("scenes --generate level --triangles 4.5e3 -o " + path("small.glb"));
+    EXPECT_EQ(small.code, 0) << small.out;
+    EXPECT_NE(small.out.find("level with "), std::string::npos) << small.out;
 }
 
 TEST_F(Cli, HelpExplains) {

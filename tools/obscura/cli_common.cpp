@@ -2,6 +2,7 @@
 #include "cli_common.h"
 
 #include "obscura/bake.h"
+#include "obscura/builtin_scenes.h"
 #include "obscura/error.h"
 #include "obscura/image_io.h"
 #include "obscura/statistics.h"
@@ -30,7 +31,12 @@ LoadedScene loadSceneArgument(const std::string& argument) {
     // one, and a second run then failed with "plane: unknown scene format ''".
     std::error_code ec;
     const bool file = fs::exists(argument, ec) && !fs::is_directory(argument, ec);
-    if (isBuiltinScene(argument) && !file) {
+    // Nor does a file without a scene file's extension (no built-in name has one): it could not be loaded, and a
+    // stray file `demo` in the working directory made a plain `obscura render` fail.
+    static const char* const kSceneExtensions[] = {".gltf", ".glb", ".obj", ".ply"};
+    const bool sceneFile = file && std::any_of(std::begin(kSceneExtensions), std::end(kSceneExtensions),
+                                               [&](const char* e) { return fileExtension(argument) == e; });
+    if (isBuiltinScene(argument) && !sceneFile) {
         BuiltinScene b = makeBuiltinScene(argument);
         out.name = b.name;
         out.scene = std::move(b.scene);
@@ -68,6 +74,18 @@ void checkRayReach(const LoadedScene& scene, float reach, const std::string& fla
     if (refuse) fail(flag, why);
     if (!why.empty())
         std::fprintf(stderr, "obscura: warning: %s: %s (the AO is lighter for it)\n", flag.c_str(), why.c_str());
+}
+
+long long parseLevelTriangles(const std::string& flag, const std::string& text) {
+    std::istringstream in(text);
+    double value = 0;
+    // In double, exact for every whole number up to 2^53, far past the range; "2e8" and "200000000" alike.
+    if (!(in >> value) || !(in >> std::ws).eof() || !std::isfinite(value) || value != std::floor(value))
+        fail(flag, "expected a whole number of triangles, e.g. 1000000 or 1e6, got \"" + text + "\"");
+    if (value < double(kMinLevelTriangles) || value > double(kMaxLevelTriangles))
+        fail(flag, "must be in [" + std::to_string(kMinLevelTriangles) + ", " + std::to_string(kMaxLevelTriangles) +
+                       "], got " + text);
+    return static_cast<long long>(value);
 }
 
 Vec3 parseVec3(const std::string& flag, const std::string& text) {

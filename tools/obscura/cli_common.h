@@ -42,6 +42,9 @@ void parseSize(const std::string& flag, const std::string& text, int& width, int
 bool parseDecimal(const std::string& text, float& value);
 // A float that may be "inf".
 float parseRadius(const std::string& flag, const std::string& text);
+// A generated level's triangle budget as written: a whole number, in exponent notation too ("2e8", "1.5e6", as
+// --help writes the range), held to [kMinLevelTriangles, kMaxLevelTriangles]. The error quotes the text.
+long long parseLevelTriangles(const std::string& flag, const std::string& text);
 // A bake distance in (0, 1e6] m, and --distances' "short,long" (short < long) or one value.
 float parseBakeDistance(const std::string& flag, const std::string& text);
 std::vector<float> parseBakeDistances(const std::string& flag, const std::string& text);
