@@ -33,8 +33,10 @@ constexpr float kPlaneHalfSize = 1000.0f;  // half extent of the "infinite" plan
 constexpr int kCabinetSlats = 30;
 } // namespace builtin
 
-// A deterministic large scene for scale tests: terrain, buildings with interiors and scattered props,
-// about `triangles` triangles in total (at least a few thousand).
+// A deterministic large scene for scale tests: terrain, buildings with interiors and scattered props, `triangles`
+// triangles in total to within 11 (at least kMinLevelTriangles). The area grows with the budget (a half-width of
+// 0.88 sqrt(triangles) m, at least 60 m) so the density stays one of a town: buildings 2 m apart or more, seated
+// on the terrain, props in the open. The seed places buildings and props; the terrain is the same for every seed.
 Scene generateLevel(std::size_t triangles, std::uint32_t seed = 1);
 // The budgets generateLevel is meant for; the CLI's --triangles are held to them.
 constexpr long long kMinLevelTriangles = 4000, kMaxLevelTriangles = 200000000;
