@@ -20,6 +20,8 @@ struct LoadInfo {
 // Dispatches on the extension. The result has normals for every mesh (computed when the file has none)
 // and passed sanitizeScene().
 Scene loadScene(const std::string& path, LoadInfo* info = nullptr);
+// Whether loadScene reads files of this extension (".gltf", ".glb", ".obj", ".ply"; any case).
+bool isSceneFileExtension(const std::string& extension);
 
 // glTF: the default scene's node hierarchy with TRS or matrix transforms; a mesh referenced by several
 // nodes becomes one Mesh per primitive with several Instances; baseColorFactor gives Mesh::baseColor.

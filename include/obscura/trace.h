@@ -43,6 +43,9 @@ struct ObscuranceSettings {
     std::uint32_t seed = 0;         // any value; the same seed gives the same bits on any thread count
 
     void validate() const;          // throws obscura::Error naming the bad field
+    // How far the falloff reads, m: d for the exponential one, else r. The far-from-origin check holds it against
+    // float precision (rayReachProblem).
+    float reach() const { return falloff == Falloff::Exponential ? halfDistance : radius; }
     // The weight g(t) of a hit at distance t (pass kInfinity for a miss).
     float weight(float t) const;
 };

@@ -30,12 +30,6 @@ float terrainHeight(float x, float z) {
 
 } // namespace
 
-void checkLevelTriangles(const std::string& flag, long long triangles) {
-    if (triangles < kMinLevelTriangles || triangles > kMaxLevelTriangles)
-        fail(flag, "must be in [" + std::to_string(kMinLevelTriangles) + ", " + std::to_string(kMaxLevelTriangles) +
-                       "], got " + std::to_string(triangles));
-}
-
 namespace {
 
 // The terrain as triangulated: an n x n grid over [-half, half]^2, each cell split along its (i+1, j)-(i, j+1)

@@ -10,10 +10,23 @@
 
 namespace obscura {
 
+namespace {
+
+std::string lowerCase(std::string s) {
+    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return s;
+}
+
+} // namespace
+
+bool isSceneFileExtension(const std::string& extension) {
+    const std::string ext = lowerCase(extension);
+    return ext == ".gltf" || ext == ".glb" || ext == ".obj" || ext == ".ply";
+}
+
 Scene loadScene(const std::string& path, LoadInfo* info) {
     loader::checkSceneFile(path);
-    std::string ext = std::filesystem::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    const std::string ext = lowerCase(std::filesystem::path(path).extension().string());
     if (ext == ".gltf" || ext == ".glb") return loadGltf(path, info);
     if (ext == ".obj") return loadObj(path, info);
     if (ext == ".ply") return loadPly(path, info);

@@ -40,11 +40,9 @@ ObscuranceEstimator::ObscuranceEstimator(const Tracer& tracer, const ObscuranceS
     : tracer_(tracer), settings_(settings), directions_((settings.validate(), settings.rays)),
       // Beyond 24 d the exponential weight exp(a t) is below 2^-24, under float resolution of A.
       tfar_(settings.falloff == Falloff::Exponential ? 24.0f * settings.halfDistance : settings.radius) {
-    const bool exponential = settings.falloff == Falloff::Exponential;
     bool refuse = false;
-    const std::string why =
-        rayReachProblem(tracer.bounds(), exponential ? settings.halfDistance : settings.radius, "the scene", refuse);
-    if (refuse) fail(exponential ? "ao-distance" : "ao-radius", why);
+    const std::string why = rayReachProblem(tracer.bounds(), settings.reach(), "the scene", refuse);
+    if (refuse) fail(settings.falloff == Falloff::Exponential ? "ao-distance" : "ao-radius", why);
 }
 
 ObscuranceEstimator::PointFrame ObscuranceEstimator::frame(Vec3 p, Vec3 n, Vec3 ng, std::uint32_t pointId,

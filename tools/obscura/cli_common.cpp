@@ -33,10 +33,7 @@ LoadedScene loadSceneArgument(const std::string& argument) {
     const bool file = fs::exists(argument, ec) && !fs::is_directory(argument, ec);
     // Nor does a file without a scene file's extension (no built-in name has one): it could not be loaded, and a
     // stray file `demo` in the working directory made a plain `obscura render` fail.
-    static const char* const kSceneExtensions[] = {".gltf", ".glb", ".obj", ".ply"};
-    const bool sceneFile = file && std::any_of(std::begin(kSceneExtensions), std::end(kSceneExtensions),
-                                               [&](const char* e) { return fileExtension(argument) == e; });
-    if (isBuiltinScene(argument) && !sceneFile) {
+    if (isBuiltinScene(argument) && !(file && isSceneFileExtension(fileExtension(argument)))) {
         BuiltinScene b = makeBuiltinScene(argument);
         out.name = b.name;
         out.scene = std::move(b.scene);

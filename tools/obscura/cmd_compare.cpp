@@ -168,8 +168,7 @@ void run(const CompareOptions& o) {
         auto key = std::make_tuple(int(r.ref.falloff), r.ref.radius, r.ref.alchemyU, r.ref.alchemyScale, r.ref.halfDistance);
         auto it = references.find(key);
         if (it == references.end()) {
-            checkRayReach(loaded, r.ref.falloff == trace::Falloff::Exponential ? r.ref.halfDistance : r.ref.radius,
-                          "--radius");
+            checkRayReach(loaded, r.ref.reach(), "--radius");
             Progress p("ray-traced reference", showProgress);
             it = references.emplace(key, trace::ambientObscurance(tracer, g, r.ref, [&](double f) { p(f); })).first;
         }

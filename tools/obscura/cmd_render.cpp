@@ -156,8 +156,8 @@ void run(const RenderOptions& o) {
     const std::unique_ptr<gpu::Context> context = o.gpu.open();
     LoadedScene loaded = loadSceneArgument(o.scene);
     Camera camera = o.camera.apply(loaded);
-    if (o.ao == "raytraced")  // the reach the falloff reads: d, or r
-        checkRayReach(loaded, aoSettings.falloff == trace::Falloff::Exponential ? aoSettings.halfDistance : aoSettings.radius,
+    if (o.ao == "raytraced")
+        checkRayReach(loaded, aoSettings.reach(),
                       aoSettings.falloff == trace::Falloff::Exponential ? "--ao-distance" : "--ao-radius");
 
     Image environment = o.env.empty() ? render::proceduralSky() : readEnvironmentImage(o.env);

@@ -27,8 +27,7 @@ void generate(const GenerateOptions& o) {
     if (o.output.empty()) fail("--output", "--generate needs -o FILE.glb (or .gltf)");
     const long long triangles = parseLevelTriangles("--triangles", o.triangles);
     checkOutputPath("--output", o.output, {".glb", ".gltf"});
-    // About 27.1 bytes a triangle (1e6: 27.1 MB; 1e7: 271 MB), so a .glb passes its 32-bit length from about
-    // 1.58e8 on. Said before the minutes and gigabytes of generating it, not after.
+    // Said before the minutes and gigabytes of generating it (kMaxGlbLevelTriangles), not after.
     if (fileExtension(o.output) == ".glb" && triangles > kMaxGlbLevelTriangles)
         fail("--triangles", std::to_string(triangles) + " would make a .glb past the 4 GiB its header can state (about " +
                                 std::to_string(kMaxGlbLevelTriangles) + " triangles at most); write .gltf");
