@@ -12,7 +12,8 @@
 
 namespace obscura::eval {
 
-// Over the G-buffer's surface pixels (sky excluded), e = estimate - reference:
+// Over the G-buffer's surface pixels (sky excluded), e = estimate - reference; with no surface pixel, every
+// figure is NaN (pixels 0), not the 0 of exact agreement:
 struct ErrorStats {
     double mae = 0;       // mean |e|
     double rmse = 0;      // sqrt(mean e^2)

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 namespace obscura::eval {
@@ -42,12 +43,15 @@ ErrorStats errorStats(const Image& estimate, const Image& reference, const GBuff
         s.maxError = std::max(s.maxError, std::fabs(e));
         ++s.pixels;
     }
-    if (s.pixels > 0) {
-        const double n = double(s.pixels);
-        s.mae = sumAbs / n;
-        s.rmse = std::sqrt(sumSq / n);
-        s.bias = sum / n;
+    // Errors over no pixels are unknown, not 0: an all-sky view read as exact agreement.
+    if (s.pixels == 0) {
+        s.mae = s.rmse = s.bias = s.maxError = std::numeric_limits<double>::quiet_NaN();
+        return s;
     }
+    const double n = double(s.pixels);
+    s.mae = sumAbs / n;
+    s.rmse = std::sqrt(sumSq / n);
+    s.bias = sum / n;
     return s;
 }
 

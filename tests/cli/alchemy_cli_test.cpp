@@ -397,13 +397,79 @@ TEST_F(AlchemyCli, CompareReportsMetricsAndWritesThePicture) {
     expectFailure("compare corner --rays 0 --size 48x32 -o " + path("x.png"), {"--rays"});
 }
 
+// The reference is a Monte Carlo estimate, and its noise went into every MAE and RMSE unreported (and the help
+// called it exact): at 1 ray the gtao row read MAE 0.096 against 0.015 at 4096. Its RMS standard error is now
+// reported beside each row and in the JSON: null for 1 ray, falling as 1/sqrt(rays), near 0 where the
+// reference is; each falloff's reference lists the parameters that falloff reads, and only those.
+TEST_F(AlchemyCli, CompareReportsTheReferencesNoise) {
+    const auto json = [&](int rays) {
+        const Result r = run("compare corner --methods alchemy,gtao --size 32x24 -q --json --rays " + std::to_string(rays) +
+                             " -o " + path("n.png"));
+        EXPECT_EQ(r.code, 0) << r.out;
+        return nlohmann::json::parse(r.out);
+    };
+    const nlohmann::json one = json(1), few = json(16), many = json(1024);
+    EXPECT_TRUE(one["methods"][1]["reference"]["noise"].is_null()) << one.dump();
+    for (int m : {0, 1}) {
+        const double noiseFew = few["methods"][m]["reference"]["noise"].get<double>();
+        const double noiseMany = many["methods"][m]["reference"]["noise"].get<double>();
+        // 64 times the rays: an eighth of the noise for independent rays, less for stratified ones.
+        EXPECT_GT(noiseFew, 0.0) << m;
+        EXPECT_LT(noiseMany, noiseFew / 6.0) << m;
+        // The noise is part of the RMSE (E[RMSE^2] = RMSE^2 of the method + noise^2, within its high side).
+        EXPECT_LT(noiseMany, many["methods"][m]["rmse"].get<double>()) << m;
+    }
+    const nlohmann::json& alchemy = many["methods"][0]["reference"];
+    const nlohmann::json& binary = many["methods"][1]["reference"];
+    EXPECT_EQ(alchemy["falloff"], "alchemy");
+    EXPECT_TRUE(alchemy.contains("u") && alchemy.contains("scale")) << alchemy.dump();
+    EXPECT_EQ(binary["falloff"], "binary");
+    EXPECT_FALSE(binary.contains("u") || binary.contains("scale")) << binary.dump();
+    EXPECT_EQ(many["seed"], 0);
+    EXPECT_EQ(many["blur"]["mode"], "none");
+    // Floats go out as their shortest decimal: the alchemy reference's u is 0.01 m, not 0.009999999776.
+    EXPECT_EQ(alchemy["u"].dump(), "0.01");
+    const Result table = run("compare corner --methods gtao --size 32x24 -q --rays 4 -o " + path("t.png"));
+    EXPECT_NE(table.out.find("ref noise"), std::string::npos) << table.out;
+    EXPECT_NE(table.out.find("raise --rays"), std::string::npos) << table.out;
+}
+
+// An ignored flag is said to be ignored once, and not then refused: --gtao-slices with no GTAO method warned
+// "ignored", then failed on its clash with --samples; --gtao-mip-ratio was warned of twice; --blur-radius with
+// --blur none said nothing.
+TEST_F(AlchemyCli, CompareWarnsOnceOfIgnoredFlags) {
+    const std::string base = "compare corner -q --size 8x6 --rays 4 -o " + path("x.png") + " ";
+    Result r = run(base + "--methods alchemy --samples 12 --gtao-slices 2");
+    EXPECT_EQ(r.code, 0) << r.out;
+    EXPECT_NE(r.out.find("warning: --gtao-slices: applies to the gtao methods"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("obscura: error"), std::string::npos) << r.out;
+    r = run(base + "--methods alchemy --gtao-mip-ratio 3");
+    EXPECT_EQ(r.code, 0) << r.out;
+    const auto count = [](const std::string& text, const std::string& what) {
+        std::size_t n = 0;
+        for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+        return n;
+    };
+    EXPECT_EQ(count(r.out, "--gtao-mip-ratio"), 1u) << r.out;
+    r = run(base + "--blur-radius 3 --blur-normal-weight on");
+    EXPECT_EQ(r.code, 0) << r.out;
+    EXPECT_NE(r.out.find("warning: --blur-radius: applies to a blur, and --blur is none"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("warning: --blur-normal-weight: applies to a blur"), std::string::npos) << r.out;
+    r = run(base + "--blur separable --blur-radius 3");
+    EXPECT_EQ(r.out.find("warning"), std::string::npos) << r.out;
+    // Still an error where both are read.
+    expectFailure(base + "--methods gtao --samples 12 --gtao-slices 2", {"--gtao-slices", "--samples"});
+}
+
 // The error column is sRGB-encoded as the other three are: the plane's sky there is sRGB(0.2) = 124, not
 // 0.2 * 255 = 51, and the legend's blue end sRGB(0.05, 0.13, 0.71) = (64, 100, 219), not (13, 33, 181). A
-// small --range prints with the digits it needs (0.0040, not 0.00).
+// small --range prints with the digits it needs (0.004, not 0.00), 0.125 in full (not 0.12).
 TEST_F(AlchemyCli, CompareEncodesTheErrorColumnAndPrintsASmallRange) {
     const Result r = run("compare plane --size 32x24 --rays 4 --range 0.004 -o " + path("c.png"));
     ASSERT_EQ(r.code, 0) << r.out;
-    EXPECT_NE(r.out.find("+-0.0040"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("+-0.004)"), std::string::npos) << r.out;
+    const Result eighth = run("compare corner --size 32x24 --rays 4 --range 0.125 -q -o " + path("e.png"));
+    EXPECT_NE(eighth.out.find("+-0.125)"), std::string::npos) << eighth.out;
     const obscura::Image sheet = obscura::readPng(path("c.png"));
     const int column = 4 + 3 * (32 + 4);
     EXPECT_NEAR(sheet.at(column + 1, 5, 0) * 255.0f, 124.0f, 1.0f);

@@ -135,6 +135,31 @@ TEST_F(Cli, RenderWritesFrameAndAovs) {
 // Each falloff of --ao raytraced reads its own parameters: exponential d alone (its rays reach 24 d), binary r,
 // alchemy r and u. The others' flags changed nothing, and the summary echoed the ignored r as if it had
 // applied; now each is a warning and the summary names what the falloff read.
+// A flag said to be ignored is not then refused for its value: "--ao-distance: ... ignored" was followed by
+// "error: --ao-distance: must be a finite value > 0". Flags that are read are still checked, and first:
+// --supersample 0 was refused only after the scene and the environment had been read.
+TEST_F(Cli, IgnoredFlagsAreNotValidated) {
+    const std::string render = "render plane --size 16x9 -q -o " + path("f.png") + " ";
+    for (const auto& [args, warning] : std::vector<std::pair<std::string, std::string>>{
+             {"--ao none --ao-distance -1", "--ao-distance: applies to --ao raytraced"},
+             {"--ao alchemy --ao-rays 0", "--ao-rays: applies to --ao raytraced"},
+             {"--ao none --ao-falloff alchemy --ao-u -5", "--ao-u: applies to --ao raytraced"},
+             {"--ao raytraced --ao-distance -1", "--ao-distance: applies to --ao-falloff exponential"},
+             {"--ao-falloff exponential --ao-radius -1", "--ao-radius: applies to the binary and alchemy falloffs"},
+             {"--ao none --ao-radius -1", "--ao-radius: applies to --ao raytraced, alchemy or gtao, not --ao none"}}) {
+        const Result r = run(render + args);
+        EXPECT_EQ(r.code, 0) << args << "\n" << r.out;
+        EXPECT_NE(r.out.find("warning: " + warning), std::string::npos) << args << "\n" << r.out;
+        EXPECT_EQ(r.out.find("obscura: error"), std::string::npos) << args << "\n" << r.out;
+    }
+    const Result exr = run("render plane --size 16x9 --ao-rays 4 -q -o " + path("f.exr") + " --exposure 100");
+    EXPECT_EQ(exr.code, 0) << exr.out;
+    EXPECT_NE(exr.out.find("warning: --exposure: applies to a PNG"), std::string::npos) << exr.out;
+    expectFailure(render + "--ao raytraced --ao-distance -1 --ao-falloff exponential", {"--ao-distance", "> 0"});
+    expectFailure(render + "--exposure 100", {"--exposure", "[-20, 20]", "100"});
+    expectFailure(render + "--supersample 0 --env " + path("nosuch.exr"), {"--supersample", "[1, 16]", "got 0"});
+}
+
 TEST_F(Cli, RayTracedFalloffsWarnOfTheParametersTheyDoNotRead) {
     const std::string render = "render ceiling --size 16x9 --ao-rays 4 -o " + path("f.png") + " --ao raytraced ";
     Result r = run(render + "--ao-falloff exponential --ao-radius 0.01 --ao-distance 3");
@@ -231,6 +256,27 @@ TEST_F(Cli, AovDirNeverOverwritesAnInputOrTheOutput) {
     EXPECT_FALSE(fs::exists(path("g.png")));
     expectFailure("render corner" + kFast + "-o " + path("aov/./ao.exr") + " --aov-dir " + path("aov"),
                   {"ao.exr", "is the output"});
+}
+
+// Relative paths that do not exist yet are the same file too: `--aov-dir . -o ao.exr` wrote the colour frame
+// over the AO AOV with exit 0 (the paths were compared relative, "ao.exr" against "./ao.exr"); the refusal
+// came only on a second run, once the files existed.
+TEST_F(Cli, AovDirSeesTheOutputThroughRelativePaths) {
+    const fs::path before = fs::current_path();
+    fs::current_path(dir);
+    const std::size_t empty = entries();
+    const Result ao = run("render plane" + kFast + "--ao none --aov-dir . -o ao.exr");
+    const Result depth = run("render plane" + kFast + "--ao none --aov-dir " + dir.string() + " -o depth.exr");
+    const Result file = run("render plane" + kFast + "--ao none --aov-dir ./f.exr -o f.exr");
+    const std::size_t after = entries();
+    fs::current_path(before);
+    EXPECT_EQ(ao.code, 1) << ao.out;
+    EXPECT_NE(ao.out.find("ao.exr: is the output"), std::string::npos) << ao.out;
+    EXPECT_EQ(depth.code, 1) << depth.out;
+    EXPECT_NE(depth.out.find("depth.exr: is the output"), std::string::npos) << depth.out;
+    EXPECT_EQ(file.code, 1) << file.out;
+    EXPECT_NE(file.out.find("is the -o output"), std::string::npos) << file.out;
+    EXPECT_EQ(after, empty);
 }
 
 // --far inf wrote g.camera.json with "far": null, which `obscura ao --camera` then refused.

@@ -39,6 +39,18 @@ TEST(Metrics, ExactOnAHandMadeImage) {
     EXPECT_NEAR(s.maxError, 0.3, 1e-7);
 }
 
+// A view of only sky has no error figures: they were all 0, which a caller reads as exact agreement.
+TEST(Metrics, NoSurfacePixelGivesNaNNotZero) {
+    GBuffer g = flat(2, 2);
+    for (float& d : g.depth.pixels) d = INFINITY;
+    const ErrorStats s = errorStats(Image(2, 2, 1, 0.0f), Image(2, 2, 1, 1.0f), g);
+    EXPECT_EQ(s.pixels, 0u);
+    EXPECT_TRUE(std::isnan(s.mae));
+    EXPECT_TRUE(std::isnan(s.rmse));
+    EXPECT_TRUE(std::isnan(s.bias));
+    EXPECT_TRUE(std::isnan(s.maxError));
+}
+
 TEST(Metrics, ColoursAndSizeChecks) {
     Vec3 white = signedErrorColor(0.0f, 0.5f), red = signedErrorColor(1.0f, 0.5f), blue = signedErrorColor(-0.5f, 0.5f);
     EXPECT_EQ(white, Vec3(1.0f));

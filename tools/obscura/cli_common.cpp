@@ -265,7 +265,11 @@ bool samePath(const std::string& a, const std::string& b) {
     if (a.empty() || b.empty()) return false;
     std::error_code ea, eb;
     if (fs::exists(a, ea) && fs::exists(b, eb)) return fs::equivalent(a, b, ea) && !ea;
-    const fs::path ca = fs::weakly_canonical(a, ea), cb = fs::weakly_canonical(b, eb);
+    // Absolute first: weakly_canonical leaves a path relative when no part of it exists, so "ao.exr" and
+    // "./ao.exr" compared unequal and --aov-dir . overwrote -o ao.exr.
+    const fs::path aa = fs::absolute(a, ea), ab = fs::absolute(b, eb);
+    if (ea || eb) return false;
+    const fs::path ca = fs::weakly_canonical(aa, ea), cb = fs::weakly_canonical(ab, eb);
     return !ea && !eb && ca == cb;
 }
 

@@ -85,19 +85,28 @@ void run(const RenderOptions& o) {
         if (o.falloff != "exponential") warnIgnored({o.distanceOption}, "applies to --ao-falloff exponential" + notThisFalloff);
         if (o.falloff != "alchemy") warnIgnored({o.uOption}, "applies to --ao-falloff alchemy" + notThisFalloff);
     }
+    if (o.ao == "none") warnIgnored({o.radiusOption}, "applies to --ao raytraced, alchemy or gtao" + notThis);
+    if (o.supersample < 1 || o.supersample > 16)
+        fail("--supersample", "must be in [1, 16], got " + std::to_string(o.supersample));
+    // A flag said to be ignored is not validated either: "ignored" and then an error about its value was a
+    // contradiction. What a setting does not read keeps its default.
     trace::ObscuranceSettings aoSettings;
-    aoSettings.falloff = kFalloffs.at(o.falloff);
-    aoSettings.radius = parseRadius("--ao-radius", o.radius);
-    aoSettings.rays = o.rays;
-    aoSettings.halfDistance = o.distance;
-    aoSettings.alchemyU = o.alchemyU;
-    aoSettings.seed = o.seed;
-    try {
-        aoSettings.validate();
-    } catch (const Error& e) {
-        throw Error("--" + std::string(e.what()));
+    const bool readsRadius = o.ao == "alchemy" || o.ao == "gtao" || (o.ao == "raytraced" && o.falloff != "exponential");
+    if (readsRadius) aoSettings.radius = parseRadius("--ao-radius", o.radius);
+    if (o.ao == "raytraced") {
+        aoSettings.falloff = kFalloffs.at(o.falloff);
+        aoSettings.rays = o.rays;
+        if (o.falloff == "exponential") aoSettings.halfDistance = o.distance;
+        if (o.falloff == "alchemy") aoSettings.alchemyU = o.alchemyU;
+        aoSettings.seed = o.seed;
+        try {
+            aoSettings.validate();
+        } catch (const Error& e) {
+            throw Error("--" + std::string(e.what()));
+        }
     }
-    if (!(o.exposure >= -20.0f && o.exposure <= 20.0f)) fail("--exposure", "must be in [-20, 20] EV");
+    if (fileExtension(o.output) != ".exr" && !(o.exposure >= -20.0f && o.exposure <= 20.0f))
+        fail("--exposure", "must be in [-20, 20] EV, got " + numberText(o.exposure));
     ssao::AlchemySettings alchemy;
     ssao::BilateralSettings blur;
     if (o.ao == "alchemy") {
