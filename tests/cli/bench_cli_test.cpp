@@ -6,7 +6,10 @@
 #include <nlohmann/json.hpp>
 
 #include <string>
+#include <utility>
+#include <vector>
 
+using obscura::clitest::CliResult;
 using obscura::clitest::CliTest;
 using obscura::clitest::runCli;
 
@@ -74,6 +77,37 @@ TEST_F(BenchCli, BadArgumentsFailWithOneLine) {
     expectFailure("bench trace --triangles 0", {"--triangles", "got 0"});
     expectFailure("bench trace --scene well --triangles 4000", {"--scene: and --triangles both name the scene"});
     expectFailure("bench bake-quality --scenes stairs,nope", {"--scenes", "'nope'"});
-    expectFailure("bench gtao --repeats 101", {"--repeat"});
+    expectFailure("bench gtao --repeats 101", {"--repeats"});
     expectFailure("bench gtao --radius -1", {"--radius"});
+    // Checked before the work: a 5e7-triangle level was generated (19 s, 1.5 GB) before --rays 0 was refused, and
+    // --max-radius-px 0 failed after the table's header, naming "max-radius-px".
+    expectFailure("bench trace --triangles 5e7 --rays 0", {"--rays", "[1, 4096]"});
+    expectFailure("bench trace --triangles 5e7 --size 0x0", {"--size"});
+    const CliResult radius = runCli("bench alchemy --size 16x9 --repeats 1 --max-radius-px 0");
+    EXPECT_EQ(radius.code, 1);
+    EXPECT_EQ(radius.out.rfind("obscura: error: --max-radius-px: must be in [1, 4096] px", 0), 0u) << radius.out;
+}
+
+// bench's own options are --gpu's: `bench --scene cabinet trace` timed demo with exit 0, `bench --json trace`
+// printed a table, and `bench --gpu trace` printed the subcommand's whole table before failing.
+TEST_F(BenchCli, BenchOptionsBeforeASubcommandAreRefused) {
+    for (const auto& [flags, needle] : std::vector<std::pair<std::string, std::string>>{
+             {"--scene cabinet", "--scene: is an option of bench --gpu, not of bench trace"},
+             {"--json", "--json: is an option of bench --gpu"},
+             {"--frames 3", "--frames: is an option of bench --gpu"},
+             {"--gpu", "--gpu: times the GPU passes by itself"}}) {
+        const CliResult r = runCli("bench " + flags + " trace --size 8x8 --rays 1");
+        EXPECT_EQ(r.code, 1) << flags << "\n" << r.out;
+        EXPECT_EQ(r.out.rfind("obscura: error: " + needle, 0), 0u) << flags << "\n" << r.out;
+        EXPECT_EQ(r.out.find("Mrays"), std::string::npos) << "the subcommand ran: " << r.out;
+    }
+    const CliResult after = runCli("bench trace --scene cabinet --size 8x8 --rays 1 --json");
+    ASSERT_EQ(after.code, 0) << after.out;
+    EXPECT_EQ(nlohmann::json::parse(after.out)["scene"], "cabinet");
+}
+
+// A view with no surface has no ray to time: bench trace printed 0 Mrays/s and -nan with exit 0.
+TEST_F(BenchCli, TraceRefusesAViewOfSky) {
+    write("apart.obj", "v 0 0 0\nv 0.01 0 0\nv 0 0.01 0\nv 20 0 0\nv 20.01 0 0\nv 20 0.01 0\nf 1 2 3\nf 4 5 6\n");
+    expectFailure("bench trace --scene " + path("apart.obj") + " --size 4x4 --rays 2", {"apart.obj", "every pixel is sky"});
 }

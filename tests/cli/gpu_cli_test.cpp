@@ -138,9 +138,8 @@ TEST_F(GpuCommands, RenderAlchemyTiledBlurMatchesTheTwoPasses) {
 
 // The bound: `render --gpu --ao gtao` and the CPU path give frames whose mean absolute difference is
 // at most 1e-3 (linear radiance, which is about 0.1-1 on these views). Measured on lavapipe (Mesa 22.3.6,
-// LLVM 15.0.6), 2026-11-25, in the order below, frame mean / AO max: 2.3e-6 / 8.7e-5, 7.8e-7 / 9.3e-5,
-// 1.6e-7 / 5.5e-5, 1.5e-6 / 7.1e-5, with the packed history 4.4e-6 / 6.1e-5, and with nearest samples
-// 1.2e-6 / 4.3e-5 (the "[ measured ]" lines of a run).
+// LLVM 15.0.6), 2026-11-28, the 13 cases below: frame mean 4.4e-6 to 1.6e-5 (the largest: stairs with nearest
+// samples), AO max 6.4e-5 to 1.5e-4 (the "[ measured ]" lines of a run).
 TEST_F(GpuCommands, RenderGtaoMatchesTheCpu) {
     const char* cases[] = {
         "demo --size 96x54 --ao gtao",
@@ -658,7 +657,8 @@ TEST_F(GpuCommands, BenchGpuFusedTemporal) {
 
 // --pipeline-stats and --pipeline-internals: what the driver says of each pipeline the cases compiled, or,
 // where it lacks VK_KHR_pipeline_executable_properties (lavapipe in Mesa 22.3), a note naming the device while
-// the timings still come; a folder that cannot be made fails in one line before any work.
+// the timings still come; a folder that cannot be made fails in one line, and a run that fails on its scene
+// leaves no folder made (empty folders were left).
 TEST_F(GpuCommands, BenchGpuPipelineStatistics) {
     const std::string args = "bench --gpu --sizes 24x16 --frames 1 --warmup 0 --inputs 1 --cases alchemy,gtao";
     const CliResult r = runGpu(args + " --json --pipeline-internals " + path("internals"));
@@ -691,6 +691,13 @@ TEST_F(GpuCommands, BenchGpuPipelineStatistics) {
     std::filesystem::create_directories(path("d"));
     { std::ofstream(path("d/file")) << "x"; }
     expectFailure(args + " --gpu --pipeline-internals " + path("d/file/sub"), {"--pipeline-internals", "d/file/sub"});
+    expectFailure(args + " --pipeline-internals " + path("new/a/b") + " --scene " + path("nosuch.glb"), {"nosuch.glb"});
+    EXPECT_FALSE(std::filesystem::exists(path("new")));
+    // --gtao-mip-ratio where the sampling reads no ratio: warned of, as render warns (it was silent).
+    const CliResult ratio = runCli("bench --gpu --sizes 8x8 --frames 1 --warmup 0 --inputs 1 --cases alchemy --gtao-mip-ratio 5");
+    EXPECT_EQ(ratio.code, 0) << ratio.out;
+    EXPECT_NE(ratio.out.find("warning: --gtao-mip-ratio"), std::string::npos) << ratio.out;
+    EXPECT_NE(ratio.out.find("--gtao-sampling planar does not read it"), std::string::npos) << ratio.out;
 }
 
 TEST_F(GpuCommands, BenchGpuRejectsBadArguments) {

@@ -46,11 +46,17 @@ void runAlchemy(const AlchemyBenchOptions& o) {
         sizes.resize(1);
         parseSize("--size", o.size, sizes[0].first, sizes[0].second);
     }
-    LoadedScene loaded = loadSceneArgument(o.scene);
-    trace::Tracer tracer(loaded.scene);
     ssao::AlchemySettings settings;
     settings.samples = o.samples;
     settings.maxRadiusPixels = o.maxRadiusPixels;
+    // Before the scene loads and the table's header prints: --max-radius-px 0 failed after both.
+    try {
+        settings.validate();
+    } catch (const Error& e) {
+        throw Error("--" + std::string(e.what()));
+    }
+    LoadedScene loaded = loadSceneArgument(o.scene);
+    trace::Tracer tracer(loaded.scene);
     ssao::BilateralSettings separable, twoD;
     twoD.mode = ssao::BlurMode::TwoD;
     separable.normalWeight = twoD.normalWeight = normalWeightFromFlag(o.normalWeight);
@@ -133,7 +139,7 @@ void addAlchemyBench(CLI::App& bench) {
     cmd->add_option("--repeats", o->repeats, "Runs per pass; the median is printed, [1, 100]")->capture_default_str();
     cmd->add_option("--threads", o->threads, "Threads of the multithreaded rows (0 = all cores)")->capture_default_str();
     cmd->add_option("--size", o->size, "One size WxH instead of 1280x720 and 1920x1080");
-    cmd->add_option("--max-radius-px", o->maxRadiusPixels, "Clamp of the estimator's screen radius, px")
+    cmd->add_option("--max-radius-px", o->maxRadiusPixels, "Clamp of the estimator's screen radius, px, [1, 4096]")
         ->capture_default_str();
     cmd->add_option("--blur-normal-weight", o->normalWeight, kNormalWeightHelp)
         ->check(CLI::IsMember({"auto", "on", "off"}))

@@ -64,6 +64,7 @@ struct GpuBenchOptions {
     bool fusedTemporal = false;
     std::string sampling = "planar";
     float mipRatio = 7.0f;
+    const CLI::Option* mipRatioOption = nullptr;  // --gtao-mip-ratio, warned of where the sampling does not read it
     float radius = 1.0f;
     GtaoSliceFlags gtao;
     int blurRadius = 6;
@@ -130,7 +131,7 @@ void GpuBenchOptions::add(CLI::App& bench) {
                      "--gpu with --alternating-window: the windows' side, 4 (16 taps) or 2 (4 taps, each window "
                      "holding the pixel, which the history averages to a 3x3 tent)")
         ->capture_default_str();
-    addGtaoSamplingOption(bench, sampling, mipRatio, "--gpu: how the GTAO cases' horizon samples read depth");
+    mipRatioOption = addGtaoSamplingOption(bench, sampling, mipRatio, "--gpu: how the GTAO cases' horizon samples read depth");
     gtao.add(bench, "--gpu, the GTAO cases", "; the temporal cases take --temporal-slices",
              "; the gtao and gtao-half cases only: the others rotate by their 4x4 interleave");
     bench.add_option("--blur-radius", blurRadius,
@@ -277,12 +278,12 @@ void runGpuBench(const GpuBenchOptions& o) {
     device.pipelineStatistics = o.pipelineStats || !o.pipelineInternals.empty();
     device.pipelineInternals = !o.pipelineInternals.empty();
     device.validate();
-    if (!o.pipelineInternals.empty()) {
-        std::error_code ec;
-        std::filesystem::create_directories(o.pipelineInternals, ec);
-        if (!std::filesystem::is_directory(o.pipelineInternals))
-            fail("--pipeline-internals " + o.pipelineInternals, "is not a folder and cannot be made one");
-    }
+    if (!o.pipelineInternals.empty() && std::filesystem::exists(o.pipelineInternals) &&
+        !std::filesystem::is_directory(o.pipelineInternals))
+        fail("--pipeline-internals " + o.pipelineInternals, "is not a folder");
+    if (o.mipRatioOption && o.mipRatioOption->count() > 0)
+        warnGtaoMipRatioUnread(o.mipRatio, ssao::gtaoSamplingReadsMipRatio(gtaoSampling(o.sampling)),
+                               "--gtao-sampling " + o.sampling + " does not read it");
     std::vector<std::pair<int, int>> sizes;
     for (const std::string& s : splitList(o.sizes)) {
         int w = 0, h = 0;
@@ -313,6 +314,13 @@ void runGpuBench(const GpuBenchOptions& o) {
     const gpu::DeviceInfo& info = context.device();
     LoadedScene loaded = loadSceneArgument(o.scene);
     trace::Tracer tracer(loaded.scene);
+    // Made once the device has opened and the scene loaded, so that a run failing on them leaves no folder.
+    if (!o.pipelineInternals.empty()) {
+        std::error_code ec;
+        std::filesystem::create_directories(o.pipelineInternals, ec);
+        if (!std::filesystem::is_directory(o.pipelineInternals))
+            fail("--pipeline-internals " + o.pipelineInternals, "is not a folder and cannot be made one");
+    }
 
     char date[32];
     const std::time_t now = std::time(nullptr);
@@ -453,12 +461,22 @@ void runGpuBench(const GpuBenchOptions& o) {
 void addGpuBench(CLI::App& bench) {
     auto o = std::make_shared<GpuBenchOptions>();
     o->add(bench);
+    // Before any callback runs (a subcommand's ran first, and `bench --gpu trace` printed its whole table, then
+    // failed): bench's own options belong to --gpu, and `bench --scene cabinet trace` timed demo with exit 0.
+    bench.parse_complete_callback([&bench] {
+        if (bench.get_subcommands().empty()) return;
+        const std::string sub = bench.get_subcommands().front()->get_name();
+        for (const CLI::Option* option : bench.get_options())
+            if (option->count() > 0 && option->get_name() != "--help")
+                fail(option->get_name(), option->get_name() == "--gpu"
+                                             ? "times the GPU passes by itself; give it without a subcommand"
+                                             : "is an option of bench --gpu, not of bench " + sub +
+                                                   " (a subcommand's options follow its name: bench " + sub +
+                                                   " --help lists them)");
+    });
     // `bench --gpu` runs after option parsing; `bench SUBCOMMAND` runs the subcommand's callback instead.
     bench.callback([o, &bench] {
-        if (!bench.get_subcommands().empty()) {
-            if (o->gpu) fail("--gpu", "times the GPU passes by itself; give it without a subcommand");
-            return;
-        }
+        if (!bench.get_subcommands().empty()) return;
         // A command line that asks for nothing: exit 2 with the others of its kind (main), not 1.
         if (!o->gpu) throw CLI::ValidationError("bench", "needs a subcommand (trace, alchemy, gtao, bake-quality) or --gpu");
         runGpuBench(*o);

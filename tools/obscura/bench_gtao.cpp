@@ -30,13 +30,16 @@ struct GtaoBenchOptions {
 };
 
 void runGtaoBench(const GtaoBenchOptions& o) {
-    if (o.repeat < 1 || o.repeat > 100) fail("--repeat", "must be in [1, 100]");
+    if (o.repeat < 1 || o.repeat > 100) fail("--repeats", "must be in [1, 100]");
     if (!(o.radius > 0.0f && o.radius <= 1e4f)) fail("--radius", "must be in (0, 1e4] m");
+    int width = 0, height = 0;
+    parseSize("--size", o.size, width, height);
     ThreadLimit limit(o.threads, "--threads");
     const int threads = o.threads > 0 ? o.threads : hardwareThreads();
     LoadedScene loaded = loadSceneArgument(o.scene);
     Camera camera = loaded.camera;
-    parseSize("--size", o.size, camera.width, camera.height);
+    camera.width = width;
+    camera.height = height;
     trace::Tracer tracer(loaded.scene);
     const GBuffer g = trace::renderGBuffer(tracer, camera);
     const double megapixels = double(camera.width) * double(camera.height) * 1e-6;
@@ -117,7 +120,7 @@ void addGtaoBench(CLI::App& bench) {
     CLI::App* cmd = bench.add_subcommand("gtao", "CPU time of the GTAO reference per preset and mode (ms per frame)");
     cmd->add_option("--scene", o->scene, "Built-in scene or scene file")->capture_default_str();
     cmd->add_option("--size", o->size, "Image size WIDTHxHEIGHT")->capture_default_str();
-    cmd->add_option("--radius", o->radius, "AO radius r, m")->capture_default_str();
+    cmd->add_option("--radius", o->radius, "AO radius r, m, (0, 1e4]")->capture_default_str();
     cmd->add_option("--repeat,--repeats", o->repeat, "Timed runs per case after one warm-up, [1, 100]")->capture_default_str();
     cmd->add_option("--threads", o->threads, "Worker threads (0 = all cores)")->capture_default_str();
     cmd->add_flag("--json", o->json, "Print JSON instead of a table");

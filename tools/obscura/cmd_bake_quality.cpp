@@ -64,8 +64,8 @@ void runQuality(const QualityOptions& o) {
     if (names.empty()) fail("--scenes", "no scene given");
     nlohmann::json report;
     if (!o.json)
-        std::printf("%-9s %8s %8s %6s %9s %9s %9s %9s %9s %9s %9s %9s %9s %7s %s\n", "scene", "vertices", "smooth", "d (m)",
-                    "bake MAE", "bake max", "smoothMAE", "point MAE", "point max", "smoothMAE", "J bake", "J point", "J ref",
+        std::printf("%-9s %8s %8s %6s %9s %9s %9s %9s %9s %9s %9s %9s %9s %7s %s\n", "scene", "compared", "smooth", "d (m)",
+                    "bake MAE", "bake max", "bake smth", "point MAE", "point max", "pt smooth", "J bake", "J point", "J ref",
                     "time s", "bake max at x,y,z (baked/ref)");
     for (const std::string& name : names) {
         BuiltinScene b = makeBuiltinScene(name);
@@ -116,10 +116,10 @@ void addBakeBenchCommands(CLI::App& bench) {
     cmd->add_option("--scenes", o->scenes, "Comma-separated built-in scenes")->capture_default_str();
     cmd->add_option("--distances", o->distances, "Half distances d in m")->capture_default_str();
     cmd->add_option("--max-edge", o->maxEdge, "Refine triangles to this edge length, m")->capture_default_str();
-    cmd->add_option("--grading", o->grading, "Edge length grows by this factor per m from the objects (floors far away stay coarse)")
+    cmd->add_option("--grading", o->grading, "Edge length grows by this factor per m from the objects (floors far away stay coarse), [0, 100]")
         ->capture_default_str();
-    cmd->add_option("--reference-rays", o->referenceRays, "Rays per vertex of the dense reference")->capture_default_str();
-    cmd->add_option("--rays", o->rays, "Rays per bake sample and per point-sampled vertex")->capture_default_str();
+    cmd->add_option("--reference-rays", o->referenceRays, "Rays per vertex of the dense reference, [1, 1048576]")->capture_default_str();
+    cmd->add_option("--rays", o->rays, "Rays per bake sample and per point-sampled vertex, [1, 65536]")->capture_default_str();
     cmd->add_option("--crease-angle", o->creaseAngle, "Bake's crease angle, degrees, [0, 180]")->capture_default_str();
     cmd->add_option("--threads", o->threads, "Worker threads (0 = all cores)")->capture_default_str();
     cmd->add_flag("--json", o->json, "Print JSON instead of a table");
