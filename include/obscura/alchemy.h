@@ -76,8 +76,10 @@ Camera guardBandCamera(const Camera& camera, int guardBand);
 Image cropGuardBand(const Image& image, int guardBand);
 GBuffer cropGuardBand(const GBuffer& gbuffer, const Camera& innerCamera, int guardBand);
 
-// View-space unit normals rebuilt from depth alone: on each axis the neighbour with the smaller depth
-// difference is used, so a silhouette does not bend the normals of the surface in front of it. A pixel with a
+// View-space unit normals rebuilt from depth alone: on each axis the neighbour that continues the centre's plane
+// is used (1/depth is affine in screen space on a plane: the pixel and the next one on each side are tested;
+// where a side has only one pixel, its relative depth step), so neither a crease nor a silhouette bends the
+// normals of the surface the pixel lies on. A pixel with a
 // usable neighbour along one axis only takes the normal across that tangent in the plane of the tangent and
 // the view ray; sky and pixels without a usable neighbour face the camera. Returns a 3-channel image.
 Image normalsFromDepth(const Image& depth, const Camera& camera);

@@ -1,8 +1,8 @@
 // Perspective pinhole camera and the pixel <-> view-space mapping every screen-space pass relies on.
 //
-// Conventions (DESIGN.md): meters; view space is right-handed, camera at the origin looking down -Z,
-// +Y up, +X right. "Depth" is linear view depth, the positive distance along -Z (depth = -z_view).
-// Pixel (px, py) has its centre at (px + 0.5, py + 0.5); py = 0 is the top row.
+// Conventions (docs/FORMATS.md, "Spaces and units"): meters; view space is right-handed, camera at the origin
+// looking down -Z, +Y up, +X right. "Depth" is linear view depth, the positive distance along -Z
+// (depth = -z_view). Pixel (px, py) has its centre at (px + 0.5, py + 0.5); py = 0 is the top row.
 #pragma once
 
 #include "obscura/math.h"

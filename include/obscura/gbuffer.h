@@ -1,4 +1,4 @@
-// The geometry buffer every screen-space method reads, as DESIGN.md fixes it.
+// The geometry buffer every screen-space method reads (docs/FORMATS.md, "Spaces and units").
 //
 // Per pixel: linear view depth (m, positive along -Z; +infinity where no surface is seen), the view-space
 // unit normal (zero where no surface), linear albedo, and optionally screen-space motion. Each is a

@@ -169,7 +169,8 @@ public:
                                 ", past the float range");
             }
         }
-        const std::string resolution = line();
+        std::string resolution = line();
+        while (!resolution.empty() && (resolution.back() == ' ' || resolution.back() == '\t')) resolution.pop_back();
         int height = 0, width = 0;
         char tail = 0;
         if (std::sscanf(resolution.c_str(), "-Y %d +X %d%c", &height, &width, &tail) != 2)
@@ -197,7 +198,16 @@ public:
             }
         }
         if (unscale != std::array<float, 3>{1.0f, 1.0f, 1.0f})
-            for (std::size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] *= unscale[i % 3];
+            for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+                const float stored = image.pixels[i];
+                image.pixels[i] *= unscale[i % 3];
+                // The file's value is finite; the division by a tiny EXPOSURE is what overflowed, and the message
+                // said only "radiance ... is inf".
+                if (!std::isfinite(image.pixels[i]))
+                    fail(path_, "pixel (" + std::to_string(i / 3 % std::size_t(width)) + ", " +
+                                    std::to_string(i / 3 / std::size_t(width)) + ") is " + numberText(stored) +
+                                    " as stored; divided by its EXPOSURE/COLORCORR it is past the float range");
+            }
         return image;
     }
 
@@ -229,7 +239,11 @@ private:
         while (true) {
             if (pos_ >= bytes_.size()) fail(path_, "truncated Radiance HDR header");
             const char c = char(bytes_[pos_++]);
-            if (c == '\n') return text;
+            if (c == '\n') {
+                // A file written with CRLF line ends: its magic line read "#?RADIANCE\r", refused as no HDR file.
+                if (!text.empty() && text.back() == '\r') text.pop_back();
+                return text;
+            }
             if (text.size() > 4096) fail(path_, "Radiance HDR header line too long");
             text.push_back(c);
         }

@@ -1,4 +1,4 @@
-// VkResult -> obscura::Error, with the message DESIGN.md asks for: the device, what was being done, and the
+// VkResult -> obscura::Error, with the message every GPU error gives: the device, what was being done, and the
 // problem in words a user can act on.
 #pragma once
 

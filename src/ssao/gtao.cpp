@@ -426,9 +426,10 @@ void checkGtaoBuffers(const GBuffer& gbuffer, const GtaoConstants& constants) {
     if (gbuffer.width() != constants.width || gbuffer.height() != constants.height ||
         gbuffer.depth.width != constants.width || gbuffer.depth.height != constants.height ||
         gbuffer.normal.width != constants.width || gbuffer.normal.height != constants.height)
-        fail("gtao", "G-buffer is " + std::to_string(gbuffer.depth.width) + "x" + std::to_string(gbuffer.depth.height) +
-                         " but the constants are for " + std::to_string(constants.width) + "x" +
-                         std::to_string(constants.height));
+        fail("gtao", "G-buffer depth is " + std::to_string(gbuffer.depth.width) + "x" +
+                         std::to_string(gbuffer.depth.height) + " and normal " + std::to_string(gbuffer.normal.width) +
+                         "x" + std::to_string(gbuffer.normal.height) + ", but the constants are for " +
+                         std::to_string(constants.width) + "x" + std::to_string(constants.height));
     // The kernel and the depth MIPs index the planes as 1 and 3 floats per pixel: a depth of 2 channels was read
     // from the wrong places, one of none from an empty image.
     if (gbuffer.depth.channels != 1 || gbuffer.normal.channels != 3)

@@ -760,6 +760,40 @@ TEST_F(ImageIoTest, HdrExposureAndColourCorrectionAreDividedOut) {
     const std::string tiny = withHeader("tiny.hdr", "EXPOSURE=1e-30\nEXPOSURE=1e-30\n");
     expectMessage(thrownMessage([&] { obscura::readHdr(tiny); }), tiny,
                   "Radiance HDR EXPOSURE/COLORCORR lines multiply to 1e-60, past the float range");
+    // A product in range that takes a large value past it is named as such: the message said only that the
+    // environment's radiance was inf.
+    const std::vector<float> large(std::size_t(width) * height * 3, 1e30f);
+    const std::string big = file("big.hdr");
+    ASSERT_NE(stbi_write_hdr(big.c_str(), width, height, 3, large.data()), 0);
+    const std::string bigBytes = readBytes(big);
+    const std::size_t bigBlank = bigBytes.find("\n\n");
+    writeBytes(big, bigBytes.substr(0, bigBlank + 1) + "EXPOSURE=1e-10\n" + bigBytes.substr(bigBlank + 1));
+    const std::string message = thrownMessage([&] { obscura::readHdr(big); });
+    expectMessage(message, big, "pixel (0, 0) is ");
+    EXPECT_NE(message.find("divided by its EXPOSURE/COLORCORR it is past the float range"), std::string::npos) << message;
+}
+
+// Written with CRLF line ends, or with a space after the resolution: the same image (the magic line read
+// "#?RADIANCE\r" and the file was refused as no HDR file; the space made the resolution line unsupported).
+TEST_F(ImageIoTest, HdrHeaderToleratesCrlfAndTrailingSpace) {
+    constexpr int width = 3, height = 2;
+    std::vector<float> rgb(std::size_t(width) * height * 3);
+    for (std::size_t i = 0; i < rgb.size(); ++i) rgb[i] = 0.25f * float(i % 5);
+    const std::string plain = file("plain.hdr");
+    ASSERT_NE(stbi_write_hdr(plain.c_str(), width, height, 3, rgb.data()), 0);
+    const std::string bytes = readBytes(plain);
+    const Image reference = obscura::readHdr(plain);
+    // The header is the lines up to and including the resolution line, the one after the blank line.
+    const std::size_t blank = bytes.find("\n\n");
+    ASSERT_NE(blank, std::string::npos);
+    const std::size_t resolutionEnd = bytes.find('\n', blank + 2);
+    ASSERT_NE(resolutionEnd, std::string::npos);
+    std::string crlf;
+    for (std::size_t i = 0; i <= resolutionEnd; ++i) crlf += bytes[i] == '\n' ? std::string("\r\n") : std::string(1, bytes[i]);
+    writeBytes(file("crlf.hdr"), crlf + bytes.substr(resolutionEnd + 1));
+    EXPECT_EQ(obscura::readHdr(file("crlf.hdr")).pixels, reference.pixels);
+    writeBytes(file("space.hdr"), bytes.substr(0, resolutionEnd) + " \t" + bytes.substr(resolutionEnd));
+    EXPECT_EQ(obscura::readHdr(file("space.hdr")).pixels, reference.pixels);
 }
 
 TEST_F(ImageIoTest, ExtensionDispatchIsCaseInsensitive) {

@@ -1,5 +1,5 @@
 // One validated Vulkan context shared by the GPU tests of a process (so the pipelines compile once), and the
-// skip rule DESIGN.md sets: a GPU test skips, with a message, only when no Vulkan device exists at all.
+// skip rule of the GPU tests: a GPU test skips, with a message, only when no Vulkan device exists at all.
 #pragma once
 
 #include "obscura/builtin_scenes.h"

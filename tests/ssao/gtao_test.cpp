@@ -284,6 +284,21 @@ TEST(Gtao, DepthImageMustHaveOneChannel) {
     EXPECT_NO_THROW(computeGtao(g, GtaoSettings{}));
 }
 
+// A normal plane of another size (or none) is named as such: the message gave the depth's size twice, "G-buffer is
+// 16x12 but the constants are for 16x12".
+TEST(Gtao, MismatchedNormalPlaneIsNamed) {
+    BuiltinScene plane = makeBuiltinScene("plane");
+    GBuffer g = render(plane.scene, plane.camera, 16, 12);
+    g.normal = Image();
+    try {
+        computeGtao(g, GtaoSettings{});
+        ADD_FAILURE() << "a G-buffer without normals accepted";
+    } catch (const Error& e) {
+        EXPECT_EQ(std::string(e.what()),
+                  "gtao: G-buffer depth is 16x12 and normal 0x0, but the constants are for 16x12");
+    }
+}
+
 TEST(Gtao, SameBitsOnAnyThreadCount) {
     BuiltinScene s = makeBuiltinScene("demo");
     GBuffer g = render(s.scene, s.camera, 96, 64);
