@@ -26,7 +26,8 @@ struct SH9 {
 };
 
 // Projects an equirect radiance map onto SH, integrating each texel's exact solid angle.
-// Throws obscura::Error for an image with fewer than 3 channels or a non-finite value.
+// Throws obscura::Error for an image with fewer than 3 channels, a non-finite or negative value, or radiance so
+// large that an SH coefficient reaches FLT_MAX/8 (the irradiance could overflow; a constant map above ~1.2e37).
 SH9 projectEnvironment(const Image& equirect);
 // Irradiance E(n) = sum_l A_l sum_m L_lm Y_lm(n), A_0 = pi, A_1 = 2pi/3, A_2 = pi/4. For a constant
 // radiance L it is pi L for every n.

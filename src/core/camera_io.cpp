@@ -88,8 +88,19 @@ std::string cameraToJson(const Camera& c) {
 }
 
 Camera cameraFromJson(const std::string& text, const std::string& what) {
-    nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
-    if (j.is_discarded() || !j.is_object()) fail(what, "not a JSON object");
+    // The parser stops at a NUL byte: what followed one was never read, nor refused.
+    if (text.find('\0') != std::string::npos) fail(what, "not valid JSON: holds a NUL byte");
+    nlohmann::json j;
+    try {
+        j = nlohmann::json::parse(text);
+    } catch (const nlohmann::json::parse_error& e) {
+        // Every syntax error read "not a JSON object"; the parser's own words say where and what
+        // ("[json.exception.parse_error.101] parse error at line 3, column 1: syntax error ...").
+        std::string why = e.what();
+        if (const std::size_t at = why.find("parse error"); at != std::string::npos) why = why.substr(at);
+        fail(what, "not valid JSON: " + why);
+    }
+    if (!j.is_object()) fail(what, "not a JSON object");
     Camera c;
     c.position = readVec(j, "position", what);
     c.target = readVec(j, "target", what);
@@ -102,7 +113,11 @@ Camera cameraFromJson(const std::string& text, const std::string& what) {
     try {
         c.validate();
     } catch (const Error& e) {
-        fail(what, e.what());
+        // Camera::validate speaks as "camera: fov ..."; here the file is named, and its field is fovY.
+        std::string why = e.what();
+        if (why.starts_with("camera: ")) why = why.substr(8);
+        if (why.starts_with("fov ")) why = "fovY " + why.substr(4);
+        fail(what, why);
     }
     return c;
 }

@@ -283,6 +283,13 @@ Image readExrWindows(const std::string& path, Imath::Box2i* displayWindow, Imath
     try {
         checkDataWindowBeforeOpening(path);
         Imf::InputFile file(path.c_str(), exrThreads());
+        // InputFile reads the first part of a multi-part file and composites deep samples into one value, both
+        // without a word: a depth in part 1 read part 0's channel Y as depth, and two half-transparent samples
+        // averaged a depth that no surface has.
+        if (Imf::isMultiPart(file.version()))
+            fail(path, "is a multi-part EXR, and only single-part files are read (write the buffer as one part)");
+        if (Imf::isNonImage(file.version()))
+            fail(path, "holds deep data, which is not read (flatten it to a scanline or tiled image of one sample)");
         const Imf::Header& header = file.header();
         const Imath::Box2i window = header.dataWindow();
         if (displayWindow) *displayWindow = header.displayWindow();

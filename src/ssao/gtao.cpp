@@ -86,10 +86,13 @@ bool samplePosition(const GtaoConstants& c, const GBuffer& g, const GtaoDepthMip
             const int x0 = std::clamp(quad[0], 0, c.width - 2);
             const int y0 = std::clamp(quad[1], 0, c.height - 2);
             if (ix < x0 || ix > x0 + 1 || iy < y0 || iy > y0 + 1) continue;
-            // Inverse depths: 0 for sky, which fails the test below.
+            // Inverse depths: at most 1e-30 for sky (a depth of 1e30 or more, +inf's 0 included), which fails
+            // the test below. It once took only +inf for sky: a sky of 1e30 (FORMATS.md allows it) passed with
+            // w = 1e-30, and a quad across the sky's edge bent the AO there by up to 0.34. The bound 2e-30 stays
+            // clear of the reciprocal's rounding at 1e30 (a depth between 5e29 and 1e30 just reads no plane).
             const float w00 = 1.0f / g.depth.at(x0, y0), w10 = 1.0f / g.depth.at(x0 + 1, y0);
             const float w01 = 1.0f / g.depth.at(x0, y0 + 1), w11 = 1.0f / g.depth.at(x0 + 1, y0 + 1);
-            if (!(w00 > 0.0f && w10 > 0.0f && w01 > 0.0f && w11 > 0.0f)) continue;
+            if (!(w00 > 2e-30f && w10 > 2e-30f && w01 > 2e-30f && w11 > 2e-30f)) continue;
             const float cross = std::fabs(w00 + w11 - w10 - w01);
             if (cross > 1e-4f * std::max(std::max(w00, w10), std::max(w01, w11))) continue;
             const float fx = gx - float(x0), fy = gy - float(y0);

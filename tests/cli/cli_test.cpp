@@ -279,6 +279,77 @@ TEST_F(Cli, AovDirSeesTheOutputThroughRelativePaths) {
     EXPECT_EQ(after, empty);
 }
 
+// An output directory that takes no new file fails before the work, in every command: compare traced its
+// references first and then failed on -o /proc/x.png, losing --json's figures; only bake checked.
+TEST_F(Cli, AnUnwritableOutputDirectoryFailsFirst) {
+    expectFailure("compare corner --size 8x6 --rays 4 -q --json -o /proc/x.png", {"/proc/x.png", "cannot write"});
+    expectFailure("render corner" + kFast + "-o /proc/x.png", {"/proc/x.png", "cannot write"});
+    expectFailure("gbuffer corner --size 8x6 -q -o /proc/g.exr", {"/proc/g", "cannot write"});
+    expectFailure("scenes --generate level --triangles 4000 -o /proc/l.glb", {"/proc/l.glb", "cannot write"});
+}
+
+// gbuffer writes its files all or none: a failed camera.json removed the new EXR and with it the previous one it
+// had replaced, and in a directory a failed albedo.exr removed depth.exr and normal.exr and left an old
+// camera.json. A name too long for the file system failed only after the render (now before), and an existing
+// directory whose name has a dot was refused as an "unsupported output format".
+TEST_F(Cli, GBufferWritesAllOrNone) {
+    ASSERT_EQ(run("gbuffer plane --size 16x12 -q -o " + path("g.exr")).code, 0);
+    const auto bytes = [](const std::string& file) {
+        std::ifstream in(file, std::ios::binary);
+        return std::string((std::istreambuf_iterator<char>(in)), {});
+    };
+    const std::string exr = bytes(path("g.exr")), json = bytes(path("g.camera.json"));
+    // The camera's file cannot be made: a directory of its name.
+    fs::remove(path("g.camera.json"));
+    fs::create_directory(path("g.camera.json"));
+    const Result blocked = run("gbuffer corner --size 24x12 -q -o " + path("g.exr"));
+    EXPECT_EQ(blocked.code, 1) << blocked.out;
+    EXPECT_EQ(bytes(path("g.exr")), exr) << "the previous EXR was replaced or removed";
+    fs::remove(path("g.camera.json"));
+    for (const auto& e : fs::directory_iterator(dir))
+        EXPECT_EQ(e.path().filename().string().find(".part-"), std::string::npos) << e.path();
+    std::ofstream(path("g.camera.json"), std::ios::binary) << json;
+    // A name past 255 bytes: refused before the work.
+    const std::string longName = std::string(250, 'a') + ".exr";  // its camera: 250 + 12 bytes
+    expectFailure("gbuffer plane --size 16x12 -q -o " + path(longName), {"the file name is 262 bytes, past the 255"});
+    // An existing directory named with a dot takes the four files.
+    fs::create_directory(path("out.d"));
+    const Result toDir = run("gbuffer plane --size 16x12 -q -o " + path("out.d"));
+    EXPECT_EQ(toDir.code, 0) << toDir.out;
+    for (const char* f : {"depth.exr", "normal.exr", "albedo.exr", "camera.json"})
+        EXPECT_TRUE(fs::is_regular_file(path("out.d/") + f)) << f;
+    expectFailure("gbuffer plane --size 16x12 -q --supersample 0 -o " + path("s.exr"), {"--supersample", "got 0"});
+}
+
+// `ao` refuses normals turned away from the camera (another convention, +Z forward or world space: Alchemy
+// moved by 0.40 on average without a word), says that --normal goes unread beside --ao-normals-from-depth, and
+// warns of blur flags with --blur none.
+TEST_F(Cli, AoChecksTheNormalsItReads) {
+    ASSERT_EQ(run("gbuffer demo --size 48x27 -q -o " + path("g.exr")).code, 0);
+    obscura::Image g = obscura::readExr(path("g.exr"));
+    obscura::Image flipped(g.width, g.height, 3);
+    flipped.channelNames = {"N.X", "N.Y", "N.Z"};
+    for (int c = 0; c < 3; ++c) {
+        const auto at = std::find(g.channelNames.begin(), g.channelNames.end(), flipped.channelNames[std::size_t(c)]);
+        ASSERT_NE(at, g.channelNames.end());
+        const int from = int(at - g.channelNames.begin());
+        for (int y = 0; y < g.height; ++y)
+            for (int x = 0; x < g.width; ++x) flipped.at(x, y, c) = -g.at(x, y, from);
+    }
+    obscura::writeExr(path("flipped.exr"), flipped);
+    const std::string ao = "ao --depth " + path("g.exr") + " --camera " + path("g.camera.json") + " -o " + path("a.exr");
+    expectFailure(ao + " --normal " + path("flipped.exr"), {"flipped.exr", "normals face away from the camera"});
+    const Result unread = run(ao + " --normal " + path("flipped.exr") + " --ao-normals-from-depth");
+    EXPECT_EQ(unread.code, 0) << unread.out;
+    EXPECT_NE(unread.out.find("warning: --normal: --ao-normals-from-depth rebuilds the normals"), std::string::npos)
+        << unread.out;
+    const Result blur = run(ao + " --normal " + path("g.exr") + " --blur none --blur-radius 10");
+    EXPECT_EQ(blur.code, 0) << blur.out;
+    EXPECT_NE(blur.out.find("warning: --blur-radius: applies to a blur, and --blur is none"), std::string::npos)
+        << blur.out;
+    EXPECT_EQ(run(ao + " --normal " + path("g.exr")).code, 0);
+}
+
 // --far inf wrote g.camera.json with "far": null, which `obscura ao --camera` then refused.
 TEST_F(Cli, InfiniteFarIsRefused) {
     expectFailure("gbuffer plane --size 16x8 -q --far inf -o " + path("g.exr"), {"far"});

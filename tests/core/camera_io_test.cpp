@@ -40,7 +40,13 @@ TEST(CameraIo, ErrorsNameTheFileAndProblem) {
         const char* text;
         const char* problem;
     };
-    for (Case c : {Case{"{not json", "not a JSON object"},
+    // A syntax error says where it is (every one read "not a JSON object"), text past a NUL byte is refused (the
+    // parser stopped there), and Camera::validate's words name the file's field, fovY, once ("cam.json: camera:
+    // fov must be ...").
+    for (Case c : {Case{"{not json", "not valid JSON: parse error at line 1, column 3"},
+                   Case{"{\"position\": [0, 1, 2],}", "not valid JSON: parse error at line 1, column 24"},
+                   Case{"[1, 2]", "not a JSON object"},
+                   Case{R"({"position":[0,1,2],"target":[0,0,0],"fovY":0,"width":4,"height":4})", "cam.json: fovY must be in"},
                    Case{R"({"target":[0,0,0],"fovY":60,"width":4,"height":4})", "missing \"position\""},
                    Case{R"({"position":[0,1],"target":[0,0,0],"fovY":60,"width":4,"height":4})", "array of 3 numbers"},
                    Case{R"({"position":[0,1,2],"target":[0,0,0],"fovY":60,"width":0,"height":4})", "\"width\" must be"},
@@ -54,6 +60,12 @@ TEST(CameraIo, ErrorsNameTheFileAndProblem) {
             EXPECT_NE(m.find(c.problem), std::string::npos) << m;
             EXPECT_EQ(m.find('\n'), std::string::npos) << m;
         }
+    }
+    try {
+        cameraFromJson(std::string("{}\0 garbage", 11), "cam.json");
+        FAIL() << "accepted text past a NUL byte";
+    } catch (const Error& e) {
+        EXPECT_EQ(std::string(e.what()), "cam.json: not valid JSON: holds a NUL byte");
     }
     EXPECT_THROW(readCameraJson("/nonexistent/cam.json"), Error);
     // A directory was "not a JSON object".

@@ -6,9 +6,14 @@
 #include "obscura/render.h"
 
 #include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfDeepFrameBuffer.h>
+#include <OpenEXR/ImfDeepScanLineOutputFile.h>
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfMultiPartOutputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfOutputPart.h>
+#include <OpenEXR/ImfPartType.h>
 #include <OpenEXR/ImfThreading.h>
 #include <OpenEXR/ImfTileDescription.h>
 #include <OpenEXR/ImfTiledOutputFile.h>
@@ -369,6 +374,61 @@ TEST_F(ImageIoTest, ExrReadsHalfAndUintChannelsAndHonoursDataWindow) {
         }
     }
     EXPECT_TRUE(std::signbit(image.at(2, 0, 0))); // -0 survives
+}
+
+// A multi-part file was read as its first part, and a deep one as its samples composited, both without a word:
+// a depth in part 1 read part 0's channel Y as depth (AO 1 everywhere), and two half-transparent samples gave a
+// depth no surface has. Both are refused, naming the file.
+TEST_F(ImageIoTest, MultiPartAndDeepExrAreRefused) {
+    constexpr int w = 4, h = 3;
+    std::vector<float> values(std::size_t(w) * h, 2.0f);
+    const std::string multi = file("multi.exr");
+    {
+        std::vector<Imf::Header> headers;
+        for (const char* channel : {"Y", "Z"}) {
+            Imf::Header header(w, h);
+            header.setName(std::string("part ") + channel);
+            header.setType(Imf::SCANLINEIMAGE);
+            header.channels().insert(channel, Imf::Channel(Imf::FLOAT));
+            headers.push_back(header);
+        }
+        Imf::MultiPartOutputFile out(multi.c_str(), headers.data(), 2);
+        for (int part = 0; part < 2; ++part) {
+            Imf::OutputPart output(out, part);
+            Imf::FrameBuffer frame;
+            frame.insert(part == 0 ? "Y" : "Z", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(values.data()),
+                                                           sizeof(float), sizeof(float) * w));
+            output.setFrameBuffer(frame);
+            output.writePixels(h);
+        }
+    }
+    expectMessage(thrownMessage([&] { obscura::readExr(multi); }), multi, "is a multi-part EXR");
+    const std::string deep = file("deep.exr");
+    {
+        Imf::Header header(w, h);
+        header.setType(Imf::DEEPSCANLINE);
+        header.compression() = Imf::ZIPS_COMPRESSION;
+        header.channels().insert("Z", Imf::Channel(Imf::FLOAT));
+        header.channels().insert("A", Imf::Channel(Imf::FLOAT));
+        std::vector<unsigned> counts(std::size_t(w) * h, 1);
+        std::vector<float> z(std::size_t(w) * h, 2.0f), a(std::size_t(w) * h, 1.0f);
+        std::vector<float*> zp, ap;
+        for (std::size_t i = 0; i < z.size(); ++i) {
+            zp.push_back(&z[i]);
+            ap.push_back(&a[i]);
+        }
+        Imf::DeepFrameBuffer frame;
+        frame.insertSampleCountSlice(
+            Imf::Slice(Imf::UINT, reinterpret_cast<char*>(counts.data()), sizeof(unsigned), sizeof(unsigned) * w));
+        frame.insert("Z", Imf::DeepSlice(Imf::FLOAT, reinterpret_cast<char*>(zp.data()), sizeof(float*),
+                                         sizeof(float*) * w, sizeof(float)));
+        frame.insert("A", Imf::DeepSlice(Imf::FLOAT, reinterpret_cast<char*>(ap.data()), sizeof(float*),
+                                         sizeof(float*) * w, sizeof(float)));
+        Imf::DeepScanLineOutputFile out(deep.c_str(), header);
+        out.setFrameBuffer(frame);
+        out.writePixels(h);
+    }
+    expectMessage(thrownMessage([&] { obscura::readExr(deep); }), deep, "holds deep data");
 }
 
 // An environment's pixels are positions in its panorama, which the display window frames: a map cropped to

@@ -3,6 +3,7 @@
 #include "gpu_test_util.h"
 #include "gtao_difference.h"
 #include "spirv_edit.h"
+#include "ssao/gtao_scenes.h"
 
 #include "gpu/buffer.h"
 #include "gpu/context.h"
@@ -304,6 +305,24 @@ TEST(GpuGtao, ARadiusPastTheImageMatchesTheCpu) {
         s.sampling = sampling;
         expectMatch(context, g, ssao::gtaoConstants(s, g.camera), std::string("r 100, ") + ssao::gtaoSamplingName(sampling));
     }
+    EXPECT_EQ(testing::validationReport(context), "");
+}
+
+// A sky of 1e30 is the sky of +inf on the GPU too (gtao_pixel.glsl's planar quad took only +inf, as the CPU's
+// did): the same visibility within the pass's bound.
+TEST(GpuGtao, ASkyOf1e30IsTheSkyOfInfinity) {
+    OBSCURA_GPU_CONTEXT(context);
+    const GBuffer g = testing::render("demo", 160, 90);
+    const GBuffer inf = test::withSkyHole(g, 60, 30, 100, 60, INFINITY);
+    const GBuffer big = test::withSkyHole(g, 60, 30, 100, 60, 1e30f);
+    ssao::GtaoSettings s = preset(ssao::GtaoQuality::High);
+    s.sampling = ssao::GtaoSampling::Planar;
+    const ssao::GtaoConstants k = ssao::gtaoConstants(s, inf.camera);
+    const ssao::GtaoResult a = computeGtao(context, inf, k), b = computeGtao(context, big, k);
+    float worst = 0.0f;
+    for (std::size_t i = 0; i < a.visibility.pixels.size(); ++i)
+        worst = std::max(worst, std::fabs(a.visibility.pixels[i] - b.visibility.pixels[i]));
+    EXPECT_LE(worst, kVisibilityBound);
     EXPECT_EQ(testing::validationReport(context), "");
 }
 

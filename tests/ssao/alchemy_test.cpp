@@ -290,6 +290,17 @@ TEST(Alchemy, NormalsFromDepthNextToTheBorderStayOnTheirSideOfACrease) {
         }
 }
 
+// No guard band is the camera itself: tan and atan in float turned 75 degrees into 75.0000153 at a height of 91,
+// and render --ao alchemy's G-buffer (depth up to 2.9e-6 m apart) no longer matched the camera.json it wrote.
+TEST(Alchemy, NoGuardBandKeepsTheCamera) {
+    Camera c = camera({4, 4, 4}, {0.5f, 0, 0.5f}, 37, 91);
+    c.fovY = 75.0f;
+    EXPECT_EQ(guardBandCamera(c, 0).fovY, 75.0f);
+    EXPECT_EQ(guardBandCamera(c, 0).height, 91);
+    const Camera wide = guardBandCamera(c, 4);
+    EXPECT_NEAR(wide.focalPixels(), c.focalPixels(), 1e-4f * c.focalPixels());
+}
+
 TEST(Alchemy, GuardBandCropsToTheInnerView) {
     const Camera inner = camera({4, 4, 4}, {0.5f, 0, 0.5f}, 64, 48);
     const Camera outer = guardBandCamera(inner, 8);

@@ -15,6 +15,19 @@
 
 namespace obscura::test {
 
+// The G-buffer with a rectangle of sky cut into it, [x0, x1) x [y0, y1), its depth `skyDepth` (+inf, or 1e30
+// and more, which FORMATS.md also calls sky) and its normals zero; the rest of its sky takes `skyDepth` too.
+inline GBuffer withSkyHole(GBuffer g, int x0, int y0, int x1, int y1, float skyDepth) {
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x) {
+            g.depth.at(x, y) = INFINITY;
+            for (int c = 0; c < 3; ++c) g.normal.at(x, y, c) = 0.0f;
+        }
+    for (float& d : g.depth.pixels)
+        if (!(d < 1e30f)) d = skyDepth;
+    return g;
+}
+
 struct TopDownView {
     Scene scene;
     Camera camera;

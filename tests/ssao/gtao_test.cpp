@@ -9,6 +9,7 @@
 #include "obscura/mesh_builder.h"
 #include "obscura/parallel.h"
 #include "obscura/trace.h"
+#include "ssao/gtao_scenes.h"
 #include "trace/closed_form_scenes.h"
 
 #include <gtest/gtest.h>
@@ -282,6 +283,26 @@ TEST(Gtao, DepthImageMustHaveOneChannel) {
         }
     }
     EXPECT_NO_THROW(computeGtao(g, GtaoSettings{}));
+}
+
+// Sky is +inf or any depth of 1e30 or more (FORMATS.md). The planar samples took only +inf for sky: a 1e30 sky
+// gave its inverse depth 1e-30 > 0, a quad across the sky's edge passed the plane test, and the AO next to a
+// hole of sky moved by up to 0.335 (ao --method gtao on a buffer written with 1e30 for sky).
+TEST(Gtao, ASkyOf1e30IsTheSkyOfInfinity) {
+    BuiltinScene demo = makeBuiltinScene("demo");
+    const GBuffer g = render(demo.scene, demo.camera, 160, 90);
+    const GBuffer inf = test::withSkyHole(g, 60, 30, 100, 60, INFINITY);
+    const GBuffer big = test::withSkyHole(g, 60, 30, 100, 60, 1e30f);
+    for (ssao::GtaoSampling sampling : {ssao::GtaoSampling::Planar, ssao::GtaoSampling::PlanarMip,
+                                        ssao::GtaoSampling::PlanarNearest, ssao::GtaoSampling::Nearest}) {
+        GtaoSettings s;
+        s.sampling = sampling;
+        const GtaoResult a = computeGtao(inf, s), b = computeGtao(big, s);
+        float worst = 0.0f;
+        for (std::size_t i = 0; i < a.visibility.pixels.size(); ++i)
+            worst = std::max(worst, std::fabs(a.visibility.pixels[i] - b.visibility.pixels[i]));
+        EXPECT_EQ(worst, 0.0f) << ssao::gtaoSamplingName(sampling);
+    }
 }
 
 // A normal plane of another size (or none) is named as such: the message gave the depth's size twice, "G-buffer is

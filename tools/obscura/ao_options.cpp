@@ -23,19 +23,26 @@ void BlurFlags::add(CLI::App& app) {
                    "Cross-bilateral filter of the AO: none, separable (two 1-D passes, the paper) or 2d (the chapter)")
         ->check(CLI::IsMember({"none", "separable", "2d"}))
         ->capture_default_str();
-    app.add_option("--blur-radius", radius, "Blur taps on each side of the centre, [1, 32] (6: 13 taps)")
-        ->capture_default_str();
-    app.add_option("--blur-depth-sigma", depthSigma,
-                   "Depth tolerance of the blur relative to depth, [1e-6, 10] (0.05: 5% of the pixel's depth)")
-        ->capture_default_str();
-    app.add_option("--blur-normal-weight", normalWeight, kNormalWeightHelp)
-        ->check(CLI::IsMember({"auto", "on", "off"}))
-        ->capture_default_str();
+    detailFlags = optionsAddedBy(app, [&] {
+        app.add_option("--blur-radius", radius, "Blur taps on each side of the centre, [1, 32] (6: 13 taps)")
+            ->capture_default_str();
+        app.add_option("--blur-depth-sigma", depthSigma,
+                       "Depth tolerance of the blur relative to depth, [1e-6, 10] (0.05: 5% of the pixel's depth)")
+            ->capture_default_str();
+        app.add_option("--blur-normal-weight", normalWeight, kNormalWeightHelp)
+            ->check(CLI::IsMember({"auto", "on", "off"}))
+            ->capture_default_str();
+    });
+}
+
+void BlurFlags::warnUnread() const {
+    if (mode == "none") warnIgnored(detailFlags, "applies to a blur, and --blur is none");
 }
 
 ssao::BilateralSettings BlurFlags::settings() const {
     ssao::BilateralSettings s;
     s.mode = mode == "none" ? ssao::BlurMode::None : mode == "2d" ? ssao::BlurMode::TwoD : ssao::BlurMode::Separable;
+    if (s.mode == ssao::BlurMode::None) return s;  // what warnUnread() calls ignored is not checked either
     s.radius = radius;
     s.depthSigma = depthSigma;
     s.normalWeight = normalWeightFromFlag(normalWeight);

@@ -24,7 +24,10 @@ struct BlurFlags {
     int radius = 6;
     float depthSigma = 0.05f;
     std::string normalWeight = "auto";
+    std::vector<const CLI::Option*> detailFlags;  // --blur-radius, --blur-depth-sigma, --blur-normal-weight
     void add(CLI::App& app);
+    // Warns of the detail flags given with --blur none, which ignores them.
+    void warnUnread() const;
     // Validated; errors name the flag.
     ssao::BilateralSettings settings() const;
 };

@@ -259,6 +259,51 @@ void checkOutputPath(const std::string& flag, const std::string& path, const std
     for (const std::string& input : inputs)
         if (samePath(path, input))
             fail(path, "is the input file " + input + "; the input is never overwritten, choose another output");
+    // A name the file system cannot hold failed only at the rename, after the work (the temporary's name is
+    // cut to fit, so the check below passes).
+    if (const std::size_t length = fs::path(path).filename().string().size(); length > 255)
+        fail(path, "the file name is " + std::to_string(length) + " bytes, past the 255 a file system takes");
+    // A directory that takes no new file (read-only, /proc) fails now, not after the work: compare traced its
+    // references before -o /proc/x.png failed, and --json's figures were lost with it.
+    checkWritable(path);
+}
+
+void writeAllOrNone(const std::vector<FileWriter>& files) {
+    std::vector<std::string> temporaries;
+    const std::string tag = ".part-" + std::to_string(getpid());
+    for (const FileWriter& f : files) {
+        const fs::path target(f.path);
+        std::string stem = target.stem().string();
+        const std::string ext = target.extension().string();
+        if (1 + stem.size() + tag.size() + ext.size() > 255) stem.resize(255 - 1 - tag.size() - ext.size());
+        temporaries.push_back((target.parent_path() / ("." + stem + tag + ext)).string());
+    }
+    const auto removeTemporaries = [&] {
+        std::error_code ec;
+        for (const std::string& t : temporaries) fs::remove(t, ec);
+    };
+    for (std::size_t i = 0; i < files.size(); ++i) {
+        try {
+            files[i].write(temporaries[i]);
+        } catch (const Error& e) {
+            removeTemporaries();
+            std::string message = e.what();
+            for (std::size_t at; (at = message.find(temporaries[i])) != std::string::npos;)
+                message.replace(at, temporaries[i].size(), files[i].path);
+            throw Error(message);
+        } catch (...) {
+            removeTemporaries();
+            throw;
+        }
+    }
+    for (std::size_t i = 0; i < files.size(); ++i) {
+        std::error_code ec;
+        fs::rename(temporaries[i], files[i].path, ec);
+        if (ec) {
+            removeTemporaries();
+            fail(files[i].path, "cannot write: " + ec.message());
+        }
+    }
 }
 
 bool samePath(const std::string& a, const std::string& b) {

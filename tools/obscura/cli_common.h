@@ -74,8 +74,8 @@ void warnIgnored(const std::vector<const CLI::Option*>& options, const std::stri
 void refuseEmptyValues(CLI::App& app);
 
 // Fails early, before any work, if the output cannot be written: wrong extension, missing directory or a
-// directory of that name, or it is one of the command's input files (empty names are skipped), which the
-// output would replace.
+// directory of that name, it is one of the command's input files (empty names are skipped), which the
+// output would replace, or its directory takes no new file (checkWritable).
 void checkOutputPath(const std::string& flag, const std::string& path, const std::vector<std::string>& extensions,
                      const std::vector<std::string>& inputs = {});
 // True if `a` and `b` name the same file: one existing file (a link or another spelling), or two paths that do
@@ -87,6 +87,16 @@ void checkOutputDirectory(const std::string& flag, const std::string& dir, bool 
 // The outermost directory of `dir`'s path that is not there yet (empty if `dir` exists): what creating `dir`
 // makes, and what a failed command removes again.
 std::filesystem::path firstMissingDirectory(const std::string& dir);
+
+// Writes a set of files that belong together all or none: each writer fills a temporary beside its file (the
+// same extension, a hidden name), and only once every writer has succeeded are they renamed into place. A
+// failure removes the temporaries and leaves the files that were there as they were; its message names the
+// file, not the temporary.
+struct FileWriter {
+    std::string path;
+    std::function<void(const std::string& path)> write;
+};
+void writeAllOrNone(const std::vector<FileWriter>& files);
 
 // Fails early if an input (skipped when empty) is not one of `extensions`, where readImage would read other
 // formats as something they cannot hold: "<flag>: <path>: <content> is read from .hdr or .exr files, not .png".

@@ -122,10 +122,30 @@ void checkUnitNormals(const GBuffer& g, const std::string& path, const std::stri
                        " outside [0.9, 1.1]): unit view-space normals expected, decoded if stored as n * 0.5 + 0.5");
 }
 
+// Normals turned away from the camera are another convention's (+Z forward, or world space), not a few
+// back-facing pixels at grazing angles: Alchemy moved by 0.40 on average, GTAO by 0.58, without a word. The
+// pixel's view ray points from the camera to p, so a normal facing the camera has n . p < 0.
+void checkFacing(const GBuffer& g, const std::string& path) {
+    std::size_t surface = 0, away = 0;
+    for (int y = 0; y < g.height(); ++y)
+        for (int x = 0; x < g.width(); ++x) {
+            if (g.isSky(x, y)) continue;
+            const Vec3 p = g.camera.viewFromPixel(float(x) + 0.5f, float(y) + 0.5f, g.depth.at(x, y));
+            const Vec3 n{g.normal.at(x, y, 0), g.normal.at(x, y, 1), g.normal.at(x, y, 2)};
+            ++surface;
+            away += dot(n, p) > 0.0f;
+        }
+    if (surface > 0 && 2 * away > surface)
+        fail(path, "normals face away from the camera at " + std::to_string(away) + " of " + std::to_string(surface) +
+                       " surface pixels: view-space normals turned towards the camera expected (the camera looks "
+                       "down -Z; a +Z-forward or world-space buffer needs converting)");
+}
+
 void run(const AoOptions& o) {
     auto start = std::chrono::steady_clock::now();
     checkOutputPath("-o", o.output, {".exr"}, {o.depth, o.normal, o.camera});
     const eval::AoMethod& method = eval::findAoMethod(o.method, "--method");
+    o.blur.warnUnread();
     const ssao::BilateralSettings blur = o.blur.settings();
     ssao::AlchemySettings alchemy = o.alchemy.settings("");
     if (o.alchemy.formulationOption->count() > 0 && o.method.starts_with("alchemy")) {
@@ -173,13 +193,19 @@ void run(const AoOptions& o) {
                 fail(o.depth, "depth at pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") is " +
                                   numberText(d) + " (linear view depth in m must be > 0, or +inf for sky)");
         }
-    if (o.normal.empty()) {
+    // Alchemy told to rebuild its normals reads none: the file went unused without a word, yet a bad one failed.
+    const bool normalUnread = o.method.starts_with("alchemy") && alchemy.normalsFromDepth && !o.normal.empty();
+    if (normalUnread)
+        std::fprintf(stderr, "obscura: warning: --normal: --ao-normals-from-depth rebuilds the normals from depth; "
+                             "ignored\n");
+    if (o.normal.empty() || normalUnread) {
         alchemy.normalsFromDepth = true;
         g.normal = ssao::normalsFromDepth(g.depth, g.camera);
     } else {
         g.normal = channels(readExrFrame(o.normal), {"N.X", "N.Y", "N.Z"}, o.normal, "normal");
         checkSize(g.normal, g.camera, o.normal, o.camera);
         checkUnitNormals(g, o.normal, o.depth);  // surface pixels only: a sky pixel's normal is never read
+        checkFacing(g, o.normal);
         // A G-buffer holds (0, 0, 0) under the sky (GBuffer::normal); whatever the file holds there goes. The
         // surface normals within the accepted lengths are made unit, as ssao::prepareGBuffer does: Alchemy's
         // v.n scales with the length (AO moved by up to 0.082 for normals 1.09 long, 0.090 for 0.91).

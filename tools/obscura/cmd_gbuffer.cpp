@@ -48,7 +48,11 @@ Image combined(const GBuffer& g) {
 
 void run(const GBufferOptions& o) {
     auto start = std::chrono::steady_clock::now();
-    const bool toDirectory = fileExtension(o.output).empty();
+    // A directory that is there is one, whatever its name: -o out.d was refused as "unsupported output format".
+    std::error_code isDir;
+    const bool toDirectory = fileExtension(o.output).empty() || fs::is_directory(o.output, isDir);
+    if (o.supersample < 1 || o.supersample > 16)
+        fail("--supersample", "must be in [1, 16], got " + std::to_string(o.supersample));
     // Every file this run writes, checked before any work; the directory is made only once there is something
     // to put in it, so that a failure (bad flag, missing scene, an output that is a directory) leaves nothing.
     const fs::path dir(o.output);
@@ -76,25 +80,21 @@ void run(const GBufferOptions& o) {
 
     // The first directory of the output's path that is not there yet: removed again if a write fails.
     const fs::path created = toDirectory ? firstMissingDirectory(dir) : fs::path();
-    std::size_t written = 0;
+    // All or none: half a G-buffer (an EXR without its camera) is worse than none, and so is a new depth beside
+    // an old camera. The files were once written one by one and the written ones removed on a failure: a failed
+    // camera.json took the new EXR with it and the previous one, which the new had replaced.
+    const auto exr = [](const Image& image) { return [&image](const std::string& path) { writeExr(path, image); }; };
+    const auto json = [&camera](const std::string& path) { writeCameraJson(path, camera); };
+    const Image all = toDirectory ? Image() : combined(g);
     try {
         if (toDirectory) {
             checkOutputDirectory("-o", o.output, true);
-            writeExr(outputs[0], g.depth);
-            ++written;
-            writeExr(outputs[1], g.normal);
-            ++written;
-            writeExr(outputs[2], g.albedo);
-            ++written;
-            writeCameraJson(outputs[3], camera);
+            writeAllOrNone({{outputs[0], exr(g.depth)}, {outputs[1], exr(g.normal)}, {outputs[2], exr(g.albedo)},
+                            {outputs[3], json}});
         } else {
-            writeExr(outputs[0], combined(g));
-            ++written;
-            writeCameraJson(outputs[1], camera);
+            writeAllOrNone({{outputs[0], exr(all)}, {outputs[1], json}});
         }
     } catch (...) {
-        // Half a G-buffer (an EXR without its camera) is worse than none: ao would need a camera guessed.
-        for (std::size_t i = 0; i < written; ++i) fs::remove(outputs[i], ec);
         if (!created.empty()) fs::remove_all(created, ec);
         throw;
     }

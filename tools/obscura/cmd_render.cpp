@@ -112,6 +112,7 @@ void run(const RenderOptions& o) {
     if (o.ao == "alchemy") {
         alchemy = o.alchemy.settings(o.radiusOption->count() > 0 ? o.radius : std::string());
         alchemy.seed = o.seed;
+        o.blur.warnUnread();
         blur = o.blur.settings();
     }
     if (o.ao == "gtao") {

@@ -96,7 +96,7 @@ bool samplePosition(int level, bool planar, float sx, float sy, int cx, int cy, 
             if (ix < x0 || ix > x0 + 1 || iy < y0 || iy > y0 + 1) continue;
             const float w00 = 1.0 / depthAt(x0, y0), w10 = 1.0 / depthAt(x0 + 1, y0);
             const float w01 = 1.0 / depthAt(x0, y0 + 1), w11 = 1.0 / depthAt(x0 + 1, y0 + 1);
-            if (!(w00 > 0.0 && w10 > 0.0 && w01 > 0.0 && w11 > 0.0)) continue;
+            if (!(w00 > 2e-30 && w10 > 2e-30 && w01 > 2e-30 && w11 > 2e-30)) continue;  // as gtao.cpp: 1e30 is sky
             const float crossTerm = abs(w00 + w11 - w10 - w01);
             if (crossTerm > 1e-4 * max(max(w00, w10), max(w01, w11))) continue;
             const float fx = gx - float(x0), fy = gy - float(y0);
