@@ -51,7 +51,8 @@ enum class GtaoSampling { Planar, Nearest, Mip, PlanarMip, PlanarNearest };
 struct GtaoSettings {
     float radius = 1.0f;            // r: m, (0, 1e4]; occluders farther than r from the point do not count
     float falloffStart = 1.0f;      // fraction of r where the conservative linear fade to 0 at r starts,
-                                    // [0, 1]; 1 = hard cut at r, which is what binary AO of radius r means.
+                                    // [0, 1]; 1 = hard cut at r, which is what binary AO of radius r means
+                                    // (the paper always fades, from "a large enough distance" to r).
                                     // The bitmask thickness does not fade: a sample within r sets its sectors whole
     int sliceCount = 3;             // slice directions per pixel, [1, 64] (the `high` preset)
     int stepsPerSide = 3;           // horizon samples on each side of a slice, [1, 256]

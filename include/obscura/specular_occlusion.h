@@ -7,7 +7,8 @@
 // Table convention (the paper leaves it open): normal n = +Z, view direction w_o at polar angle theta_o in
 // the XZ plane (azimuth pi), reflection w_r = (sin theta_o, 0, cos theta_o), and the bent normal b in the
 // same plane, beta from w_r rotated towards n. The BRDF is GGX with height-correlated Smith masking and no
-// Fresnel (it cancels in eq. 14); GGX alpha = roughness^2. The 4-D table's beta nodes follow b from w_r
+// Fresnel: it cancels in eq. 14 where it depends on w_o alone, as the paper's eq. 4 takes it (a Schlick
+// F(v.h) with F0 = 0.04 would move eq. 21 by up to 0.2 at grazing views); GGX alpha = roughness^2. The 4-D table's beta nodes follow b from w_r
 // (beta = 0) to n (beta = theta_o, node 15 at every theta_o) and on to the horizon (beta = theta_o + pi/2,
 // node 31), so that b = n, where S falls steeply at grazing views, is a node rather than a point between two.
 //
@@ -25,7 +26,9 @@
 
 namespace obscura::ssao {
 
-// eq. 18: cos of the visibility cone's half-angle for cosine-weighted AO, sqrt(1 - A).
+// eq. 18: cos of the visibility cone's half-angle for cosine-weighted AO, sqrt(1 - A). Every function here
+// takes cosine-weighted AO: GTAO with GtaoWeighting::Uniform gives uniformly weighted A, whose cone is App. A's
+// eq. 24, cos = 1 - A (at A = 0.5, 60 degrees, where eq. 18 gives 45), which is not implemented.
 float visibilityConeCos(float ao);
 // eq. 18's half-angle alpha_v itself (radians, [0, pi/2]), precise for AO near 0 where acos of the cosine is not.
 float visibilityConeAngle(float ao);

@@ -37,7 +37,8 @@ struct ObscuranceSettings {
     Falloff falloff = Falloff::Binary;
     float radius = kInfinity;       // r: m, (0, inf]; Binary and Alchemy ignore hits at t >= r
     float alchemyU = 0.05f;         // u of Alchemy's g(t): m, > 0 (the paper plots u = 0.05 r and 0.1 r)
-    float alchemyScale = 1.0f;      // multiplies Alchemy's g(t): unitless, >= 0 (sigma of eq. 10)
+    float alchemyScale = 1.0f;      // multiplies Alchemy's g(t): >= 0; not eq. 10's sigma itself, but sigma / u
+                                    // for the paper's form and pi * scale for the chapter's (rayTracedEquivalent)
     float halfDistance = 2.0f;      // d of the exponential kernel: m, > 0 (rho(d) = 1/2); Sloan uses 2 and 300
     int rays = 256;                 // rays per point: [1, 1<<20]; cosine-weighted, stratified (shifted Sobol)
     std::uint32_t seed = 0;         // any value; the same seed gives the same bits on any thread count
