@@ -9,6 +9,7 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace obscura {
 
@@ -49,5 +50,16 @@ std::string fileExtension(const std::string& path);
 void writeAtomically(const std::string& path, const std::function<void(const std::string& tempPath)>& write);
 // Fails as writeAtomically would, before any work, if `path`'s directory takes no new file; leaves nothing.
 void checkWritable(const std::string& path);
+
+// Writes files that belong together (an EXR and its camera JSON) all or none: each writer fills a temporary
+// beside its file (a hidden name with the same extension), and only once every writer has succeeded are they
+// renamed into place. A failed writer removes every temporary and leaves the files that were there as they were;
+// its message names the file, not the temporary. Only the renames, one per file, can leave a mix, if one of
+// them fails after another succeeded.
+struct FileWriter {
+    std::string path;
+    std::function<void(const std::string& path)> write;
+};
+void writeFilesTogether(const std::vector<FileWriter>& files);
 
 } // namespace obscura

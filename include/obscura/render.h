@@ -51,7 +51,7 @@ enum class Tonemap { Aces, Reinhard, None };
 
 struct ShadeSettings {
     float exposure = 0.0f;                // EV stops added before tonemapping, [-20, 20]
-    Tonemap tonemap = Tonemap::Aces;      // ACES filmic fit (Narkowicz 2015), Reinhard, or clamp
+    Tonemap tonemap = Tonemap::Aces;      // ACES filmic fit (Narkowicz 2016), Reinhard, or clamp
 };
 
 struct Frame {

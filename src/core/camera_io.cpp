@@ -93,11 +93,12 @@ Camera cameraFromJson(const std::string& text, const std::string& what) {
     nlohmann::json j;
     try {
         j = nlohmann::json::parse(text);
-    } catch (const nlohmann::json::parse_error& e) {
+    } catch (const nlohmann::json::exception& e) {
         // Every syntax error read "not a JSON object"; the parser's own words say where and what
-        // ("[json.exception.parse_error.101] parse error at line 3, column 1: syntax error ...").
+        // ("[json.exception.parse_error.101] parse error at line 3, column 1: syntax error ...", or
+        // "[json.exception.out_of_range.406] number overflow parsing '1e999'").
         std::string why = e.what();
-        if (const std::size_t at = why.find("parse error"); at != std::string::npos) why = why.substr(at);
+        if (const std::size_t at = why.find("] "); at != std::string::npos) why = why.substr(at + 2);
         fail(what, "not valid JSON: " + why);
     }
     if (!j.is_object()) fail(what, "not a JSON object");

@@ -39,6 +39,15 @@ Image readEnvironmentImage(const std::string& path) {
 
 namespace {
 
+// `text` cut to at most `bytes`, never inside a UTF-8 character: a name cut mid-character is no valid UTF-8,
+// which some file systems refuse.
+std::string cutUtf8(const std::string& text, std::size_t bytes) {
+    if (text.size() <= bytes) return text;
+    std::size_t end = bytes;
+    while (end > 0 && (static_cast<unsigned char>(text[end]) & 0xC0) == 0x80) --end;  // text[end] continues one
+    return text.substr(0, end);
+}
+
 std::string temporaryPathFor(const std::string& path) {
     // The pid keeps concurrent processes apart, the counter concurrent threads of this one.
     static std::atomic<unsigned long> counter{0};
@@ -49,7 +58,7 @@ std::string temporaryPathFor(const std::string& path) {
     const std::string name = target.filename().string();
     constexpr std::size_t kMaxName = 255;
     if (name.size() + suffix.size() <= kMaxName) return path + suffix;
-    return (target.parent_path() / (name.substr(0, kMaxName - suffix.size()) + suffix)).string();
+    return (target.parent_path() / (cutUtf8(name, kMaxName - suffix.size()) + suffix)).string();
 }
 
 // Creating the temporary up front (exclusively, so a stale or foreign file is never reused) turns a
@@ -74,6 +83,43 @@ void checkWritable(const std::string& path) {
     createEmptyFile(path, temp);
     std::error_code ignored;
     fs::remove(temp, ignored);
+}
+
+void writeFilesTogether(const std::vector<FileWriter>& files) {
+    std::vector<std::string> temporaries;
+    const std::string tag = ".part-" + std::to_string(getpid());
+    for (const FileWriter& f : files) {
+        const fs::path target(f.path);
+        const std::string ext = target.extension().string();
+        const std::string stem = cutUtf8(target.stem().string(), 255 - 1 - tag.size() - ext.size());
+        temporaries.push_back((target.parent_path() / ("." + stem + tag + ext)).string());
+    }
+    const auto removeTemporaries = [&] {
+        std::error_code ec;
+        for (const std::string& t : temporaries) fs::remove(t, ec);
+    };
+    for (std::size_t i = 0; i < files.size(); ++i) {
+        try {
+            files[i].write(temporaries[i]);
+        } catch (const Error& e) {
+            removeTemporaries();
+            std::string message = e.what();
+            for (std::size_t at; (at = message.find(temporaries[i])) != std::string::npos;)
+                message.replace(at, temporaries[i].size(), files[i].path);
+            throw Error(message);
+        } catch (...) {
+            removeTemporaries();
+            throw;
+        }
+    }
+    for (std::size_t i = 0; i < files.size(); ++i) {
+        std::error_code ec;
+        fs::rename(temporaries[i], files[i].path, ec);
+        if (ec) {
+            removeTemporaries();
+            fail(files[i].path, "cannot write: " + ec.message());
+        }
+    }
 }
 
 void writeAtomically(const std::string& path, const std::function<void(const std::string& tempPath)>& write) {

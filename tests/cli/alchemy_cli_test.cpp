@@ -168,6 +168,11 @@ TEST_F(AlchemyCli, AoRefusesContradictionsAndReadsOnlySurfaceNormals) {
                   {"--ao-formulation", "contradicts --method alchemy-chapter"});
     expectFailure(in + "--method alchemy --ao-formulation chapter -o " + path("x.exr"),
                   {"--ao-formulation", "contradicts --method alchemy"});
+    // A preset is the chapter's calibration: with --method alchemy it switched to the chapter's formulation
+    // without a word. With alchemy-chapter it runs.
+    expectFailure(in + "--method alchemy --ao-preset scene -o " + path("x.exr"),
+                  {"--ao-preset", "--method alchemy-chapter"});
+    ASSERT_EQ(run(in + "--method alchemy-chapter --ao-preset scene -o " + path("p.exr")).code, 0);
     r = run(in + "--method alchemy-chapter --ao-formulation chapter --normal " + path("aov/normal.exr") + " -o " +
             path("a.exr"));
     ASSERT_EQ(r.code, 0) << r.out;
@@ -399,7 +404,7 @@ TEST_F(AlchemyCli, CompareReportsMetricsAndWritesThePicture) {
 
 // The reference is a Monte Carlo estimate, and its noise went into every MAE and RMSE unreported (and the help
 // called it exact): at 1 ray the gtao row read MAE 0.096 against 0.015 at 4096. Its RMS standard error is now
-// reported beside each row and in the JSON: null for 1 ray, falling as 1/sqrt(rays), near 0 where the
+// reported beside each row and in the JSON: null under 8 rays, falling as 1/sqrt(rays), near 0 where the
 // reference is; each falloff's reference lists the parameters that falloff reads, and only those.
 TEST_F(AlchemyCli, CompareReportsTheReferencesNoise) {
     const auto json = [&](int rays) {
@@ -408,8 +413,9 @@ TEST_F(AlchemyCli, CompareReportsTheReferencesNoise) {
         EXPECT_EQ(r.code, 0) << r.out;
         return nlohmann::json::parse(r.out);
     };
-    const nlohmann::json one = json(1), few = json(16), many = json(1024);
+    const nlohmann::json one = json(1), four = json(4), few = json(16), many = json(1024);
     EXPECT_TRUE(one["methods"][1]["reference"]["noise"].is_null()) << one.dump();
+    EXPECT_TRUE(four["methods"][1]["reference"]["noise"].is_null()) << four.dump();
     for (int m : {0, 1}) {
         const double noiseFew = few["methods"][m]["reference"]["noise"].get<double>();
         const double noiseMany = many["methods"][m]["reference"]["noise"].get<double>();
@@ -429,6 +435,7 @@ TEST_F(AlchemyCli, CompareReportsTheReferencesNoise) {
     EXPECT_EQ(many["blur"]["mode"], "none");
     // Floats go out as their shortest decimal: the alchemy reference's u is 0.01 m, not 0.009999999776.
     EXPECT_EQ(alchemy["u"].dump(), "0.01");
+    EXPECT_EQ(alchemy["radius"].dump(), "0.5");
     const Result table = run("compare corner --methods gtao --size 32x24 -q --rays 4 -o " + path("t.png"));
     EXPECT_NE(table.out.find("ref noise"), std::string::npos) << table.out;
     EXPECT_NE(table.out.find("raise --rays"), std::string::npos) << table.out;

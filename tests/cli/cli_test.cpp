@@ -286,6 +286,11 @@ TEST_F(Cli, AnUnwritableOutputDirectoryFailsFirst) {
     expectFailure("render corner" + kFast + "-o /proc/x.png", {"/proc/x.png", "cannot write"});
     expectFailure("gbuffer corner --size 8x6 -q -o /proc/g.exr", {"/proc/g", "cannot write"});
     expectFailure("scenes --generate level --triangles 4000 -o /proc/l.glb", {"/proc/l.glb", "cannot write"});
+    // Output directories too: gbuffer -o /proc/gdir rendered first, and render --aov-dir on a directory that
+    // takes no file traced the whole frame.
+    expectFailure("gbuffer corner --size 8x6 -q -o /proc/gdir", {"/proc/gdir", "cannot be made", "takes no new file"});
+    expectFailure("render corner" + kFast + "-o " + path("f.png") + " --aov-dir /proc/self/fdinfo",
+                  {"/proc/self/fdinfo", "directory takes no new file"});
 }
 
 // gbuffer writes its files all or none: a failed camera.json removed the new EXR and with it the previous one it

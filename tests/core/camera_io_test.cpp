@@ -46,6 +46,8 @@ TEST(CameraIo, ErrorsNameTheFileAndProblem) {
     for (Case c : {Case{"{not json", "not valid JSON: parse error at line 1, column 3"},
                    Case{"{\"position\": [0, 1, 2],}", "not valid JSON: parse error at line 1, column 24"},
                    Case{"[1, 2]", "not a JSON object"},
+                   Case{R"({"position":[0,1,2],"target":[0,0,0],"fovY":1e999,"width":4,"height":4})",
+                        "not valid JSON: number overflow parsing '1e999'"},
                    Case{R"({"position":[0,1,2],"target":[0,0,0],"fovY":0,"width":4,"height":4})", "cam.json: fovY must be in"},
                    Case{R"({"target":[0,0,0],"fovY":60,"width":4,"height":4})", "missing \"position\""},
                    Case{R"({"position":[0,1],"target":[0,0,0],"fovY":60,"width":4,"height":4})", "array of 3 numbers"},

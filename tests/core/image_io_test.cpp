@@ -376,6 +376,28 @@ TEST_F(ImageIoTest, ExrReadsHalfAndUintChannelsAndHonoursDataWindow) {
     EXPECT_TRUE(std::signbit(image.at(2, 0, 0))); // -0 survives
 }
 
+// Files that belong together are written all or none: a writer that fails leaves the files that were there as
+// they were and no temporary, and its message names the file (gbuffer once removed, on a failed camera.json,
+// the EXR it had already replaced).
+TEST_F(ImageIoTest, FilesWrittenTogetherAreAllOrNone) {
+    writeBytes(file("a.exr"), "old a");
+    writeBytes(file("b.json"), "old b");
+    const Image image(2, 2, 1, 0.5f);
+    const std::string message = thrownMessage([&] {
+        obscura::writeFilesTogether({{file("a.exr"), [&](const std::string& p) { obscura::writeExr(p, image); }},
+                                     {file("b.json"), [&](const std::string& p) { obscura::fail(p, "no room"); }}});
+    });
+    EXPECT_EQ(message, file("b.json") + ": no room");
+    EXPECT_EQ(readBytes(file("a.exr")), "old a");
+    EXPECT_EQ(readBytes(file("b.json")), "old b");
+    for (const auto& e : std::filesystem::directory_iterator(dir_))
+        EXPECT_EQ(e.path().filename().string().find(".part-"), std::string::npos) << e.path();
+    obscura::writeFilesTogether({{file("a.exr"), [&](const std::string& p) { obscura::writeExr(p, image); }},
+                                 {file("b.json"), [&](const std::string& p) { writeBytes(p, "new b"); }}});
+    EXPECT_EQ(obscura::readExr(file("a.exr")).pixels, image.pixels);
+    EXPECT_EQ(readBytes(file("b.json")), "new b");
+}
+
 // A multi-part file was read as its first part, and a deep one as its samples composited, both without a word:
 // a depth in part 1 read part 0's channel Y as depth (AO 1 everywhere), and two half-transparent samples gave a
 // depth no surface has. Both are refused, naming the file.

@@ -38,9 +38,10 @@ Spread spreadOver(const Tracer& tracer, const ObscuranceSettings& s, int seeds) 
 
 } // namespace
 
-// Measured ratios reported / actual over 2000 seeds: binary 0.94 to 1.43, exponential 1.28 to 1.70, alchemy
-// 1.48 to 1.77, at 8 to 1024 rays and at 100 (no power of 2: plain halves of 100 rays read 4.7 times the
+// Measured ratios reported / actual over 2000 seeds: binary 0.94 to 1.43, alchemy 1.28 to 1.70, exponential
+// 1.48 to 1.85, at 8 to 1024 rays and at 100 (no power of 2: plain halves of 100 rays read 4.7 times the
 // spread). The bound [0.8, 2.2] holds the figure to "the noise, erring high", and fails on the halves of 100.
+// (Elsewhere it errs higher: up to 3.4 at points of corner and stairs.)
 TEST(StandardError, MatchesTheSpreadOverSeeds) {
     BuiltinScene scene = makeBuiltinScene("ceiling");
     Tracer tracer(scene.scene);
@@ -58,9 +59,9 @@ TEST(StandardError, MatchesTheSpreadOverSeeds) {
         }
 }
 
-// No occluder within reach: every ray misses, A = 1 with no noise. One ray has no second net: NaN. The image
+// No occluder within reach: every ray misses, A = 1 with no noise. Under 8 rays: NaN. The image
 // overload gives each surface pixel its error and the sky 0.
-TEST(StandardError, IsZeroWithoutNoiseAndNaNForOneRay) {
+TEST(StandardError, IsZeroWithoutNoiseAndNaNUnderEightRays) {
     BuiltinScene plane = makeBuiltinScene("plane");
     Tracer tracer(plane.scene);
     ObscuranceSettings s;
@@ -69,8 +70,13 @@ TEST(StandardError, IsZeroWithoutNoiseAndNaNForOneRay) {
     const ObscuranceEstimator::Estimate open = estimator.estimate({1, 0, 2}, kUp, kUp, 3);
     EXPECT_EQ(open.value, 1.0f);
     EXPECT_EQ(open.standardError, 0.0f);
-    s.rays = 1;
-    EXPECT_TRUE(std::isnan(ObscuranceEstimator(tracer, s).estimate({1, 0, 2}, kUp, kUp, 3).standardError));
+    // Nets of 1 or 2 rays tell nothing (at 4 rays a binary point under the ceiling read 22 times its spread).
+    for (int rays : {1, 2, 4, 7}) {
+        s.rays = rays;
+        EXPECT_TRUE(std::isnan(ObscuranceEstimator(tracer, s).estimate({1, 0, 2}, kUp, kUp, 3).standardError)) << rays;
+    }
+    s.rays = 8;
+    EXPECT_EQ(ObscuranceEstimator(tracer, s).estimate({1, 0, 2}, kUp, kUp, 3).standardError, 0.0f);
 
     BuiltinScene demo = makeBuiltinScene("demo");
     Tracer demoTracer(demo.scene);

@@ -268,44 +268,6 @@ void checkOutputPath(const std::string& flag, const std::string& path, const std
     checkWritable(path);
 }
 
-void writeAllOrNone(const std::vector<FileWriter>& files) {
-    std::vector<std::string> temporaries;
-    const std::string tag = ".part-" + std::to_string(getpid());
-    for (const FileWriter& f : files) {
-        const fs::path target(f.path);
-        std::string stem = target.stem().string();
-        const std::string ext = target.extension().string();
-        if (1 + stem.size() + tag.size() + ext.size() > 255) stem.resize(255 - 1 - tag.size() - ext.size());
-        temporaries.push_back((target.parent_path() / ("." + stem + tag + ext)).string());
-    }
-    const auto removeTemporaries = [&] {
-        std::error_code ec;
-        for (const std::string& t : temporaries) fs::remove(t, ec);
-    };
-    for (std::size_t i = 0; i < files.size(); ++i) {
-        try {
-            files[i].write(temporaries[i]);
-        } catch (const Error& e) {
-            removeTemporaries();
-            std::string message = e.what();
-            for (std::size_t at; (at = message.find(temporaries[i])) != std::string::npos;)
-                message.replace(at, temporaries[i].size(), files[i].path);
-            throw Error(message);
-        } catch (...) {
-            removeTemporaries();
-            throw;
-        }
-    }
-    for (std::size_t i = 0; i < files.size(); ++i) {
-        std::error_code ec;
-        fs::rename(temporaries[i], files[i].path, ec);
-        if (ec) {
-            removeTemporaries();
-            fail(files[i].path, "cannot write: " + ec.message());
-        }
-    }
-}
-
 bool samePath(const std::string& a, const std::string& b) {
     if (a.empty() || b.empty()) return false;
     std::error_code ea, eb;
@@ -329,6 +291,18 @@ void checkInputFormat(const std::string& flag, const std::string& path, const st
 void checkOutputDirectory(const std::string& flag, const std::string& dir, bool create) {
     if (dir.empty()) fail(flag, "directory is empty");
     if (fs::exists(dir) && !fs::is_directory(dir)) fail(dir, "exists and is not a directory");
+    // One that takes no new file (or whose nearest existing parent takes none) fails now, not after the work:
+    // gbuffer -o /proc/gdir rendered first, render --aov-dir on a read-only directory traced the whole frame.
+    if (!create) {
+        fs::path probe = fs::absolute(dir);
+        while (!fs::exists(probe) && probe.has_parent_path() && probe.parent_path() != probe) probe = probe.parent_path();
+        try {
+            checkWritable((probe / ".obscura").string());
+        } catch (const Error&) {
+            fail(dir, fs::exists(dir) ? "directory takes no new file (read-only?)"
+                                      : "cannot be made: " + probe.string() + " takes no new file (read-only?)");
+        }
+    }
     if (!fs::exists(dir) && create) {
         std::error_code ec;
         fs::create_directories(dir, ec);

@@ -88,15 +88,6 @@ void checkOutputDirectory(const std::string& flag, const std::string& dir, bool 
 // makes, and what a failed command removes again.
 std::filesystem::path firstMissingDirectory(const std::string& dir);
 
-// Writes a set of files that belong together all or none: each writer fills a temporary beside its file (the
-// same extension, a hidden name), and only once every writer has succeeded are they renamed into place. A
-// failure removes the temporaries and leaves the files that were there as they were; its message names the
-// file, not the temporary.
-struct FileWriter {
-    std::string path;
-    std::function<void(const std::string& path)> write;
-};
-void writeAllOrNone(const std::vector<FileWriter>& files);
 
 // Fails early if an input (skipped when empty) is not one of `extensions`, where readImage would read other
 // formats as something they cannot hold: "<flag>: <path>: <content> is read from .hdr or .exr files, not .png".

@@ -155,6 +155,10 @@ void run(const AoOptions& o) {
             fail("--ao-formulation", o.alchemy.formulation + " contradicts --method " + o.method + " (whose formulation is " +
                                          implied + "); give one of the two");
     }
+    // A preset calibrates the chapter's formulation and switched --method alchemy (the paper's) to it silently.
+    if (o.method == "alchemy" && !o.alchemy.preset.empty())
+        fail("--ao-preset", o.alchemy.preset + " calibrates the chapter's formulation, and --method alchemy is the "
+                                               "paper's; give --method alchemy-chapter");
     if (o.method == "alchemy-chapter") alchemy.formulation = ssao::AlchemyFormulation::Chapter;
     const bool radiusGiven = o.alchemy.radiusOption->count() > 0;
     if (!o.method.starts_with("alchemy")) {

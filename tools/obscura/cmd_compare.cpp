@@ -181,7 +181,7 @@ void run(const CompareOptions& o) {
     const render::ShadeSettings shading;
 
     // A reference and its Monte Carlo noise: the RMS over surface pixels of each pixel's standard error, from
-    // the two halves of its rays (ObscuranceEstimator::estimate; high side). The noise adds to every method's
+    // two nets of its rays (ObscuranceEstimator::estimate; high side). The noise adds to every method's
     // errors (E[RMSE^2] = RMSE^2 of the method + noise^2), so it says how far the figures can be read.
     struct Reference {
         Image ao;
@@ -219,7 +219,7 @@ void run(const CompareOptions& o) {
                     sum += double(standardError.pixels[i]) * double(standardError.pixels[i]);
                     ++n;
                 }
-            ref.noise = std::sqrt(sum / double(n));  // NaN with 1 ray: no halves to tell it
+            ref.noise = std::sqrt(sum / double(n));  // NaN under 8 rays: too few to tell it
             it = references.emplace(key, std::move(ref)).first;
         }
         r.reference = &it->second;
@@ -247,7 +247,8 @@ void run(const CompareOptions& o) {
     report["surface_pixels"] = rows.front().stats.pixels;
     for (const Row& r : rows) {
         nlohmann::json reference = {{"falloff", falloffNames[int(r.ref.falloff)]},
-                                    {"radius", jsonOrNull(r.ref.radius)},
+                                    {"radius", std::isfinite(r.ref.radius) ? nlohmann::json(jsonNumber(r.ref.radius))
+                                                                           : nlohmann::json(nullptr)},
                                     {"noise", jsonOrNull(r.reference->noise)}};
         if (r.ref.falloff == trace::Falloff::Alchemy) {
             reference["u"] = jsonNumber(r.ref.alchemyU);
@@ -328,7 +329,7 @@ void run(const CompareOptions& o) {
     }
     if (noisy)
         std::printf("\nref noise: the reference's own RMS standard error, part of each RMSE; where it is over half of "
-                    "one (or unknown, 1 ray), raise --rays before reading that row's figures\n");
+                    "one (or unknown, under 8 rays), raise --rays before reading that row's figures\n");
     std::printf("\nwrote %s: rows = methods; columns = lit frame, method AO, ray-traced AO, signed error "
                 "(blue: too dark, red: too light, +-%s)\n",
                 o.output.c_str(), rangeText.c_str());

@@ -89,10 +89,10 @@ void run(const GBufferOptions& o) {
     try {
         if (toDirectory) {
             checkOutputDirectory("-o", o.output, true);
-            writeAllOrNone({{outputs[0], exr(g.depth)}, {outputs[1], exr(g.normal)}, {outputs[2], exr(g.albedo)},
-                            {outputs[3], json}});
+            writeFilesTogether({{outputs[0], exr(g.depth)}, {outputs[1], exr(g.normal)}, {outputs[2], exr(g.albedo)},
+                                {outputs[3], json}});
         } else {
-            writeAllOrNone({{outputs[0], exr(all)}, {outputs[1], json}});
+            writeFilesTogether({{outputs[0], exr(all)}, {outputs[1], json}});
         }
     } catch (...) {
         if (!created.empty()) fs::remove_all(created, ec);
