@@ -1,8 +1,10 @@
 // Errors that come from a user's input or machine.
 //
 // Two tiers, as everywhere in Obscura: programming errors are assert()s; everything that can fail on
-// input or environment (files, parsing, devices, memory) throws obscura::Error, whose message names the
-// file or resource and the problem on one line, ready to print as it is.
+// input or environment (files, parsing, devices, GPU memory) throws obscura::Error, whose message names the
+// file or resource and the problem on one line, ready to print as it is. Host memory running out throws
+// std::bad_alloc, as the standard library does (the image readers turn it into an Error naming the file;
+// the command-line tool reports it as "out of memory").
 #pragma once
 
 #include <stdexcept>

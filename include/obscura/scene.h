@@ -64,5 +64,9 @@ std::size_t removeDegenerateTriangles(Mesh& mesh);
 // and in the world, instances pointing at existing meshes. Degenerate triangles are dropped
 // and counted in *dropped. Throws obscura::Error("<what>: <problem>").
 void sanitizeScene(Scene& scene, const std::string& what, std::size_t* dropped = nullptr);
+// sanitizeScene's checks that change nothing (indices, instances, finite positions, normals and transforms, the
+// coordinate bound), which trace::Tracer and bake::bakeScene make on a scene they are given: one built by hand
+// and never sanitized was read past its meshes' ends. O(vertices).
+void checkScene(const Scene& scene, const std::string& what);
 
 } // namespace obscura

@@ -191,7 +191,8 @@ float ambientObscurance(const Tracer& tracer, Vec3 p, Vec3 n, Vec3 ng, const Obs
 
 // Per-pixel obscurance of a G-buffer rendered from this tracer's scene: each pixel's primary ray is traced
 // again for the exact hit point and geometric normal; the hemisphere is about the G-buffer normal. Sky
-// pixels get 1. Returns a 1-channel image. Deterministic for a seed, any thread count. `standardError`, if given,
+// pixels get 1. Returns a 1-channel image. Deterministic for a seed, any thread count. Throws obscura::Error for
+// a G-buffer that does not match its camera (GBuffer::validate) or a camera that is not valid. `standardError`, if given,
 // gets each pixel's ObscuranceEstimator::Estimate::standardError (sky: 0; NaN under 8 rays).
 Image ambientObscurance(const Tracer& tracer, const GBuffer& gbuffer, const ObscuranceSettings& settings,
                         const Progress& progress = {}, Image* standardError = nullptr);

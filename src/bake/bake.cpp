@@ -24,6 +24,7 @@ double now() {
 BakeResult bakeScene(const Scene& scene, const BakeSettings& settings, const StageProgress& progress,
                      std::size_t rawEmbreeStride) {
     settings.validate();
+    checkScene(scene, "bake");
     auto report = [&](const char* stage, double f) {
         if (progress) progress(stage, f);
     };

@@ -80,6 +80,12 @@ Bounds refinementFocus(const Scene& scene, float largest) {
 }
 
 Scene refineScene(const Scene& scene, float maxEdge, const Bounds& focus, float grading) {
+    // A NaN, zero or negative edge ran 20 s and 1.6 GB into the triangle budget, whose message advised a larger
+    // edge.
+    if (!(maxEdge > 0.0f) || !std::isfinite(maxEdge))
+        fail("refineScene", "maxEdge must be a finite length > 0 m, got " + numberText(maxEdge));
+    if (!(grading >= 0.0f) || !std::isfinite(grading))
+        fail("refineScene", "grading must be a finite value >= 0 per m, got " + numberText(grading));
     std::size_t budget = 20000000;
     Scene out;
     out.instances = scene.instances;
@@ -118,6 +124,9 @@ Scene refineScene(const Scene& scene, float maxEdge, const Bounds& focus, float 
 QualityResult compareWithDense(const Scene& scene, const BakeSettings& settings, int referenceRays) {
     settings.validate();
     if (settings.mode != Mode::Obscurance) fail("compare", "the dense comparison is for obscurance mode");
+    // Before the bake, not after it as ObscuranceSettings::validate did, naming "ao-rays".
+    if (referenceRays < 1 || referenceRays > (1 << 20))
+        fail("compareWithDense", "referenceRays must be in [1, 1048576], got " + std::to_string(referenceRays));
     const auto start = std::chrono::steady_clock::now();
     QualityResult q;
     q.referenceRays = referenceRays;
@@ -135,6 +144,9 @@ QualityResult compareWithDense(const Scene& scene, const BakeSettings& settings,
     for (std::size_t i = 0; i < scene.instances.size(); ++i) {
         const Instance& inst = scene.instances[i];
         const Mesh& m = scene.meshes[inst.mesh];
+        // A mesh without normals (Mesh::normals is empty until computed) was read past their end; its vertices
+        // take their faces' normals below, as crease copies do.
+        if (m.normals.size() != m.positions.size()) continue;
         const Mat4 nm = normalMatrix(inst.worldFromObject);
         for (std::size_t v = 0; v < m.positions.size(); ++v)
             normal[mesh.vertexMap[mesh.instanceFirst[i] + v]] += normalize(transformVector(nm, m.normals[v]));

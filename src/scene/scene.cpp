@@ -228,7 +228,7 @@ bool isFinite(const Mat4& m) {
 
 } // namespace
 
-void sanitizeScene(Scene& scene, const std::string& what, std::size_t* dropped) {
+void checkScene(const Scene& scene, const std::string& what) {
     for (std::size_t i = 0; i < scene.instances.size(); ++i) {
         const Instance& inst = scene.instances[i];
         if (inst.mesh >= scene.meshes.size())
@@ -255,6 +255,10 @@ void sanitizeScene(Scene& scene, const std::string& what, std::size_t* dropped) 
                            " places geometry " + numberText(reach) + " m from the origin, beyond " +
                            numberText(kMaxSceneCoordinate) + " m");
     }
+}
+
+void sanitizeScene(Scene& scene, const std::string& what, std::size_t* dropped) {
+    checkScene(scene, what);
     std::size_t removed = 0;
     for (Mesh& mesh : scene.meshes) removed += removeDegenerateTriangles(mesh);
     if (dropped) *dropped = removed;

@@ -181,6 +181,10 @@ Image normalsFromDepth(const Image& depth, const Camera& camera) {
     // below a crease's), else the short one.
     constexpr float kPlaneMisfit = 1e-4f;
     auto prefer = [&](int x, int y, int dx, int dy) {
+        // Only one side there: that one, whatever its misfit. A misfit that overflowed to inf (depths 1e29 and
+        // 1e-10 side by side) or went NaN (a depth of 0) tied with the missing side's inf, and the pixel off the
+        // image was read.
+        if (const bool useA = usable(x + dx, y + dy); useA != usable(x - dx, y - dy)) return useA;
         const float a = misfit(x, y, dx, dy), b = misfit(x, y, -dx, -dy);
         const bool longA = usable(x + dx, y + dy) && usable(x + 2 * dx, y + 2 * dy);
         const bool longB = usable(x - dx, y - dy) && usable(x - 2 * dx, y - 2 * dy);

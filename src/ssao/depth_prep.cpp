@@ -93,7 +93,7 @@ GBuffer prepareGBuffer(const Image& deviceDepth, const Image& normals, const Cam
         for (int x = 0; x < k.width; ++x) {
             const float z = deviceDepth.at(x, y);
             if (!(z >= 0.0f && z <= 1.0f))
-                fail(what, "depth " + std::to_string(z) + " at pixel (" + std::to_string(x) + ", " + std::to_string(y) +
+                fail(what, "depth " + numberText(z) + " at pixel (" + std::to_string(x) + ", " + std::to_string(y) +
                                ") is outside [0, 1]");
             const float d = linearDepthFromDevice(z, k);
             g.depth.at(x, y) = d;

@@ -105,6 +105,14 @@ float ambientObscurance(const Tracer& tracer, Vec3 p, Vec3 n, Vec3 ng, const Obs
 
 Image ambientObscurance(const Tracer& tracer, const GBuffer& g, const ObscuranceSettings& s, const Progress& progress,
                         Image* standardError) {
+    // The G-buffer is read per pixel: an empty one, or one smaller than its camera, was read past its end, and
+    // a NaN field of view reached Embree's own assert.
+    try {
+        g.camera.validate();
+    } catch (const Error& e) {
+        fail("ambientObscurance", e.what());
+    }
+    g.validate("ambientObscurance");
     const ObscuranceEstimator estimate(tracer, s);
     const Camera& cam = g.camera;
     const Mat4 worldFromView = cam.worldFromView();

@@ -105,7 +105,8 @@ RTCRayHit makeRayHit(Vec3 o, Vec3 d, float tnear, float tfar) {
     return rh;
 }
 
-Tracer::Tracer(const Scene& scene) : impl_(std::make_unique<Impl>()), scene_(scene), bounds_(scene.bounds()) {
+Tracer::Tracer(const Scene& scene)
+    : impl_(std::make_unique<Impl>()), scene_(scene), bounds_((checkScene(scene, "scene"), scene.bounds())) {
     Impl& s = *impl_;
     s.device = rtcNewDevice(nullptr);
     if (!s.device) fail("embree", "cannot create a device (error " + std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
