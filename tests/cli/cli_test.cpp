@@ -77,6 +77,8 @@ TEST_F(Cli, BadFlagValues) {
     expectFailure("render plane" + kFast + "--ao bogus -o " + path("f.png"), {"--ao"}, 2);
     expectFailure("render plane --ao-rays 4 -q --size 12xfoo -o " + path("f.png"), {"--size"});
     expectFailure("render plane" + kFast + "-o " + path("f.jpg"), {"f.jpg", "unsupported output format"});
+    // No extension at all read "unsupported output format ''".
+    expectFailure("render plane" + kFast + "-o " + path("frame"), {"frame: has no extension", ".png"});
     expectFailure("render plane" + kFast + "-o " + path("nodir/f.png"), {"does not exist"});
     expectFailure("render nosuchscene" + kFast + "-o " + path("f.png"), {"nosuchscene"});
     // A command line that names no command, or none at all: exit 2, and the word that is no command named

@@ -251,7 +251,10 @@ void checkOutputPath(const std::string& flag, const std::string& path, const std
                      const std::vector<std::string>& inputs) {
     if (path.empty()) fail(flag, "output path is empty");
     if (!hasExtension(path, extensions))
-        fail(path, "unsupported output format '" + fileExtension(path) + "' (expected " + extensionList(extensions) + ")");
+        fail(path, fileExtension(path).empty()
+                       ? "has no extension to tell the output format (expected " + extensionList(extensions) + ")"
+                       : "unsupported output format '" + fileExtension(path) + "' (expected " +
+                             extensionList(extensions) + ")");
     fs::path parent = fs::path(path).parent_path();
     if (!parent.empty() && !fs::is_directory(parent)) fail(path, "directory " + parent.string() + " does not exist");
     std::error_code ec;
