@@ -52,7 +52,7 @@ void writeAtomically(const std::string& path, const std::function<void(const std
 void checkWritable(const std::string& path);
 
 // Writes files that belong together (an EXR and its camera JSON) all or none: each writer fills a temporary
-// beside its file (a hidden name with the same extension), and only once every writer has succeeded are they
+// beside its file (writeAtomically's name for it), and only once every writer has succeeded are they
 // renamed into place. A failed writer removes every temporary and leaves the files that were there as they were;
 // its message names the file, not the temporary. Only the renames, one per file, can leave a mix, if one of
 // them fails after another succeeded.

@@ -156,8 +156,8 @@ public:
 
     // The same A, and the standard error of A estimated from two nets of the point's rays (its first 2h, h the
     // largest power of 2 up to N/2): on the high side, as the nets of one shifted sequence are anticorrelated:
-    // 0.94 to 1.8 times the spread of A over seeds under the closed-form ceiling, up to 3.4 at points of corner
-    // and stairs. NaN under 8 rays (nets of 1 or 2 rays tell nothing: at 4, 22 times the spread).
+    // 0.94 to 1.8 times the spread of A over seeds under the closed-form ceiling, 2.4 to 2.8 at a point of
+    // corner. NaN under 8 rays (nets of 1 or 2 rays tell nothing: at 4, 22 times the spread).
     struct Estimate {
         float value = 1.0f;
         float standardError = std::numeric_limits<float>::quiet_NaN();

@@ -87,13 +87,7 @@ void checkWritable(const std::string& path) {
 
 void writeFilesTogether(const std::vector<FileWriter>& files) {
     std::vector<std::string> temporaries;
-    const std::string tag = ".part-" + std::to_string(getpid());
-    for (const FileWriter& f : files) {
-        const fs::path target(f.path);
-        const std::string ext = target.extension().string();
-        const std::string stem = cutUtf8(target.stem().string(), 255 - 1 - tag.size() - ext.size());
-        temporaries.push_back((target.parent_path() / ("." + stem + tag + ext)).string());
-    }
+    for (const FileWriter& f : files) temporaries.push_back(temporaryPathFor(f.path));
     const auto removeTemporaries = [&] {
         std::error_code ec;
         for (const std::string& t : temporaries) fs::remove(t, ec);

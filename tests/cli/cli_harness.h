@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <sys/wait.h>
 #include <vector>
@@ -22,6 +23,12 @@ struct CliResult {
     int code = -1;
     std::string out;  // stdout and stderr together
 };
+
+// A file's bytes ("" if it cannot be read): to tell that a failed run left a file as it was.
+inline std::string fileBytes(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string((std::istreambuf_iterator<char>(in)), {});
+}
 
 // Runs the obscura binary built with the tests (OBSCURA_CLI) through the shell.
 inline CliResult runCli(const std::string& args) {

@@ -247,10 +247,7 @@ TEST_F(Cli, CompareRefusesAViewOfOnlySky) {
 TEST_F(Cli, AovDirNeverOverwritesAnInputOrTheOutput) {
     ASSERT_EQ(run("render plane" + kFast + "-o " + path("f.png") + " --aov-dir " + path("aov")).code, 0);
     const std::string env = path("aov/lighting.exr");  // a 3-channel EXR: an environment the render reads
-    const auto bytes = [](const std::string& file) {
-        std::ifstream in(file, std::ios::binary);
-        return std::string((std::istreambuf_iterator<char>(in)), {});
-    };
+    const auto bytes = obscura::clitest::fileBytes;
     const std::string before = bytes(env);
     expectFailure("render corner --env " + env + kFast + "-o " + path("g.png") + " --aov-dir " + path("aov"),
                   {"lighting.exr", "is the input file"});
@@ -301,12 +298,10 @@ TEST_F(Cli, AnUnwritableOutputDirectoryFailsFirst) {
 // directory whose name has a dot was refused as an "unsupported output format".
 TEST_F(Cli, GBufferWritesAllOrNone) {
     ASSERT_EQ(run("gbuffer plane --size 16x12 -q -o " + path("g.exr")).code, 0);
-    const auto bytes = [](const std::string& file) {
-        std::ifstream in(file, std::ios::binary);
-        return std::string((std::istreambuf_iterator<char>(in)), {});
-    };
+    const auto bytes = obscura::clitest::fileBytes;
     const std::string exr = bytes(path("g.exr")), json = bytes(path("g.camera.json"));
-    // The camera's file cannot be made: a directory of its name.
+    // The camera's file cannot be made: a directory of its name. checkOutputPath refuses that before the work, so
+    // this holds the up-front check; the writer's own all-or-none is ImageIoTest.FilesWrittenTogetherAreAllOrNone.
     fs::remove(path("g.camera.json"));
     fs::create_directory(path("g.camera.json"));
     const Result blocked = run("gbuffer corner --size 24x12 -q -o " + path("g.exr"));
@@ -314,7 +309,7 @@ TEST_F(Cli, GBufferWritesAllOrNone) {
     EXPECT_EQ(bytes(path("g.exr")), exr) << "the previous EXR was replaced or removed";
     fs::remove(path("g.camera.json"));
     for (const auto& e : fs::directory_iterator(dir))
-        EXPECT_EQ(e.path().filename().string().find(".part-"), std::string::npos) << e.path();
+        EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << e.path();
     std::ofstream(path("g.camera.json"), std::ios::binary) << json;
     // A name past 255 bytes: refused before the work.
     const std::string longName = std::string(250, 'a') + ".exr";  // its camera: 250 + 12 bytes
@@ -439,10 +434,7 @@ TEST_F(Cli, HelpExplains) {
 // bytes: ao and render once replaced their depth buffer or environment map with their result and exited 0
 // (bake already refused its input). The same file under another spelling (./name) counts.
 TEST_F(Cli, OutputIsNeverAnInput) {
-    const auto bytes = [](const std::string& file) {
-        std::ifstream in(file, std::ios::binary);
-        return std::string(std::istreambuf_iterator<char>(in), {});
-    };
+    const auto bytes = obscura::clitest::fileBytes;
     ASSERT_EQ(run("gbuffer corner --size 24x16 -q -o " + path("g")).code, 0);
     const std::string depth = path("g/depth.exr"), camera = path("g/camera.json");
     const std::string before = bytes(depth);

@@ -391,7 +391,7 @@ TEST_F(ImageIoTest, FilesWrittenTogetherAreAllOrNone) {
     EXPECT_EQ(readBytes(file("a.exr")), "old a");
     EXPECT_EQ(readBytes(file("b.json")), "old b");
     for (const auto& e : std::filesystem::directory_iterator(dir_))
-        EXPECT_EQ(e.path().filename().string().find(".part-"), std::string::npos) << e.path();
+        EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << e.path();
     obscura::writeFilesTogether({{file("a.exr"), [&](const std::string& p) { obscura::writeExr(p, image); }},
                                  {file("b.json"), [&](const std::string& p) { writeBytes(p, "new b"); }}});
     EXPECT_EQ(obscura::readExr(file("a.exr")).pixels, image.pixels);

@@ -41,7 +41,7 @@ Spread spreadOver(const Tracer& tracer, const ObscuranceSettings& s, int seeds) 
 // Measured ratios reported / actual over 2000 seeds: binary 0.94 to 1.43, alchemy 1.28 to 1.70, exponential
 // 1.48 to 1.85, at 8 to 1024 rays and at 100 (no power of 2: plain halves of 100 rays read 4.7 times the
 // spread). The bound [0.8, 2.2] holds the figure to "the noise, erring high", and fails on the halves of 100.
-// (Elsewhere it errs higher: up to 3.4 at points of corner and stairs.)
+// (Elsewhere it errs higher: 2.4 to 2.8 at a point of corner, exponential falloff, 1024 rays.)
 TEST(StandardError, MatchesTheSpreadOverSeeds) {
     BuiltinScene scene = makeBuiltinScene("ceiling");
     Tracer tracer(scene.scene);

@@ -291,6 +291,11 @@ void checkInputFormat(const std::string& flag, const std::string& path, const st
                    (ext.empty() ? std::string("a file without an extension") : ext));
 }
 
+void checkSupersample(int supersample) {
+    if (supersample < 1 || supersample > 16)
+        fail("--supersample", "must be in [1, 16], got " + std::to_string(supersample));
+}
+
 void checkOutputDirectory(const std::string& flag, const std::string& dir, bool create) {
     if (dir.empty()) fail(flag, "directory is empty");
     if (fs::exists(dir) && !fs::is_directory(dir)) fail(dir, "exists and is not a directory");

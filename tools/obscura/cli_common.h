@@ -89,6 +89,10 @@ void checkOutputDirectory(const std::string& flag, const std::string& dir, bool 
 std::filesystem::path firstMissingDirectory(const std::string& dir);
 
 
+// --supersample's range, checked before any input is read (GBufferSettings' own check comes after the scene
+// and the environment, and names no flag).
+void checkSupersample(int supersample);
+
 // Fails early if an input (skipped when empty) is not one of `extensions`, where readImage would read other
 // formats as something they cannot hold: "<flag>: <path>: <content> is read from .hdr or .exr files, not .png".
 void checkInputFormat(const std::string& flag, const std::string& path, const std::vector<std::string>& extensions,

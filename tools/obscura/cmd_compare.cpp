@@ -53,16 +53,14 @@ struct CompareOptions {
     std::vector<const CLI::Option*> blurFlags;  // --blur-radius, --blur-normal-weight: ignored with --blur none
 };
 
-// A float as JSON's shortest decimal that reads back as the same float: 0.01f went out as 0.009999999776482582.
-double jsonNumber(float v) {
+// A float as JSON's shortest decimal that reads back as the same float (0.01f went out as 0.009999999776482582),
+// and a value that is no number (an infinite radius, the noise of too few rays) as null.
+nlohmann::json jsonNumber(float v) {
+    if (!std::isfinite(v)) return nullptr;
     char text[32];
     const auto end = std::to_chars(text, text + sizeof text, v).ptr;
     return std::strtod(std::string(text, end).c_str(), nullptr);
 }
-
-// A double that may be NaN (no figure) as JSON: null, which every reader takes; nlohmann writes NaN as null too,
-// but says nothing of it.
-nlohmann::json jsonOrNull(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
 // 3 x 5 glyphs of the legend's labels, one row of 3 bits per line, top first.
 const std::map<char, std::array<int, 5>> kGlyphs = {
@@ -247,9 +245,8 @@ void run(const CompareOptions& o) {
     report["surface_pixels"] = rows.front().stats.pixels;
     for (const Row& r : rows) {
         nlohmann::json reference = {{"falloff", falloffNames[int(r.ref.falloff)]},
-                                    {"radius", std::isfinite(r.ref.radius) ? nlohmann::json(jsonNumber(r.ref.radius))
-                                                                           : nlohmann::json(nullptr)},
-                                    {"noise", jsonOrNull(r.reference->noise)}};
+                                    {"radius", jsonNumber(r.ref.radius)},
+                                    {"noise", jsonNumber(float(r.reference->noise))}};
         if (r.ref.falloff == trace::Falloff::Alchemy) {
             reference["u"] = jsonNumber(r.ref.alchemyU);
             reference["scale"] = jsonNumber(r.ref.alchemyScale);

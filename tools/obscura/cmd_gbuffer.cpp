@@ -51,8 +51,7 @@ void run(const GBufferOptions& o) {
     // A directory that is there is one, whatever its name: -o out.d was refused as "unsupported output format".
     std::error_code isDir;
     const bool toDirectory = fileExtension(o.output).empty() || fs::is_directory(o.output, isDir);
-    if (o.supersample < 1 || o.supersample > 16)
-        fail("--supersample", "must be in [1, 16], got " + std::to_string(o.supersample));
+    checkSupersample(o.supersample);
     // Every file this run writes, checked before any work; the directory is made only once there is something
     // to put in it, so that a failure (bad flag, missing scene, an output that is a directory) leaves nothing.
     const fs::path dir(o.output);

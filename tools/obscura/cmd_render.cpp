@@ -86,8 +86,7 @@ void run(const RenderOptions& o) {
         if (o.falloff != "alchemy") warnIgnored({o.uOption}, "applies to --ao-falloff alchemy" + notThisFalloff);
     }
     if (o.ao == "none") warnIgnored({o.radiusOption}, "applies to --ao raytraced, alchemy or gtao" + notThis);
-    if (o.supersample < 1 || o.supersample > 16)
-        fail("--supersample", "must be in [1, 16], got " + std::to_string(o.supersample));
+    checkSupersample(o.supersample);
     // A flag said to be ignored is not validated either: "ignored" and then an error about its value was a
     // contradiction. What a setting does not read keeps its default.
     trace::ObscuranceSettings aoSettings;
